@@ -1,0 +1,46 @@
+# Two commands: `make run` (build Release, run the main job on the bundled demo nest) and
+# `make test` (build, run the whole suite, then again under ASan + UBSan).
+BUILD      ?= build
+ASAN_BUILD ?= build-asan
+OUT        ?= out
+JOBS       ?= $(shell nproc)
+CUTROUTE   := $(BUILD)/cutroute
+
+.PHONY: all deps build run test test-release test-asan bench clean
+
+all: build
+
+deps:
+	@scripts/install-deps
+
+$(BUILD)/build.ninja: | deps
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release
+
+build: deps $(BUILD)/build.ninja
+	cmake --build $(BUILD) -j $(JOBS)
+
+run: build
+	@mkdir -p $(OUT)
+	$(CUTROUTE) demo $(OUT)/demo_nest.dxf
+	$(CUTROUTE) inspect $(OUT)/demo_nest.dxf --json --svg $(OUT)/demo_nest.svg > $(OUT)/demo_nest.inspect.json
+	@echo "outputs in $(OUT)/: demo_nest.dxf demo_nest.inspect.json demo_nest.svg"
+
+test: test-release test-asan
+
+test-release: build
+	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+$(ASAN_BUILD)/build.ninja: | deps
+	cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCUTROUTE_SANITIZE=ON
+
+test-asan: deps $(ASAN_BUILD)/build.ninja
+	cmake --build $(ASAN_BUILD) -j $(JOBS)
+	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	  CUTROUTE_SANITIZED=1 ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
+
+bench: deps
+	cmake -S . -B build-bench -G Ninja -DCMAKE_BUILD_TYPE=Release -DCUTROUTE_BUILD_BENCH=ON -DCUTROUTE_BUILD_TESTS=OFF
+	cmake --build build-bench -j $(JOBS)
+
+clean:
+	rm -rf $(BUILD) $(ASAN_BUILD) build-bench $(OUT)

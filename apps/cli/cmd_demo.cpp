@@ -1,0 +1,16 @@
+// cutroute demo: not yet implemented (placeholder until its issue lands).
+#include <iostream>
+
+#include "commands.hpp"
+
+namespace cutroute::cli {
+
+void add_demo(CLI::App& root, Commands& out) {
+  auto* app = root.add_subcommand("demo", "(not yet implemented)");
+  out.push_back({app, [] {
+    std::cerr << "cutroute: error: 'demo' is not implemented yet\n";
+    return kUsageError;
+  }});
+}
+
+}  // namespace cutroute::cli

@@ -1,0 +1,69 @@
+// cutroute: the command-line entry point. Parses options, runs one subcommand, maps to exit codes.
+#include <unistd.h>
+
+#include <csignal>
+#include <iostream>
+
+#include <cutroute/core/stop.hpp>
+#include <cutroute/core/version.hpp>
+
+#include "commands.hpp"
+
+namespace cutroute::cli {
+
+int fail(const Diagnostic& d) {
+  std::cerr << "cutroute: " << format(d) << '\n';
+  return kInputError;
+}
+
+bool show_progress(bool quiet) { return !quiet && ::isatty(STDERR_FILENO); }
+
+}  // namespace cutroute::cli
+
+namespace {
+extern "C" void on_signal(int) { cutroute::StopToken::global().request_stop(); }
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace cutroute::cli;
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+
+  CLI::App app{"cutroute: cutting-route optimizer and CAM engine for CNC sheet cutting", "cutroute"};
+  app.set_version_flag("--version", std::string("cutroute ") + cutroute::version());
+  app.require_subcommand(1);
+  Commands commands;
+  add_inspect(app, commands);
+  add_demo(app, commands);
+  add_speed(app, commands);
+  add_estimate(app, commands);
+  add_gtsp(app, commands);
+  add_machining(app, commands);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kUsageError;
+  }
+  for (const auto& c : commands) {
+    if (c.app->parsed()) {
+      try {
+        return c.run();
+      } catch (const std::bad_alloc&) {
+        std::cerr << "cutroute: error: out of memory\n";
+        return kInputError;
+      } catch (const std::exception& e) {
+        std::cerr << "cutroute: error: " << e.what() << '\n';
+        return kInputError;
+      }
+    }
+  }
+  return kUsageError;
+}

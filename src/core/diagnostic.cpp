@@ -1,0 +1,50 @@
+#include <cutroute/core/diagnostic.hpp>
+
+#include <algorithm>
+
+namespace cutroute {
+
+const char* to_string(Severity s) {
+  switch (s) {
+    case Severity::info: return "info";
+    case Severity::warning: return "warning";
+    case Severity::error: return "error";
+  }
+  return "error";
+}
+
+std::string format(const Diagnostic& d) {
+  std::string out;
+  if (!d.file.empty()) {
+    out += d.file;
+    if (d.line) out += ":" + std::to_string(*d.line);
+    out += ": ";
+  } else if (d.line) {
+    out += "line " + std::to_string(*d.line) + ": ";
+  }
+  out += to_string(d.severity);
+  out += ": ";
+  out += d.message;
+  if (!d.handle.empty() || !d.layer.empty()) {
+    out += " (";
+    if (!d.handle.empty()) out += "entity " + d.handle;
+    if (!d.handle.empty() && !d.layer.empty()) out += ", ";
+    if (!d.layer.empty()) out += "layer " + d.layer;
+    out += ")";
+  }
+  return out;
+}
+
+Diagnostic make_error(std::string message, std::string file, std::optional<long> line) {
+  return Diagnostic{Severity::error, std::move(message), std::move(file), line, {}, {}};
+}
+
+Diagnostic make_warning(std::string message, std::string file, std::optional<long> line) {
+  return Diagnostic{Severity::warning, std::move(message), std::move(file), line, {}, {}};
+}
+
+bool has_errors(const Diagnostics& ds) {
+  return std::any_of(ds.begin(), ds.end(), [](const Diagnostic& d) { return d.severity == Severity::error; });
+}
+
+}  // namespace cutroute

@@ -1,0 +1,1 @@
+set(CUTROUTE_IO_SOURCES output_file.cpp)

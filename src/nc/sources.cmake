@@ -1,0 +1,1 @@
+set(CUTROUTE_NC_SOURCES)

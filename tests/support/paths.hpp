@@ -1,0 +1,23 @@
+// Paths tests need: our test data, the shared corpus beside the repository, the built CLI.
+#pragma once
+
+#include <string>
+
+namespace cutroute::test {
+
+// tests/data/<rel>
+inline std::string test_data(const std::string& rel) { return std::string(CUTROUTE_TEST_DATA_DIR) + "/" + rel; }
+// ../shared/<rel> (the DXF corpus, GTSPLIB, SOP instances)
+inline std::string shared(const std::string& rel) { return std::string(CUTROUTE_SHARED_DIR) + "/" + rel; }
+// The cutroute executable of this build.
+inline std::string cli_path() { return CUTROUTE_CLI_PATH; }
+
+// Runs a shell command, returns its exit status and what it printed on stdout (stderr kept apart).
+struct CommandOutput {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+CommandOutput run_command(const std::string& command);
+
+}  // namespace cutroute::test

@@ -1,15 +1,58 @@
-// cutroute inspect: not yet implemented (placeholder until its issue lands).
+// cutroute inspect: read a nest and report what it holds (JSON summary, SVG picture).
 #include <iostream>
 
+#include <nlohmann/json.hpp>
+
+#include <cutroute/io/nest_loader.hpp>
+#include <cutroute/io/nest_svg.hpp>
+#include <cutroute/io/output_file.hpp>
+#include <cutroute/io/inspect_report.hpp>
+
 #include "commands.hpp"
+#include "input_options.hpp"
 
 namespace cutroute::cli {
 
 void add_inspect(CLI::App& root, Commands& out) {
-  auto* app = root.add_subcommand("inspect", "(not yet implemented)");
-  out.push_back({app, [] {
-    std::cerr << "cutroute: error: 'inspect' is not implemented yet\n";
-    return kUsageError;
+  struct Opts {
+    std::string nest;
+    bool json = false;
+    std::string svg;
+    InputOptions input;
+  };
+  auto opts = std::make_shared<Opts>();
+  auto* app = root.add_subcommand("inspect", "Read a DXF nest and report its contours, parts and holes");
+  app->add_option("NEST", opts->nest, "DXF file")->required();
+  app->add_flag("--json", opts->json, "Print one JSON object instead of the text summary");
+  app->add_option("--svg", opts->svg, "Write a picture of the nest to this SVG file");
+  add_input_options(app, opts->input);
+
+  out.push_back({app, [opts]() -> int {
+    auto load_options = to_load_options(opts->input);
+    if (!load_options) {
+      std::cerr << "cutroute: " << load_options.error().message << '\n';
+      return kUsageError;
+    }
+    auto loaded = io::load_nest(opts->nest, *load_options);
+    if (!loaded) return fail(loaded.error());
+
+    const nlohmann::json report = io::inspect_report(*loaded);
+    if (opts->json) {
+      std::cout << report.dump(2) << '\n';
+    } else {
+      std::cout << io::inspect_text(report);
+    }
+    if (!opts->svg.empty()) {
+      if (auto st = io::write_file_atomic(opts->svg, io::nest_to_svg(*loaded)); !st) return fail(st.error());
+    }
+    int errors = 0;
+    for (const auto& d : loaded->diagnostics) {
+      if (d.severity == Severity::error) {
+        std::cerr << "cutroute: " << format(d) << '\n';
+        ++errors;
+      }
+    }
+    return errors > 0 ? kInputError : kOk;
   }});
 }
 

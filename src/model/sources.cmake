@@ -1,1 +1,1 @@
-set(CUTROUTE_MODEL_SOURCES)
+set(CUTROUTE_MODEL_SOURCES demo_nest.cpp)

@@ -1,0 +1,43 @@
+#include "input_options.hpp"
+
+#include <charconv>
+#include <cmath>
+
+namespace cutroute::cli {
+
+void add_input_options(CLI::App* app, InputOptions& o) {
+  app->add_option("--snap", o.snap_mm, "End-point snapping distance when chaining entities [mm]")
+      ->check(CLI::Range(0.0, 10.0))
+      ->capture_default_str();
+  app->add_option("--units", o.units, "Drawing units, overriding the file's header")
+      ->check(CLI::IsMember({"mm", "cm", "m", "in", "ft"}));
+  app->add_option("--layers", o.layers, "Read only these layers (comma-separated)")->delimiter(',');
+  app->add_option("--ignore-layers", o.ignore_layers, "Ignore these layers (comma-separated)")->delimiter(',');
+  app->add_option("--sheet", o.sheet, "Sheet size W,H [mm]; the sheet's border is then not a part");
+}
+
+Result<io::NestLoadOptions> to_load_options(const InputOptions& o) {
+  io::NestLoadOptions lo;
+  lo.snap_mm = o.snap_mm;
+  if (!o.units.empty()) lo.dxf.units = o.units;
+  lo.dxf.layers = o.layers;
+  lo.dxf.ignore_layers = o.ignore_layers;
+  if (!o.sheet.empty()) {
+    const auto comma = o.sheet.find(',');
+    double w = 0, h = 0;
+    bool ok = comma != std::string::npos;
+    if (ok) {
+      const char* s = o.sheet.data();
+      const auto r1 = std::from_chars(s, s + comma, w);
+      const auto r2 = std::from_chars(s + comma + 1, s + o.sheet.size(), h);
+      ok = r1.ec == std::errc{} && r1.ptr == s + comma && r2.ec == std::errc{} && r2.ptr == s + o.sheet.size() &&
+           std::isfinite(w) && std::isfinite(h) && w > 0 && h > 0 && w <= units::kMaxCoordinateMm &&
+           h <= units::kMaxCoordinateMm;
+    }
+    if (!ok) return make_error("--sheet wants W,H in mm, two positive numbers (got '" + o.sheet + "')");
+    lo.nest.sheet_size = geometry::Vec2{w, h};
+  }
+  return lo;
+}
+
+}  // namespace cutroute::cli

@@ -1,0 +1,28 @@
+// Options shared by every subcommand that reads a nest: units, layers, snap, sheet size.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include <cutroute/core/result.hpp>
+#include <cutroute/core/units.hpp>
+#include <cutroute/io/nest_loader.hpp>
+
+namespace cutroute::cli {
+
+struct InputOptions {
+  double snap_mm = tol::kSnapMm;
+  std::string units;
+  std::vector<std::string> layers;
+  std::vector<std::string> ignore_layers;
+  std::string sheet;  // "W,H" [mm]
+};
+
+void add_input_options(CLI::App* app, InputOptions& o);
+// Turns parsed options into loader options; a malformed --sheet is a usage error (message only).
+Result<io::NestLoadOptions> to_load_options(const InputOptions& o);
+
+}  // namespace cutroute::cli

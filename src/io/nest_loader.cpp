@@ -1,0 +1,92 @@
+#include <cutroute/io/nest_loader.hpp>
+
+#include <map>
+
+#include <cutroute/core/number_format.hpp>
+#include <cutroute/geometry/chain.hpp>
+
+namespace cutroute::io {
+
+LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
+  LoadedNest out;
+  out.file = drawing.file;
+  out.units_in_file = drawing.units_in_file;
+  out.units_source = drawing.units_source;
+  out.mm_per_unit = drawing.mm_per_unit;
+  out.entity_counts = drawing.entity_counts;
+  out.skipped = drawing.skipped;
+  out.diagnostics = std::move(drawing.diagnostics);
+
+  // One chaining group per layer, numbered in order of first appearance (deterministic).
+  std::map<std::string, std::int32_t> layer_group;
+  std::vector<geometry::ChainPiece> pieces;
+  pieces.reserve(drawing.entities.size());
+  for (std::size_t i = 0; i < drawing.entities.size(); ++i) {
+    auto& e = drawing.entities[i];
+    auto [it, inserted] = layer_group.try_emplace(e.layer, static_cast<std::int32_t>(layer_group.size()));
+    pieces.push_back({std::move(e.path), static_cast<std::int32_t>(i), it->second});
+  }
+  geometry::ChainResult chained = geometry::chain_contours(pieces, options.snap_mm);
+  out.dropped_zero_length = chained.dropped_zero_length;
+  out.dropped_duplicates = chained.dropped_duplicates;
+
+  const auto& ents = drawing.entities;
+  std::vector<model::SourceContour> closed;
+  closed.reserve(chained.closed.size());
+  for (auto& c : chained.closed) {
+    model::SourceContour sc;
+    sc.contour = std::move(c.contour);
+    sc.sources = std::move(c.sources);
+    if (!sc.sources.empty()) {
+      const auto& first = ents[static_cast<std::size_t>(sc.sources.front())];
+      sc.layer = first.layer;
+      sc.handle = first.handle;
+      sc.line = first.line;
+    }
+    closed.push_back(std::move(sc));
+  }
+  for (auto& c : chained.open) {
+    OpenPath p;
+    p.path = std::move(c.contour);
+    if (!c.sources.empty()) {
+      const auto& first = ents[static_cast<std::size_t>(c.sources.front())];
+      p.layer = first.layer;
+      p.handle = first.handle;
+      p.line = first.line;
+    }
+    if (!p.path.vertices.empty()) {
+      const auto a = p.path.vertices.front().p;
+      const auto b = p.path.vertices.back().p;
+      Diagnostic d = make_warning("open contour from " + std::to_string(c.sources.size()) +
+                                      " entities, ends at (" + format_fixed(a.x, 3) + ", " + format_fixed(a.y, 3) +
+                                      ") and (" + format_fixed(b.x, 3) + ", " + format_fixed(b.y, 3) +
+                                      "); kept as an open path, not cut",
+                                  out.file, p.line);
+      d.handle = p.handle;
+      d.layer = p.layer;
+      out.diagnostics.push_back(std::move(d));
+    }
+    out.open_paths.push_back(std::move(p));
+  }
+  if (chained.dropped_zero_length > 0)
+    out.diagnostics.push_back(make_warning(
+        std::to_string(chained.dropped_zero_length) + " zero-length entities dropped", out.file));
+  if (chained.dropped_duplicates > 0)
+    out.diagnostics.push_back(make_warning(
+        std::to_string(chained.dropped_duplicates) + " duplicated entities dropped", out.file));
+
+  out.nest = model::build_nest(std::move(closed), options.nest);
+  for (auto& d : out.nest.diagnostics) {
+    if (d.file.empty()) d.file = out.file;
+    out.diagnostics.push_back(d);
+  }
+  return out;
+}
+
+Result<LoadedNest> load_nest(const std::string& path, const NestLoadOptions& options) {
+  auto drawing = read_dxf(path, options.dxf);
+  if (!drawing) return drawing.error();
+  return assemble_nest(std::move(drawing).value(), options);
+}
+
+}  // namespace cutroute::io

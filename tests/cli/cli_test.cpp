@@ -1,0 +1,108 @@
+// End-to-end tests of the cutroute executable: exit codes, messages, outputs.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "support/paths.hpp"
+
+namespace cutroute::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp_dir(const std::string& name) {
+  auto d = fs::temp_directory_path() / ("cutroute-cli-" + name + "-" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+TEST(Cli, VersionAndHelp) {
+  auto r = run_command(cli_path() + " --version");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("cutroute "), std::string::npos);
+  r = run_command(cli_path() + " --help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("inspect"), std::string::npos);
+}
+
+TEST(Cli, UsageErrorsExitOne) {
+  EXPECT_EQ(run_command(cli_path()).exit_code, 1);
+  EXPECT_EQ(run_command(cli_path() + " no-such-command").exit_code, 1);
+  EXPECT_EQ(run_command(cli_path() + " inspect").exit_code, 1);  // missing NEST
+  auto r = run_command(cli_path() + " inspect x.dxf --sheet abc");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("--sheet"), std::string::npos);
+}
+
+TEST(Cli, MissingFileIsAnInputErrorNamingTheFile) {
+  auto r = run_command(cli_path() + " inspect /nonexistent/nest.dxf");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("/nonexistent/nest.dxf"), std::string::npos) << r.err;
+}
+
+TEST(Cli, DemoThenInspectDescribesThePaperLikeSheet) {
+  const auto dir = temp_dir("demo");
+  const auto dxf = dir / "demo.dxf";
+  const auto svg = dir / "demo.svg";
+  auto r = run_command(cli_path() + " demo " + dxf.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_command(cli_path() + " inspect " + dxf.string() + " --json --svg " + svg.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["parts"], 14);
+  EXPECT_EQ(j["holes"], 7);
+  EXPECT_EQ(j["contours_closed"], 22);  // 21 cut contours + the sheet border
+  EXPECT_EQ(j["contours_open"], 0);
+  EXPECT_EQ(j["max_depth"], 1);
+  ASSERT_FALSE(j["sheet"].is_null());
+  EXPECT_EQ(j["units_in_file"], "mm");
+  // Analytic cut length: plates (rounded rectangle r15 + Ø80 hole), flanges Ø300 with Ø100 bore,
+  // L-brackets 250 x 300 with an R20 inner fillet.
+  const double pi = 3.14159265358979323846;
+  const double plate = 2 * (400 + 250) - 8 * 15 + 2 * pi * 15 + 2 * pi * 40;
+  const double flange = 2 * pi * 150 + 2 * pi * 50;
+  const double bracket = 2 * (250 + 300) - 2 * 20 + pi * 20 / 2;
+  EXPECT_NEAR(j["cut_length_mm"].get<double>(), 4 * plate + 3 * flange + 7 * bracket, 1e-6);
+  EXPECT_NEAR(j["total_length_mm"].get<double>(), 4 * plate + 3 * flange + 7 * bracket + 6000, 1e-6);
+  const auto bbox = j["bbox_mm"];
+  EXPECT_NEAR(bbox[0].get<double>(), 0, 1e-9);
+  EXPECT_NEAR(bbox[2].get<double>(), 2000, 1e-9);
+  EXPECT_NEAR(bbox[3].get<double>(), 1000, 1e-9);
+
+  const std::string picture = slurp(svg);
+  EXPECT_EQ(picture.rfind("<?xml", 0), 0u);
+  EXPECT_NE(picture.find("</svg>"), std::string::npos);
+  EXPECT_NE(picture.find("fill-rule=\"evenodd\""), std::string::npos);
+
+  // Same input, same bytes.
+  const auto svg2 = dir / "demo2.svg";
+  auto r2 = run_command(cli_path() + " inspect " + dxf.string() + " --json --svg " + svg2.string());
+  EXPECT_EQ(r2.out, r.out);
+  EXPECT_EQ(slurp(svg2), picture);
+  fs::remove_all(dir);
+}
+
+TEST(Cli, FailedRunLeavesNoOutputBehind) {
+  const auto dir = temp_dir("fail");
+  const auto svg = dir / "never.svg";
+  auto r = run_command(cli_path() + " inspect /nonexistent.dxf --svg " + svg.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_FALSE(fs::exists(svg));
+  for (const auto& e : fs::directory_iterator(dir)) ADD_FAILURE() << "left behind: " << e.path();
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace cutroute::test

@@ -1,1 +1,1 @@
-set(CUTROUTE_NC_SOURCES)
+set(CUTROUTE_NC_SOURCES gcode_writer.cpp post_dialect.cpp)

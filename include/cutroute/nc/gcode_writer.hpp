@@ -1,0 +1,32 @@
+// write_gcode(): turns a Toolpath into the text of a G-code program for one post-processor dialect.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include <cutroute/nc/post_dialect.hpp>
+#include <cutroute/nc/toolpath.hpp>
+
+namespace cutroute::nc {
+
+struct GcodeWriteOptions {
+  std::string title;          // first comment line (e.g. the nest file name)
+  bool comments = true;       // per-segment comments (labels), when the dialect has comments
+};
+
+// What was written, measured on the quantised moves actually emitted.
+struct WrittenProgram {
+  std::string text;
+  std::size_t pierces = 0;
+  double cut_length_mm = 0.0;    // beam-on path length, arcs exact [mm]
+  double rapid_length_mm = 0.0;  // G0 path length [mm]
+};
+
+// Coordinates are rounded to the dialect's resolution before writing and the writer's idea of
+// the current position is the rounded one, so what the machine does is what we measured. Arc
+// centres are recomputed from the rounded end points (radius consistent to the resolution).
+// Arcs of more than 150° are split in two for the R format (R is ill-conditioned near 180°).
+// Moves that round to zero length are dropped.
+WrittenProgram write_gcode(const Toolpath& path, const PostDialect& dialect, const GcodeWriteOptions& options);
+
+}  // namespace cutroute::nc

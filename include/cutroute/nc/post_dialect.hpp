@@ -1,0 +1,51 @@
+// PostDialect: how one machine family wants its G-code written (codes, formats), loaded from JSON.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <cutroute/core/result.hpp>
+
+namespace cutroute::nc {
+
+enum class ArcFormat { ij, r };       // G2/G3 with incremental I J centre, or with radius R
+enum class CommentStyle { paren, semicolon, none };
+
+// Every field has a default that LinuxCNC's interpreter accepts (the `generic` dialect).
+// Code lists may contain the placeholders {pierce_s} (pierce dwell [s]) and {feed} (feed [mm/min
+// or in/min]), replaced when written.
+struct PostDialect {
+  std::string name = "generic";
+  std::string description;
+  std::string units = "mm";                  // "mm" (G21) or "in" (G20): coordinates converted on output
+  int decimals = 3;                          // coordinate decimals (mm: 1 µm)
+  int feed_decimals = 0;
+  ArcFormat arc_format = ArcFormat::ij;
+  bool line_numbers = false;
+  int line_number_start = 10;
+  int line_number_step = 10;
+  CommentStyle comments = CommentStyle::paren;
+  std::vector<std::string> header = {"G17 G21 G90 G40 G49 G94"};  // after the units word is checked
+  std::vector<std::string> footer = {};
+  std::string program_end = "M30";
+  std::vector<std::string> beam_on = {"M3 S1"};
+  std::vector<std::string> pierce = {"G4 P{pierce_s}"};
+  std::vector<std::string> beam_off = {"M5"};
+  std::vector<std::string> thc_on = {};      // torch height control on (plasma), after the lead-in
+  std::vector<std::string> thc_off = {};     // before the lead-out
+  std::string kerf_left = "G41";
+  std::string kerf_right = "G42";
+  std::string kerf_off = "G40";
+  // Cut direction convention for the kerf side (with left compensation the tool keeps the part on
+  // its right when outer contours run clockwise).
+  bool outer_clockwise = true;
+  bool hole_clockwise = false;
+};
+
+// Reads a dialect JSON file; errors name the file and the field. Unknown fields are errors (a
+// typo in a post-processor must not silently fall back to a default).
+Result<PostDialect> load_post_dialect(const std::string& path);
+// "generic", "plasma-thc", ... from <data_dir>/dialects/<name>.json, or a file path.
+Result<PostDialect> find_post_dialect(const std::string& name_or_path);
+
+}  // namespace cutroute::nc

@@ -1,0 +1,362 @@
+#include <cutroute/model/cut_job.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <cutroute/core/number_format.hpp>
+#include <cutroute/core/tolerances.hpp>
+#include <cutroute/geometry/spatial_index.hpp>
+
+#include "path_ops.hpp"
+
+namespace cutroute::model {
+
+using geometry::Box;
+using geometry::Contour;
+using geometry::Vec2;
+using geometry::Vertex;
+
+const char* to_string(LeadKind k) {
+  switch (k) {
+    case LeadKind::none: return "none";
+    case LeadKind::line: return "line";
+    case LeadKind::arc: return "arc";
+    case LeadKind::line_arc: return "line_arc";
+  }
+  return "none";
+}
+
+const char* to_string(Fallback f) {
+  switch (f) {
+    case Fallback::none: return "none";
+    case Fallback::short_lead: return "short_lead";
+    case Fallback::on_contour: return "on_contour";
+    case Fallback::centre_pierce: return "centre_pierce";
+  }
+  return "none";
+}
+
+namespace {
+
+const double kQuarterBulge = std::tan(std::numbers::pi / 8);  // bulge of a 90° arc
+
+// Scrap lies left of the direction of travel for clockwise outer contours and counter-clockwise
+// holes (the default kerf convention: G41 keeps the beam in scrap).
+bool scrap_on_left(ContourRole role, bool clockwise) {
+  return role == ContourRole::outer ? clockwise : !clockwise;
+}
+
+struct Site {
+  double s = 0;
+  bool corner = false;
+  double turn = 0;  // |turn angle| at a corner [rad]
+};
+
+}  // namespace
+
+struct EntryPlanner::Impl {
+  const Nest& nest;
+  EntryOptions opt;
+  double clearance;
+  geometry::StaticSpatialIndex index;  // over every contour's box, sheet included
+  mutable std::vector<std::uint32_t> scratch;
+
+  Impl(const Nest& n, const EntryOptions& o) : nest(n), opt(o) {
+    clearance = o.clearance_mm >= 0 ? o.clearance_mm : o.kerf_mm + 1.0;
+    std::vector<Box> boxes;
+    boxes.reserve(n.contours.size());
+    for (const auto& c : n.contours) boxes.push_back(c.box);
+    index = geometry::StaticSpatialIndex(boxes);
+  }
+
+  const NestContour& nc(ContourId id) const { return nest.contours[id]; }
+
+  // The contour as cut: oriented in the cut direction.
+  Contour oriented(ContourId id, bool clockwise) const {
+    const Contour& c = nc(id).source.contour;
+    const bool is_cw = geometry::orientation(c) == geometry::Orientation::cw;
+    return is_cw == clockwise ? c : geometry::reversed(c);
+  }
+
+  // Is p in scrap: inside the sheet (when there is one) and inside an even number of part contours.
+  bool in_scrap(Vec2 p) const {
+    Box b;
+    b.add(p);
+    index.query(b, scratch);
+    int inside = 0;
+    for (auto i : scratch) {
+      const ContourId id(static_cast<std::int32_t>(i));
+      const auto& c = nc(id);
+      const auto loc = geometry::locate(c.source.contour, p, tol::kSamePointMm);
+      if (c.role == ContourRole::sheet) {
+        if (loc != geometry::Location::inside) return false;
+        continue;
+      }
+      if (loc == geometry::Location::on_boundary) return false;
+      if (loc == geometry::Location::inside) ++inside;
+    }
+    if (nest.sheet && scratch.empty()) return false;
+    return inside % 2 == 0;
+  }
+
+  // Does the open path keep `clearance` from every contour but `own`, and not cross `own` except
+  // at its last point (lead-in) or first point (lead-out)?
+  bool path_clear(const Contour& path, ContourId own, bool touches_at_end) const {
+    if (path.vertices.size() < 2) return true;
+    const Box box = geometry::bounding_box(path).inflated(clearance);
+    index.query(box, scratch);
+    for (auto i : scratch) {
+      const ContourId id(static_cast<std::int32_t>(i));
+      if (id == own) continue;
+      if (geometry::intersects(path, nc(id).source.contour, clearance)) return false;
+    }
+    // Own contour: trim the touching end by a little, then no contact at all is allowed.
+    const double len = geometry::length(path);
+    const double trim = std::min(0.05 * len, 0.1);
+    const Contour own_part = touches_at_end ? detail::sub_path(path, 0, len - trim) : detail::sub_path(path, trim, len - trim);
+    return !geometry::intersects(own_part, nc(own).source.contour, tol::kSamePointMm);
+  }
+
+  bool pierce_ok(Vec2 p, ContourId own, double own_min) const {
+    if (!in_scrap(p)) return false;
+    const Box box = Box{p.x, p.y, p.x, p.y}.inflated(clearance);
+    index.query(box, scratch);
+    for (auto i : scratch) {
+      const ContourId id(static_cast<std::int32_t>(i));
+      const double need = id == own ? own_min : clearance;
+      if (geometry::distance(nc(id).source.contour, p) < need) return false;
+    }
+    return true;
+  }
+
+  // Lead-in into p with unit tangent t (travel) and unit scrap normal n; `left` = n is the left normal.
+  Contour lead_in(Vec2 p, Vec2 t, Vec2 n, bool left, bool corner, double scale) const {
+    const auto& L = opt.lead;
+    const double len = L.in_length_mm * scale, r = L.in_arc_radius_mm * scale;
+    Contour lead;
+    const LeadKind kind = corner && L.in_kind != LeadKind::none ? LeadKind::line : L.in_kind;
+    switch (kind) {
+      case LeadKind::none:
+        return lead;
+      case LeadKind::line:
+        lead.vertices = {Vertex{p + n * len, 0}, Vertex{p, 0}};
+        break;
+      case LeadKind::arc: {
+        const Vec2 c = p + n * r;
+        lead.vertices = {Vertex{c - t * r, left ? kQuarterBulge : -kQuarterBulge}, Vertex{p, 0}};
+        break;
+      }
+      case LeadKind::line_arc: {
+        const Vec2 q = p + n * r - t * r;
+        lead.vertices = {Vertex{q + n * len, 0}, Vertex{q, left ? kQuarterBulge : -kQuarterBulge}, Vertex{p, 0}};
+        break;
+      }
+    }
+    return lead;
+  }
+
+  Contour lead_out(Vec2 p, Vec2 t, Vec2 n, bool left, double scale) const {
+    const auto& L = opt.lead;
+    const double len = L.out_length_mm * scale;
+    Contour lead;
+    if (len <= 0) return lead;
+    switch (L.out_kind) {
+      case LeadKind::none:
+        return lead;
+      case LeadKind::line:
+      case LeadKind::line_arc:
+        // Diagonally forward into scrap: leaves the kerf without dwelling on the part edge.
+        lead.vertices = {Vertex{p, 0}, Vertex{p + geometry::normalized(n + t) * len, 0}};
+        break;
+      case LeadKind::arc: {
+        const Vec2 c = p + n * len;
+        lead.vertices = {Vertex{p, left ? kQuarterBulge : -kQuarterBulge}, Vertex{c + t * len, 0}};
+        break;
+      }
+    }
+    return lead;
+  }
+
+  std::vector<Site> sites(const Contour& path) const {
+    const std::size_t n = geometry::segment_count(path);
+    const double total = geometry::length(path);
+    std::vector<Site> corners;
+    double acc = 0;
+    const double min_turn = opt.corner_angle_deg * std::numbers::pi / 180.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto in = geometry::segment(path, (i + n - 1) % n);
+      const auto out = geometry::segment(path, i);
+      const Vec2 a = in.tangent_at(1), b = out.tangent_at(0);
+      const double turn = std::abs(std::atan2(geometry::cross(a, b), geometry::dot(a, b)));
+      if (turn > min_turn) corners.push_back({acc, true, turn});
+      acc += out.length();
+    }
+    const auto max_c = static_cast<std::size_t>(std::max(1, opt.max_candidates));
+    std::stable_sort(corners.begin(), corners.end(), [](const Site& x, const Site& y) { return x.turn > y.turn; });
+    if (corners.size() > max_c / 2) corners.resize(max_c / 2);
+    std::vector<Site> out = corners;
+    const std::size_t fill = max_c - out.size();
+    double step = opt.entry_step_mm > 0 ? opt.entry_step_mm : total / static_cast<double>(std::max<std::size_t>(fill, 1));
+    const std::size_t count = std::min(fill, static_cast<std::size_t>(std::max(1.0, std::floor(total / step))));
+    step = total / static_cast<double>(std::max<std::size_t>(count, 1));
+    for (std::size_t k = 0; k < count; ++k) {
+      const double s = (static_cast<double>(k) + 0.5) * step;
+      bool near = false;
+      for (const auto& c : corners) {
+        double d = std::abs(c.s - s);
+        d = std::min(d, total - d);
+        near |= d < step / 2;
+      }
+      if (!near) out.push_back({s, false, 0});
+    }
+    std::sort(out.begin(), out.end(), [](const Site& x, const Site& y) { return x.s < y.s; });
+    return out;
+  }
+
+  // Builds the entry at arc length s of the oriented path; nullopt when not admissible.
+  std::optional<EntryCandidate> build(ContourId id, const Contour& path, double s_path, bool clockwise, bool corner,
+                                      double scale, double total_len) const {
+    const auto role = nc(id).role;
+    const bool left = scrap_on_left(role, clockwise);
+    const auto at = detail::at_length(path, s_path);
+    Vec2 n = left ? geometry::perp(at.tangent) : -geometry::perp(at.tangent);
+    if (corner) {
+      // At a corner, lead in along the bisector of the two scrap-side normals.
+      const auto before = detail::at_length(path, s_path - 1e-6 * std::max(1.0, total_len));
+      const Vec2 n0 = left ? geometry::perp(before.tangent) : -geometry::perp(before.tangent);
+      const Vec2 sum = n + n0;
+      if (geometry::norm(sum) > 1e-9) n = geometry::normalized(sum);
+    }
+    EntryCandidate e;
+    e.contour = id;
+    e.point = at.point;
+    e.clockwise = clockwise;
+    e.corner = corner;
+    e.lead_in = lead_in(at.point, at.tangent, n, left, corner, scale);
+    e.pierce = e.lead_in.vertices.empty() ? at.point : e.lead_in.vertices.front().p;
+    const double lead_len = geometry::length(e.lead_in);
+    if (!pierce_ok(e.pierce, id, std::min(clearance, 0.5 * lead_len))) return std::nullopt;
+    if (!path_clear(e.lead_in, id, true)) return std::nullopt;
+    e.path = detail::sub_path(path, s_path, total_len + opt.lead.overcut_mm);
+    const auto end = detail::at_length(path, s_path + opt.lead.overcut_mm);
+    const Vec2 n_end = left ? geometry::perp(end.tangent) : -geometry::perp(end.tangent);
+    e.lead_out = lead_out(end.point, end.tangent, n_end, left, scale);
+    if (!e.lead_out.vertices.empty() && !path_clear(e.lead_out, id, false)) e.lead_out = Contour{};
+    // s along the stored contour: the oriented path runs backwards when it was reversed.
+    const Contour& stored = nc(id).source.contour;
+    e.s_mm = (geometry::orientation(stored) == geometry::Orientation::cw) == clockwise
+                 ? s_path
+                 : std::fmod(total_len - s_path + total_len, total_len);
+    return e;
+  }
+
+  std::optional<EntryCandidate> centre_pierce(ContourId id, const Contour& path, bool clockwise, double total) const {
+    const Vec2 centre = nc(id).box.center();
+    if (geometry::locate(nc(id).source.contour, centre, tol::kSamePointMm) != geometry::Location::inside) return std::nullopt;
+    const auto cp = geometry::closest_point(path, centre);
+    EntryCandidate e;
+    e.contour = id;
+    e.point = cp.point;
+    e.clockwise = clockwise;
+    e.pierce = centre;
+    e.lead_in.vertices = {Vertex{centre, 0}, Vertex{cp.point, 0}};
+    if (!in_scrap(centre) || !path_clear(e.lead_in, id, true)) return std::nullopt;
+    e.path = detail::sub_path(path, cp.length_along, total + opt.lead.overcut_mm);
+    e.fallback = Fallback::centre_pierce;
+    const Contour& stored = nc(id).source.contour;
+    e.s_mm = (geometry::orientation(stored) == geometry::Orientation::cw) == clockwise
+                 ? cp.length_along
+                 : std::fmod(total - cp.length_along + total, total);
+    return e;
+  }
+};
+
+EntryPlanner::EntryPlanner(const Nest& nest, const EntryOptions& options) : impl_(std::make_unique<Impl>(nest, options)) {}
+EntryPlanner::~EntryPlanner() = default;
+double EntryPlanner::clearance_mm() const { return impl_->clearance; }
+
+std::optional<EntryCandidate> EntryPlanner::entry_at(ContourId id, double s_mm, bool clockwise) const {
+  const Contour path = impl_->oriented(id, clockwise);
+  const double total = geometry::length(path);
+  const Contour& stored = impl_->nc(id).source.contour;
+  const bool same = (geometry::orientation(stored) == geometry::Orientation::cw) == clockwise;
+  const double s_path = same ? s_mm : std::fmod(total - s_mm + total, total);
+  return impl_->build(id, path, s_path, clockwise, false, 1.0, total);
+}
+
+std::vector<EntryCandidate> EntryPlanner::candidates(ContourId id, Diagnostics& diagnostics) const {
+  const auto& c = impl_->nc(id);
+  const bool conv_cw = c.role == ContourRole::outer ? impl_->opt.outer_clockwise : impl_->opt.hole_clockwise;
+  std::vector<bool> directions{conv_cw};
+  if (impl_->opt.free_direction) directions.push_back(!conv_cw);
+
+  std::vector<EntryCandidate> out;
+  const auto diag = [&](const std::string& msg) {
+    Diagnostic d = make_warning(msg, std::string(), c.source.line);
+    d.handle = c.source.handle;
+    d.layer = c.source.layer;
+    diagnostics.push_back(std::move(d));
+  };
+  for (double scale : {1.0, 0.5, 0.25}) {
+    for (bool cw : directions) {
+      const Contour path = impl_->oriented(id, cw);
+      const double total = geometry::length(path);
+      for (const auto& site : impl_->sites(path)) {
+        if (auto e = impl_->build(id, path, site.s, cw, site.corner, scale, total)) {
+          if (scale < 1.0) e->fallback = Fallback::short_lead;
+          out.push_back(std::move(*e));
+        }
+      }
+    }
+    if (!out.empty()) {
+      if (scale < 1.0)
+        diag("contour " + std::to_string(id.value() + 1) + ": no room for the full lead-in; lead shortened to " +
+             format_fixed(scale * 100, 0) + " %");
+      return out;
+    }
+  }
+  const Contour path = impl_->oriented(id, conv_cw);
+  const double total = geometry::length(path);
+  if (c.role == ContourRole::hole) {
+    if (auto e = impl_->centre_pierce(id, path, conv_cw, total)) {
+      diag("hole " + std::to_string(id.value() + 1) + ": too small for a lead-in; pierced at its centre");
+      out.push_back(std::move(*e));
+      return out;
+    }
+  }
+  // Last resort: pierce on the contour itself (marks the edge, but every contour gets cut).
+  EntryCandidate e;
+  e.contour = id;
+  e.clockwise = conv_cw;
+  const auto at = detail::at_length(path, 0);
+  e.point = at.point;
+  e.pierce = at.point;
+  e.path = detail::sub_path(path, 0, total + impl_->opt.lead.overcut_mm);
+  e.fallback = Fallback::on_contour;
+  e.s_mm = 0;
+  diag("contour " + std::to_string(id.value() + 1) + ": no admissible lead-in; pierced on the contour");
+  out.push_back(std::move(e));
+  return out;
+}
+
+CutJob make_cut_job(const Nest& nest, const EntryOptions& options) {
+  CutJob job;
+  EntryPlanner planner(nest, options);
+  std::vector<std::int32_t> job_index(nest.contours.size(), -1);
+  for (std::size_t i = 0; i < nest.contours.size(); ++i) {
+    const ContourId id(static_cast<std::int32_t>(i));
+    if (nest.contours[id].role == ContourRole::sheet) continue;
+    job_index[i] = static_cast<std::int32_t>(job.contours.size());
+    job.contours.push_back({id, planner.candidates(id, job.diagnostics)});
+  }
+  for (std::size_t i = 0; i < nest.contours.size(); ++i) {
+    const auto& c = nest.contours[ContourId(static_cast<std::int32_t>(i))];
+    if (job_index[i] < 0 || !c.parent.valid()) continue;
+    const auto parent = job_index[c.parent.index()];
+    if (parent >= 0) job.precedence.emplace_back(job_index[i], parent);
+  }
+  return job;
+}
+
+}  // namespace cutroute::model

@@ -1,0 +1,230 @@
+#include <cutroute/nc/gcode_writer.hpp>
+
+#include <cmath>
+#include <numbers>
+
+#include <cutroute/core/number_format.hpp>
+#include <cutroute/core/tolerances.hpp>
+#include <cutroute/core/units.hpp>
+
+namespace cutroute::nc {
+namespace {
+
+using geometry::Vec2;
+
+// Arc centre from end points and bulge: the chord's perpendicular bisector, offset by
+// (1 - b²) / (4 b) chord lengths to the left of the chord direction.
+Vec2 arc_center(Vec2 a, Vec2 b, double bulge) {
+  const Vec2 d = b - a;
+  return (a + b) / 2 + geometry::perp(d) * ((1 - bulge * bulge) / (4 * bulge));
+}
+
+double arc_length(Vec2 a, Vec2 b, double bulge) {
+  const double c = geometry::distance(a, b);
+  if (std::abs(bulge) < tol::kStraightBulge) return c;
+  const double sweep = 4 * std::atan(std::abs(bulge));
+  const double r = c * (1 + bulge * bulge) / (4 * std::abs(bulge));
+  return r * sweep;
+}
+
+class Emitter {
+ public:
+  Emitter(const PostDialect& d, WrittenProgram& out)
+      : d_(d), out_(out), scale_(d.units == "in" ? 1.0 / units::kMmPerInch : 1.0),
+        res_mm_(std::pow(10.0, -d.decimals) / scale_) {}
+
+  void start_numbers() { next_n_ = d_.line_number_start; }
+  void set_position(Vec2 p) {
+    pos_ = quantise(p);
+    have_pos_ = true;
+  }
+
+  void block(const std::string& text) {
+    if (text.empty()) return;
+    if (d_.line_numbers) {
+      out_.text += 'N';
+      out_.text += std::to_string(next_n_);
+      out_.text += ' ';
+      next_n_ += d_.line_number_step;
+    }
+    out_.text += text;
+    out_.text += '\n';
+  }
+
+  void comment(const std::string& text) {
+    if (d_.comments == CommentStyle::none) return;
+    std::string clean;
+    for (char c : text) clean += (c == '(' || c == ')' || c == '\n' || c == '\r') ? ' ' : c;
+    if (d_.comments == CommentStyle::paren) {
+      out_.text += "(" + clean + ")\n";
+    } else {
+      out_.text += "; " + clean + "\n";
+    }
+  }
+
+  void codes(const std::vector<std::string>& lines, double pierce_s, double feed) {
+    for (std::string line : lines) {
+      replace(line, "{pierce_s}", format_fixed(pierce_s, 3));
+      replace(line, "{feed}", format_fixed(feed * scale_, d_.feed_decimals));
+      block(line);
+    }
+  }
+
+  // Rounds a point to the output resolution (in mm).
+  Vec2 quantise(Vec2 p) const {
+    const double f = std::pow(10.0, d_.decimals);
+    return {std::round(p.x * scale_ * f) / f / scale_, std::round(p.y * scale_ * f) / f / scale_};
+  }
+
+  void rapid(Vec2 to) {
+    const Vec2 q = quantise(to);
+    if (have_pos_ && q == pos_) return;
+    std::string s = "G0 X";
+    coord(s, q.x);
+    s += " Y";
+    coord(s, q.y);
+    block(s);
+    if (have_pos_) out_.rapid_length_mm += geometry::distance(pos_, q);
+    pos_ = q;
+    have_pos_ = true;
+  }
+
+  // Returns whether a block was written (moves that round to nothing are dropped).
+  bool line(Vec2 to, const std::string& feed_word) {
+    const Vec2 q = quantise(to);
+    if (q == pos_) return false;
+    std::string s = "G1 X";
+    coord(s, q.x);
+    s += " Y";
+    coord(s, q.y);
+    s += feed_word;
+    block(s);
+    out_.cut_length_mm += geometry::distance(pos_, q);
+    pos_ = q;
+    return true;
+  }
+
+  bool arc(Vec2 to, double bulge, const std::string& feed_word) {
+    const Vec2 q = quantise(to);
+    if (q == pos_) return false;
+    if (std::abs(bulge) < tol::kStraightBulge || geometry::distance(pos_, q) < 2 * res_mm_) {
+      return line(to, feed_word);
+    }
+    const double sweep = 4 * std::atan(bulge);
+    if (d_.arc_format == ArcFormat::r && std::abs(sweep) > 150.0 * std::numbers::pi / 180.0) {
+      // Split at the arc's midpoint into two arcs of half the sweep.
+      const Vec2 c = arc_center(pos_, q, bulge);
+      const double a0 = std::atan2(pos_.y - c.y, pos_.x - c.x);
+      const double r = geometry::distance(c, pos_);
+      const Vec2 mid{c.x + r * std::cos(a0 + sweep / 2), c.y + r * std::sin(a0 + sweep / 2)};
+      const double half = std::tan(sweep / 8);
+      const bool first = arc(mid, half, feed_word);
+      return arc(to, half, first ? std::string() : feed_word) || first;
+    }
+    const Vec2 c = arc_center(pos_, q, bulge);
+    std::string s = bulge < 0 ? "G2 X" : "G3 X";
+    coord(s, q.x);
+    s += " Y";
+    coord(s, q.y);
+    if (d_.arc_format == ArcFormat::ij) {
+      s += " I";
+      coord(s, c.x - pos_.x);
+      s += " J";
+      coord(s, c.y - pos_.y);
+    } else {
+      const double r = geometry::distance(c, pos_);
+      s += " R";
+      coord(s, r);
+    }
+    s += feed_word;
+    block(s);
+    out_.cut_length_mm += arc_length(pos_, q, bulge);
+    pos_ = q;
+    return true;
+  }
+
+  std::string feed_word(double feed_mm_min) const {
+    std::string s = " F";
+    append_fixed(s, feed_mm_min * scale_, d_.feed_decimals);
+    return s;
+  }
+
+ private:
+  static void replace(std::string& s, const std::string& what, const std::string& with) {
+    for (auto p = s.find(what); p != std::string::npos; p = s.find(what, p + with.size())) s.replace(p, what.size(), with);
+  }
+  void coord(std::string& s, double mm) const { append_fixed(s, mm * scale_, d_.decimals); }
+
+  const PostDialect& d_;
+  WrittenProgram& out_;
+  double scale_;
+  double res_mm_;
+  int next_n_ = 0;
+  Vec2 pos_{};
+  bool have_pos_ = false;
+};
+
+}  // namespace
+
+const char* to_string(PieceRole r) {
+  switch (r) {
+    case PieceRole::lead_in: return "lead_in";
+    case PieceRole::contour: return "contour";
+    case PieceRole::bridge: return "bridge";
+    case PieceRole::lead_out: return "lead_out";
+  }
+  return "contour";
+}
+
+Vec2 tool_off_point(const CutSegment& s) {
+  for (auto it = s.pieces.rbegin(); it != s.pieces.rend(); ++it) {
+    if (!it->path.vertices.empty()) return it->path.vertices.back().p;
+  }
+  return s.pierce;
+}
+
+WrittenProgram write_gcode(const Toolpath& path, const PostDialect& d, const GcodeWriteOptions& options) {
+  WrittenProgram out;
+  Emitter e(d, out);
+  e.start_numbers();
+  if (!options.title.empty()) e.comment(options.title);
+  e.block(d.units == "in" ? "G20" : "G21");
+  for (const auto& h : d.header) e.block(h);
+  e.set_position(path.start);
+
+  for (const auto& seg : path.segments) {
+    if (options.comments && !seg.label.empty()) e.comment(seg.label);
+    e.rapid(seg.pierce);
+    e.codes(d.beam_on, path.pierce_time_s, seg.feed_mm_min);
+    e.codes(d.pierce, path.pierce_time_s, seg.feed_mm_min);
+    ++out.pierces;
+    if (seg.kerf != KerfSide::none) e.block(seg.kerf == KerfSide::left ? d.kerf_left : d.kerf_right);
+    std::string feed = e.feed_word(seg.feed_mm_min);
+    bool thc = false;
+    for (const auto& piece : seg.pieces) {
+      const bool is_lead = piece.role == PieceRole::lead_in || piece.role == PieceRole::lead_out;
+      if (!is_lead && !thc) {
+        e.codes(d.thc_on, path.pierce_time_s, seg.feed_mm_min);
+        thc = true;
+      } else if (piece.role == PieceRole::lead_out && thc) {
+        e.codes(d.thc_off, path.pierce_time_s, seg.feed_mm_min);
+        thc = false;
+      }
+      const auto& v = piece.path.vertices;
+      for (std::size_t i = 0; i + 1 < v.size(); ++i) {
+        const bool written = std::abs(v[i].bulge) < tol::kStraightBulge ? e.line(v[i + 1].p, feed)
+                                                                         : e.arc(v[i + 1].p, v[i].bulge, feed);
+        if (written) feed.clear();  // F is modal: written once per segment, on its first cutting move
+      }
+    }
+    if (thc) e.codes(d.thc_off, path.pierce_time_s, seg.feed_mm_min);
+    if (seg.kerf != KerfSide::none) e.block(d.kerf_off);
+    e.codes(d.beam_off, path.pierce_time_s, seg.feed_mm_min);
+  }
+  e.rapid(path.end);
+  for (const auto& f : d.footer) e.block(f);
+  e.block(d.program_end);
+  return out;
+}
+
+}  // namespace cutroute::nc

@@ -1,0 +1,113 @@
+#include <cutroute/nc/post_dialect.hpp>
+
+#include <filesystem>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include <cutroute/core/version.hpp>
+#include <cutroute/io/output_file.hpp>
+
+namespace cutroute::nc {
+namespace {
+
+using nlohmann::json;
+
+struct FieldError {
+  std::string field;
+  std::string message;
+};
+
+template <class T>
+void get(const json& j, const char* key, T& out, std::set<std::string>& seen) {
+  seen.insert(key);
+  if (!j.contains(key)) return;
+  try {
+    out = j.at(key).get<T>();
+  } catch (const json::exception&) {
+    throw FieldError{key, "has the wrong type"};
+  }
+}
+
+}  // namespace
+
+Result<PostDialect> load_post_dialect(const std::string& path) {
+  auto text = io::read_file(path);
+  if (!text) return text.error();
+  json j;
+  try {
+    j = json::parse(*text);
+  } catch (const json::parse_error& e) {
+    return make_error(std::string("not valid JSON: ") + e.what(), path);
+  }
+  if (!j.is_object()) return make_error("a dialect file holds one JSON object", path);
+  PostDialect d;
+  std::set<std::string> seen;
+  std::string arc = "ij", comments = "paren";
+  try {
+    get(j, "name", d.name, seen);
+    get(j, "description", d.description, seen);
+    get(j, "units", d.units, seen);
+    get(j, "decimals", d.decimals, seen);
+    get(j, "feed_decimals", d.feed_decimals, seen);
+    get(j, "arc_format", arc, seen);
+    get(j, "line_numbers", d.line_numbers, seen);
+    get(j, "line_number_start", d.line_number_start, seen);
+    get(j, "line_number_step", d.line_number_step, seen);
+    get(j, "comments", comments, seen);
+    get(j, "header", d.header, seen);
+    get(j, "footer", d.footer, seen);
+    get(j, "program_end", d.program_end, seen);
+    get(j, "beam_on", d.beam_on, seen);
+    get(j, "pierce", d.pierce, seen);
+    get(j, "beam_off", d.beam_off, seen);
+    get(j, "thc_on", d.thc_on, seen);
+    get(j, "thc_off", d.thc_off, seen);
+    get(j, "kerf_left", d.kerf_left, seen);
+    get(j, "kerf_right", d.kerf_right, seen);
+    get(j, "kerf_off", d.kerf_off, seen);
+    get(j, "outer_clockwise", d.outer_clockwise, seen);
+    get(j, "hole_clockwise", d.hole_clockwise, seen);
+  } catch (const FieldError& e) {
+    return make_error("dialect field '" + e.field + "' " + e.message, path);
+  }
+  for (const auto& [key, value] : j.items()) {
+    if (!seen.count(key)) return make_error("unknown dialect field '" + key + "'", path);
+  }
+  if (d.units != "mm" && d.units != "in") return make_error("dialect field 'units' must be \"mm\" or \"in\"", path);
+  if (arc == "ij") {
+    d.arc_format = ArcFormat::ij;
+  } else if (arc == "r") {
+    d.arc_format = ArcFormat::r;
+  } else {
+    return make_error("dialect field 'arc_format' must be \"ij\" or \"r\"", path);
+  }
+  if (comments == "paren") {
+    d.comments = CommentStyle::paren;
+  } else if (comments == "semicolon") {
+    d.comments = CommentStyle::semicolon;
+  } else if (comments == "none") {
+    d.comments = CommentStyle::none;
+  } else {
+    return make_error("dialect field 'comments' must be \"paren\", \"semicolon\" or \"none\"", path);
+  }
+  if (d.decimals < 0 || d.decimals > 6) return make_error("dialect field 'decimals' must be 0..6", path);
+  if (d.feed_decimals < 0 || d.feed_decimals > 4) return make_error("dialect field 'feed_decimals' must be 0..4", path);
+  if (d.line_number_step <= 0) return make_error("dialect field 'line_number_step' must be positive", path);
+  if (d.program_end.empty()) return make_error("dialect field 'program_end' must not be empty", path);
+  return d;
+}
+
+Result<PostDialect> find_post_dialect(const std::string& name_or_path) {
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(name_or_path, ec)) return load_post_dialect(name_or_path);
+  const std::string builtin = std::string(data_dir()) + "/dialects/" + name_or_path + ".json";
+  if (std::filesystem::is_regular_file(builtin, ec)) return load_post_dialect(builtin);
+  std::string names;
+  for (const auto& e : std::filesystem::directory_iterator(std::string(data_dir()) + "/dialects", ec)) {
+    if (e.path().extension() == ".json") names += (names.empty() ? "" : ", ") + e.path().stem().string();
+  }
+  return make_error("unknown dialect '" + name_or_path + "' (built in: " + names + "; or give a JSON file)");
+}
+
+}  // namespace cutroute::nc

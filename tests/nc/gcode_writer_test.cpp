@@ -1,0 +1,211 @@
+// The G-code writer: exact text for formatting rules, meaning checked by re-parsing (tests/support).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include <cutroute/core/version.hpp>
+#include <cutroute/nc/gcode_writer.hpp>
+
+#include "support/gcode_probe.hpp"
+#include "support/paths.hpp"
+
+namespace cutroute::nc {
+namespace {
+
+using geometry::Contour;
+using geometry::Vec2;
+using geometry::Vertex;
+
+const double kPi = std::numbers::pi;
+
+// A 100 x 50 rectangle cut clockwise from (0,0) after a 5 mm straight lead-in from (-5,0).
+Toolpath square_path() {
+  Toolpath tp;
+  tp.start = {0, 0};
+  tp.end = {0, 0};
+  tp.pierce_time_s = 0.5;
+  CutSegment s;
+  s.pierce = {-5, 0};
+  s.feed_mm_min = 6000;
+  s.label = "part 1 outer";
+  s.pieces.push_back({Contour{{Vertex{{-5, 0}, 0}, Vertex{{0, 0}, 0}}, false}, PieceRole::lead_in, -1});
+  s.pieces.push_back({Contour{{Vertex{{0, 0}, 0}, Vertex{{0, 50}, 0}, Vertex{{100, 50}, 0}, Vertex{{100, 0}, 0},
+                               Vertex{{0, 0}, 0}},
+                              false},
+                      PieceRole::contour, 0});
+  tp.segments.push_back(s);
+  return tp;
+}
+
+// A full circle of radius r around c, as two half arcs, cut counter-clockwise from its left point.
+Toolpath circle_path(Vec2 c, double r) {
+  Toolpath tp;
+  tp.pierce_time_s = 0.2;
+  CutSegment s;
+  s.pierce = {c.x - r, c.y};
+  s.feed_mm_min = 3000;
+  s.pieces.push_back({Contour{{Vertex{{c.x - r, c.y}, 1}, Vertex{{c.x + r, c.y}, 1}, Vertex{{c.x - r, c.y}, 0}}, false},
+                      PieceRole::contour, 0});
+  tp.segments.push_back(s);
+  return tp;
+}
+
+TEST(GcodeWriter, ExactTextOfASimpleProgram) {
+  const auto w = write_gcode(square_path(), PostDialect{}, GcodeWriteOptions{"square", true});
+  EXPECT_EQ(w.text,
+            "(square)\n"
+            "G21\n"
+            "G17 G21 G90 G40 G49 G94\n"
+            "(part 1 outer)\n"
+            "G0 X-5 Y0\n"
+            "M3 S1\n"
+            "G4 P0.5\n"
+            "G1 X0 Y0 F6000\n"
+            "G1 X0 Y50\n"
+            "G1 X100 Y50\n"
+            "G1 X100 Y0\n"
+            "G1 X0 Y0\n"
+            "M5\n"
+            "G0 X0 Y0\n"
+            "M30\n");
+  EXPECT_EQ(w.pierces, 1u);
+  EXPECT_DOUBLE_EQ(w.cut_length_mm, 305.0);
+  EXPECT_DOUBLE_EQ(w.rapid_length_mm, 10.0);
+}
+
+TEST(GcodeWriter, HalfArcsBecomeG3WithIncrementalCentre) {
+  const auto w = write_gcode(circle_path({10, 20}, 5), PostDialect{}, GcodeWriteOptions{});
+  EXPECT_NE(w.text.find("G3 X15 Y20 I5 J0 F3000\n"), std::string::npos) << w.text;
+  EXPECT_NE(w.text.find("G3 X5 Y20 I-5 J0\n"), std::string::npos) << w.text;
+  EXPECT_NEAR(w.cut_length_mm, 2 * kPi * 5, 1e-9);
+}
+
+TEST(GcodeWriter, ReparsedProgramHasTheMeasuredLengths) {
+  for (auto arc : {ArcFormat::ij, ArcFormat::r}) {
+    PostDialect d;
+    d.arc_format = arc;
+    Toolpath tp = circle_path({123.4567, -89.0123}, 17.77777);
+    tp.segments.push_back(square_path().segments.front());
+    const auto w = write_gcode(tp, d, GcodeWriteOptions{});
+    const auto probe = test::probe_gcode(w.text);
+    ASSERT_TRUE(probe.errors.empty());
+    EXPECT_EQ(probe.pierces, 2);
+    EXPECT_FALSE(probe.cut_with_beam_off);
+    EXPECT_TRUE(probe.ended);
+    EXPECT_NEAR(probe.cut_length, w.cut_length_mm, 1e-6);
+    EXPECT_NEAR(probe.rapid_length, w.rapid_length_mm, 1e-6);
+    // Quantised to 1 µm: the circle's length is kept to the resolution.
+    EXPECT_NEAR(w.cut_length_mm, 2 * kPi * 17.77777 + 305, 0.01);
+    EXPECT_LT(probe.max_arc_radius_error, 0.002);
+  }
+}
+
+TEST(GcodeWriter, RFormatSplitsArcsAbove150Degrees) {
+  PostDialect d;
+  d.arc_format = ArcFormat::r;
+  const auto w = write_gcode(circle_path({0, 0}, 10), d, GcodeWriteOptions{});
+  const auto probe = test::probe_gcode(w.text);
+  int arcs = 0;
+  for (const auto& m : probe.moves) arcs += m.arc != 0;
+  EXPECT_EQ(arcs, 4);  // each half circle split in two quarter arcs
+  EXPECT_EQ(w.text.find(" R-"), std::string::npos);
+  EXPECT_NEAR(probe.cut_length, 2 * kPi * 10, 1e-3);
+}
+
+TEST(GcodeWriter, NeverWritesNegativeZeroAndRoundsToResolution) {
+  Toolpath tp = square_path();
+  tp.segments[0].pierce = {-0.0001, 1e-7};
+  tp.segments[0].pieces[0].path.vertices[0].p = {-0.0001, 1e-7};
+  const auto w = write_gcode(tp, PostDialect{}, GcodeWriteOptions{});
+  EXPECT_EQ(w.text.find("-0 "), std::string::npos);
+  EXPECT_EQ(w.text.find("-0\n"), std::string::npos);
+  EXPECT_NE(w.text.find("G0 X0 Y0\n"), std::string::npos);
+}
+
+TEST(GcodeWriter, InchDialectConvertsCoordinatesAndFeed) {
+  PostDialect d;
+  d.units = "in";
+  d.decimals = 4;
+  d.feed_decimals = 1;
+  const auto w = write_gcode(square_path(), d, GcodeWriteOptions{});
+  EXPECT_NE(w.text.find("G20\n"), std::string::npos);
+  EXPECT_NE(w.text.find("G1 X0 Y1.9685\n"), std::string::npos) << w.text;  // 50 mm
+  EXPECT_NE(w.text.find("F236.2\n"), std::string::npos) << w.text;          // 6000 mm/min
+  const auto probe = test::probe_gcode(w.text);
+  EXPECT_NEAR(probe.cut_length, 305.0, 0.01);
+}
+
+TEST(GcodeWriter, LineNumbersThcAndKerfCodesFromTheDialect) {
+  auto d = find_post_dialect("plasma-thc");
+  ASSERT_TRUE(d.ok()) << format(d.error());
+  Toolpath tp = square_path();
+  tp.segments[0].kerf = KerfSide::left;
+  tp.segments[0].pieces.push_back({Contour{{Vertex{{0, 0}, 0}, Vertex{{-3, -3}, 0}}, false}, PieceRole::lead_out, -1});
+  const auto w = write_gcode(tp, *d, GcodeWriteOptions{});
+  EXPECT_EQ(w.text.find("N10 G21\n"), w.text.find('\n') + 1) << w.text;
+  const auto on = w.text.find("M65 P0"), off = w.text.find("M64 P0"), g41 = w.text.find("G41");
+  const auto first_contour_move = w.text.find("X0 Y50");
+  ASSERT_NE(on, std::string::npos);
+  ASSERT_NE(off, std::string::npos);
+  EXPECT_LT(g41, on);
+  EXPECT_LT(on, first_contour_move);  // THC released after the lead-in
+  EXPECT_GT(off, first_contour_move);  // and held again before the lead-out
+  EXPECT_NE(w.text.find("G40"), std::string::npos);
+}
+
+TEST(PostDialect, ErrorsNameTheField) {
+  const auto dir = std::filesystem::temp_directory_path();
+  const auto write = [&](const std::string& name, const std::string& text) {
+    const auto p = dir / name;
+    std::ofstream(p) << text;
+    return p.string();
+  };
+  auto r = load_post_dialect(write("d1.json", R"({"decimals": "three"})"));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("'decimals'"), std::string::npos);
+  r = load_post_dialect(write("d2.json", R"({"arc_fromat": "r"})"));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("unknown dialect field 'arc_fromat'"), std::string::npos);
+  r = load_post_dialect(write("d3.json", R"({"arc_format": "xy"})"));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("'arc_format'"), std::string::npos);
+  r = load_post_dialect(write("d4.json", "{ not json"));
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().file, (dir / "d4.json").string());
+  r = find_post_dialect("no-such-dialect");
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("generic"), std::string::npos);
+}
+
+TEST(PostDialect, ShippedDialectsLoad) {
+  for (const char* name : {"generic", "plasma-thc"}) {
+    auto d = find_post_dialect(name);
+    ASSERT_TRUE(d.ok()) << format(d.error());
+    EXPECT_EQ(d->name, name);
+  }
+}
+
+// LinuxCNC's own interpreter must accept every program we write (installed by
+// scripts/install-deps; the test says so and stops when it is missing).
+TEST(GcodeWriter, LinuxCncInterpreterAcceptsOurPrograms) {
+  if (std::system("command -v rs274 >/dev/null 2>&1") != 0) GTEST_SKIP() << "rs274 (linuxcnc-uspace) not installed";
+  for (const char* name : {"generic", "plasma-thc"}) {
+    auto d = find_post_dialect(name);
+    ASSERT_TRUE(d.ok());
+    Toolpath tp = circle_path({50, 50}, 20);
+    tp.segments.push_back(square_path().segments.front());
+    tp.segments.back().kerf = KerfSide::left;
+    const auto w = write_gcode(tp, *d, GcodeWriteOptions{"rs274 check"});
+    const auto path = std::filesystem::temp_directory_path() / (std::string("cutroute-rs274-") + name + ".ngc");
+    std::ofstream(path) << w.text;
+    const auto r = test::run_command("rs274 -g " + path.string() + " < /dev/null");
+    EXPECT_EQ(r.exit_code, 0) << name << "\n" << r.out << r.err << "\n" << w.text;
+  }
+}
+
+}  // namespace
+}  // namespace cutroute::nc

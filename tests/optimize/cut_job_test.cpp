@@ -1,0 +1,178 @@
+// Entry candidates and precedence of a cut job, checked against independent geometric facts.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include <cutroute/geometry/contour.hpp>
+#include <cutroute/model/cut_job.hpp>
+#include <cutroute/model/demo_nest.hpp>
+
+namespace cutroute::model {
+namespace {
+
+using geometry::Contour;
+using geometry::Vec2;
+using geometry::Vertex;
+
+Contour square(double x, double y, double w, bool ccw = true) {
+  Contour c{{Vertex{{x, y}, 0}, Vertex{{x + w, y}, 0}, Vertex{{x + w, y + w}, 0}, Vertex{{x, y + w}, 0}}, true};
+  return ccw ? c : geometry::reversed(c);
+}
+
+Contour circle(Vec2 c, double r) { return Contour{{Vertex{{c.x - r, c.y}, 1}, Vertex{{c.x + r, c.y}, 1}}, true}; }
+
+SourceContour src(Contour c) { return SourceContour{std::move(c), "0", {}, {}, {}}; }
+
+// Minimum distance between a sampled path and a contour (independent of geometry::intersects).
+double sampled_distance(const Contour& path, const Contour& other) {
+  double best = 1e300;
+  const auto pts = geometry::flatten(path, 0.001);
+  const double len = geometry::length(path);
+  for (int k = 0; k <= 200; ++k) {
+    const Vec2 p = geometry::point_at_length(path, len * k / 200.0);
+    best = std::min(best, geometry::distance(other, p));
+  }
+  for (const auto& p : pts) best = std::min(best, geometry::distance(other, p));
+  return best;
+}
+
+// Is p inside material: inside an odd number of the nest's part contours.
+bool in_material(const Nest& nest, Vec2 p) {
+  int inside = 0;
+  for (const auto& c : nest.contours) {
+    if (c.role == ContourRole::sheet) continue;
+    inside += geometry::locate(c.source.contour, p, 1e-9) == geometry::Location::inside;
+  }
+  return inside % 2 == 1;
+}
+
+void check_job(const Nest& nest, const CutJob& job, const EntryOptions& opt) {
+  const double clearance = opt.clearance_mm >= 0 ? opt.clearance_mm : opt.kerf_mm + 1;
+  for (const auto& ce : job.contours) {
+    ASSERT_FALSE(ce.candidates.empty());
+    const auto& own = nest.contours[ce.contour];
+    const double len = geometry::length(own.source.contour);
+    for (const auto& e : ce.candidates) {
+      EXPECT_EQ(e.contour, ce.contour);
+      // The cut path is the whole contour plus the overcut, starting and ending at the entry point.
+      EXPECT_NEAR(geometry::length(e.path), len + opt.lead.overcut_mm, 1e-6);
+      EXPECT_LT(geometry::distance(e.path.vertices.front().p, e.point), 1e-9);
+      EXPECT_LT(geometry::distance(own.source.contour, e.point), 1e-6);
+      // Direction by the kerf convention.
+      Contour loop = e.path;
+      loop.closed = true;
+      loop.vertices.pop_back();
+      const bool want_cw = own.role == ContourRole::outer ? opt.outer_clockwise : opt.hole_clockwise;
+      EXPECT_EQ(geometry::orientation(loop) == geometry::Orientation::cw, want_cw);
+      EXPECT_EQ(e.clockwise, want_cw);
+      if (e.fallback == Fallback::on_contour) continue;
+      // Pierce in scrap, lead-in from the pierce to the entry point, clear of every other contour.
+      EXPECT_FALSE(in_material(nest, e.pierce)) << "pierce inside material";
+      ASSERT_GE(e.lead_in.vertices.size(), 2u);
+      EXPECT_LT(geometry::distance(e.lead_in.vertices.front().p, e.pierce), 1e-9);
+      EXPECT_LT(geometry::distance(e.lead_in.vertices.back().p, e.point), 1e-9);
+      for (const auto& other : nest.contours) {
+        if (&other == &own) continue;
+        EXPECT_GE(sampled_distance(e.lead_in, other.source.contour), clearance - 1e-6);
+      }
+    }
+  }
+}
+
+TEST(CutJob, DemoSheetEveryContourHasAdmissibleEntries) {
+  const Nest nest = build_nest(make_demo_sheet(), NestOptions{});
+  EntryOptions opt;
+  const CutJob job = make_cut_job(nest, opt);
+  ASSERT_EQ(job.contours.size(), 21u);
+  for (const auto& ce : job.contours) {
+    EXPECT_GE(ce.candidates.size(), 4u);
+    for (const auto& e : ce.candidates) EXPECT_EQ(e.fallback, Fallback::none);
+  }
+  check_job(nest, job, opt);
+  EXPECT_TRUE(job.diagnostics.empty());
+  EXPECT_EQ(job.precedence.size(), 7u);  // every hole before its plate or flange
+}
+
+TEST(CutJob, PrecedenceFollowsContainmentAtAnyDepth) {
+  // outer0 > hole1 > inner part outer2 > its hole3
+  std::vector<SourceContour> cs{src(square(0, 0, 100)), src(square(10, 10, 80, false)), src(square(30, 30, 40)),
+                                src(circle({50, 50}, 8))};
+  const Nest nest = build_nest(cs, NestOptions{});
+  const CutJob job = make_cut_job(nest, EntryOptions{});
+  ASSERT_EQ(job.contours.size(), 4u);
+  // Map job indices back to nest depth and check each pair goes from deeper to its parent.
+  ASSERT_EQ(job.precedence.size(), 3u);
+  for (auto [a, b] : job.precedence) {
+    const auto& ca = nest.contours[job.contours[static_cast<std::size_t>(a)].contour];
+    const auto& cb = nest.contours[job.contours[static_cast<std::size_t>(b)].contour];
+    EXPECT_EQ(ca.parent, job.contours[static_cast<std::size_t>(b)].contour);
+    EXPECT_EQ(ca.depth, cb.depth + 1);
+  }
+  check_job(nest, job, EntryOptions{});
+}
+
+TEST(CutJob, NoPierceInANarrowGapBetweenParts) {
+  // Two squares 1.5 mm apart: with clearance 1.2 mm no pierce fits between them.
+  std::vector<SourceContour> cs{src(square(0, 0, 50)), src(square(51.5, 0, 50))};
+  const Nest nest = build_nest(cs, NestOptions{});
+  EntryOptions opt;
+  opt.clearance_mm = 1.2;
+  opt.max_candidates = 24;
+  const CutJob job = make_cut_job(nest, opt);
+  for (const auto& ce : job.contours) {
+    for (const auto& e : ce.candidates) {
+      EXPECT_FALSE(e.pierce.x > 50 && e.pierce.x < 51.5 && e.pierce.y > 0 && e.pierce.y < 50)
+          << "pierce in the gap at " << e.pierce.x << "," << e.pierce.y;
+    }
+  }
+  check_job(nest, job, opt);
+}
+
+TEST(CutJob, SmallHoleFallsBackAndSaysSo) {
+  std::vector<SourceContour> cs{src(square(0, 0, 40)), src(circle({20, 20}, 1.0))};
+  const Nest nest = build_nest(cs, NestOptions{});
+  EntryOptions opt;  // lead-in 3 mm + arc: does not fit in a Ø2 hole
+  const CutJob job = make_cut_job(nest, opt);
+  ASSERT_EQ(job.contours.size(), 2u);
+  bool found = false;
+  for (const auto& ce : job.contours) {
+    if (nest.contours[ce.contour].role != ContourRole::hole) continue;
+    found = true;
+    for (const auto& e : ce.candidates) {
+      EXPECT_NE(e.fallback, Fallback::none);
+      EXPECT_LE(geometry::distance(e.pierce, {20, 20}), 1.0);  // pierce inside the hole
+    }
+  }
+  EXPECT_TRUE(found);
+  EXPECT_FALSE(job.diagnostics.empty());
+  check_job(nest, job, opt);
+}
+
+TEST(CutJob, FreeDirectionOffersBothDirections) {
+  std::vector<SourceContour> cs{src(square(0, 0, 50))};
+  const Nest nest = build_nest(cs, NestOptions{});
+  EntryOptions opt;
+  opt.free_direction = true;
+  const CutJob job = make_cut_job(nest, opt);
+  int cw = 0, ccw = 0;
+  for (const auto& e : job.contours[0].candidates) (e.clockwise ? cw : ccw)++;
+  EXPECT_GT(cw, 0);
+  EXPECT_GT(ccw, 0);
+}
+
+TEST(CutJob, EntryAtArcLengthMatchesTheContour) {
+  std::vector<SourceContour> cs{src(square(0, 0, 50))};
+  const Nest nest = build_nest(cs, NestOptions{});
+  EntryPlanner planner(nest, EntryOptions{});
+  for (double s : {5.0, 30.0, 70.0, 160.0}) {
+    const auto e = planner.entry_at(ContourId(0), s, true);
+    ASSERT_TRUE(e.has_value());
+    EXPECT_LT(geometry::distance(e->point, geometry::point_at_length(nest.contours[ContourId(0)].source.contour, s)),
+              1e-9);
+    EXPECT_NEAR(e->s_mm, s, 1e-9);
+  }
+}
+
+}  // namespace
+}  // namespace cutroute::model

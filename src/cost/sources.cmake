@@ -1,1 +1,1 @@
-set(CUTROUTE_COST_SOURCES)
+set(CUTROUTE_COST_SOURCES route_problem.cpp)

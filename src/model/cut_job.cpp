@@ -275,6 +275,7 @@ struct EntryPlanner::Impl {
 EntryPlanner::EntryPlanner(const Nest& nest, const EntryOptions& options) : impl_(std::make_unique<Impl>(nest, options)) {}
 EntryPlanner::~EntryPlanner() = default;
 double EntryPlanner::clearance_mm() const { return impl_->clearance; }
+double EntryPlanner::contour_length(ContourId id) const { return geometry::length(impl_->nc(id).source.contour); }
 
 std::optional<EntryCandidate> EntryPlanner::entry_at(ContourId id, double s_mm, bool clockwise) const {
   const Contour path = impl_->oriented(id, clockwise);

@@ -1,1 +1,1 @@
-set(CUTROUTE_NC_SOURCES gcode_writer.cpp post_dialect.cpp)
+set(CUTROUTE_NC_SOURCES gcode_writer.cpp post_dialect.cpp build_toolpath.cpp)

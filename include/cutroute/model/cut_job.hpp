@@ -93,6 +93,7 @@ class EntryPlanner {
   // The entry at arc length s (of the stored contour) with the normal leads, when admissible.
   std::optional<EntryCandidate> entry_at(ContourId contour, double s_mm, bool clockwise) const;
   double clearance_mm() const;
+  double contour_length(ContourId contour) const;  // of the stored contour [mm]
 
  private:
   struct Impl;

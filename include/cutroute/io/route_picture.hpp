@@ -1,0 +1,28 @@
+// route_to_svg() / route_to_html(): pictures of a cutting route to check at a glance.
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include <cutroute/model/nest.hpp>
+#include <cutroute/nc/toolpath.hpp>
+
+namespace cutroute::io {
+
+struct RoutePictureOptions {
+  double width_px = 1400;
+  std::string title;
+};
+
+// Parts (filled, holes open), then per cutting segment in order: the rapid to its pierce (dashed),
+// the pierce mark, the lead-in, the cut, the lead-out, and the segment's order number at the
+// pierce; the start point is marked. Each segment is one <g class="seg" data-k="k"> (k from 1).
+std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, const RoutePictureOptions& options);
+
+// One self-contained HTML page: the picture, a summary table (the report's scalar fields) and a
+// slider with a play button that shows the cutting order step by step. No external resources.
+std::string route_to_html(const model::Nest& nest, const nc::Toolpath& path, const nlohmann::json& summary,
+                          const RoutePictureOptions& options);
+
+}  // namespace cutroute::io

@@ -1,0 +1,30 @@
+// build_toolpath(): turns the chosen entries of a cut job, in cutting order, into a Toolpath.
+#pragma once
+
+#include <vector>
+
+#include <cutroute/model/cut_job.hpp>
+#include <cutroute/model/nest.hpp>
+#include <cutroute/nc/toolpath.hpp>
+
+namespace cutroute::nc {
+
+enum class KerfMode { none, cam, controller };
+
+struct ToolpathOptions {
+  geometry::Vec2 start;            // head position before the program [mm]
+  geometry::Vec2 end;              // park position after it [mm]
+  double feed_mm_min = 6000;       // programmed cutting feed [mm/min]
+  double pierce_time_s = 0.5;      // dwell after beam on [s]
+  KerfMode kerf = KerfMode::none;  // controller: G41/G42 on the scrap side
+};
+
+// `sequence` lists the chosen entry of each contour, in cutting order (one per contour of the
+// job). Each becomes one cutting segment: pierce, lead-in, contour (+ overcut), lead-out.
+Toolpath build_toolpath(const model::Nest& nest, const std::vector<const model::EntryCandidate*>& sequence,
+                        const ToolpathOptions& options);
+
+// "part 3 outer", "part 3 hole 2": how a contour is named in comments, reports and pictures.
+std::string contour_label(const model::Nest& nest, model::ContourId id);
+
+}  // namespace cutroute::nc

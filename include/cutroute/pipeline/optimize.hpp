@@ -1,0 +1,62 @@
+// optimize_nest(): the main job: a loaded nest -> the fastest admissible cutting program + report.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include <cutroute/core/result.hpp>
+#include <cutroute/core/stop.hpp>
+#include <cutroute/cost/route_problem.hpp>
+#include <cutroute/io/nest_loader.hpp>
+#include <cutroute/nc/build_toolpath.hpp>
+#include <cutroute/nc/gcode_writer.hpp>
+#include <cutroute/solve/params.hpp>
+
+namespace cutroute::pipeline {
+
+// The options of `cutroute optimize` that are not about reading the nest. Defaults are sensible
+// without any option: the built-in machine profile's default material and thickness.
+struct OptimizeOptions {
+  std::string machine_file;                  // empty: the built-in profile
+  std::string material;                      // empty: the profile's default job
+  std::optional<double> thickness_mm;        // [mm]
+  bool interpolate = false;                  // thickness between Table 1 rows
+  cost::Objective objective = cost::Objective::time;
+  double time_limit_s = 10.0;                // solver wall-clock budget [s]
+  std::uint64_t seed = 1;
+  int threads = 0;                           // 0: hardware threads (at most 8)
+  solve::SolverKind solver = solve::SolverKind::automatic;
+  std::optional<geometry::Vec2> start;       // default (0, 0) [mm]
+  std::optional<double> kerf_mm;             // default: the profile's for this material
+  nc::KerfMode kerf_mode = nc::KerfMode::controller;
+  std::string dialect = "generic";           // name or JSON file
+  double entry_step_mm = 0.0;                // 0: adaptive
+  int max_candidates = 12;                   // entry candidates per contour
+  bool refine_entries = true;                // continuous entry refinement after sequencing
+  bool compare_leads = true;                 // evaluate lead types by the frame-corrected objective
+  std::string title;                         // first comment of the program
+};
+
+struct OptimizeResult {
+  nc::Toolpath toolpath;
+  nc::WrittenProgram program;
+  nlohmann::json report;     // the --report JSON
+  Diagnostics diagnostics;   // entry fallbacks, extrapolated speeds, ...
+};
+
+// Steps (each a function in src/pipeline/):
+//  1. cutting conditions from the machine profile and Table 1 (material, thickness);
+//  2. the cut job: entry candidates with leads in scrap, precedence (model::make_cut_job);
+//  3. the routing problem in integer time or cost (cost::build_route_problem) and solve::solve();
+//  4. continuous refinement of each entry along its contour for the fixed order;
+//  5. toolpath -> G-code in the dialect; frames n counted on the written program;
+//  6. T_cut with V_on*(n) (eq. 10); lead types that change n compared by that corrected objective;
+//  7. the report.
+// Errors: unknown material/thickness, invalid profile or dialect, crossing contours in the nest.
+Result<OptimizeResult> optimize_nest(const io::LoadedNest& nest, const OptimizeOptions& options,
+                                     const StopToken& stop = {}, const ProgressFn& progress = {});
+
+}  // namespace cutroute::pipeline

@@ -1,0 +1,102 @@
+#include <cutroute/cost/route_problem.hpp>
+
+#include <cmath>
+#include <memory>
+
+#include <cutroute/core/units.hpp>
+#include <cutroute/nc/toolpath.hpp>
+
+namespace cutroute::cost {
+
+double RoutePrices::cut_price(double mm) const {
+  return objective == Objective::time ? mm / v_on_mm_s : mm * c_on_per_mm;
+}
+double RoutePrices::rapid_price(double mm) const {
+  return objective == Objective::time ? mm / v_off_mm_s + head_s : mm * c_off_per_mm;
+}
+double RoutePrices::pierce_price() const { return objective == Objective::time ? pierce_s : c_pt; }
+
+namespace {
+
+solve::Cost to_ticks(double v) {
+  const double t = v * static_cast<double>(units::kTicksPerSecond);
+  return static_cast<solve::Cost>(std::llround(std::min(t, static_cast<double>(solve::kMaxCost))));
+}
+
+}  // namespace
+
+Result<RouteProblem> build_route_problem(const model::CutJob& job, const RoutePrices& prices,
+                                         const RouteProblemOptions& options) {
+  if (prices.objective == Objective::time && (!(prices.v_on_mm_s > 0) || !(prices.v_off_mm_s > 0)))
+    return make_error("cutting and rapid speeds must be positive");
+  RouteProblem rp;
+  rp.returns_to_start = options.return_to_start;
+  rp.nodes.push_back({-1, -1});
+  rp.pierce.push_back(options.start);
+  rp.tool_off.push_back(options.start);
+  std::vector<solve::Cost> inner{0};
+  std::vector<std::vector<solve::NodeId>> clusters{{solve::NodeId(0)}};
+  for (std::size_t c = 0; c < job.contours.size(); ++c) {
+    std::vector<solve::NodeId> members;
+    const auto& cands = job.contours[c].candidates;
+    if (cands.empty()) return make_error("contour " + std::to_string(c + 1) + " has no entry candidate");
+    for (std::size_t k = 0; k < cands.size(); ++k) {
+      const auto& e = cands[k];
+      members.emplace_back(static_cast<std::int32_t>(rp.nodes.size()));
+      rp.nodes.push_back({static_cast<std::int32_t>(c), static_cast<std::int32_t>(k)});
+      rp.pierce.push_back(e.pierce);
+      geometry::Vec2 off = e.lead_out.vertices.empty()
+                               ? (e.path.vertices.empty() ? e.pierce : e.path.vertices.back().p)
+                               : e.lead_out.vertices.back().p;
+      rp.tool_off.push_back(off);
+      const double cut_mm = geometry::length(e.lead_in) + geometry::length(e.path) + geometry::length(e.lead_out);
+      inner.push_back(to_ticks(prices.cut_price(cut_mm) + prices.pierce_price()));
+    }
+    clusters.push_back(std::move(members));
+  }
+  const int n = static_cast<int>(rp.nodes.size());
+  solve::ProblemBuilder b(n);
+  b.set_name("cut job");
+  for (auto& members : clusters) b.add_cluster(std::move(members));
+  for (int v = 0; v < n; ++v) b.set_inner_cost(solve::NodeId(v), inner[static_cast<std::size_t>(v)]);
+  b.set_start_cluster(solve::ClusterId(0));
+  b.set_kind(options.return_to_start ? solve::RouteKind::closed_tour : solve::RouteKind::open_path);
+  for (auto [a, c] : job.precedence) b.add_precedence(solve::ClusterId(a + 1), solve::ClusterId(c + 1));
+
+  // Shared, immutable point tables: the cost callback may be called from several solver threads.
+  auto off = std::make_shared<const std::vector<geometry::Vec2>>(rp.tool_off);
+  auto in = std::make_shared<const std::vector<geometry::Vec2>>(rp.pierce);
+  const RoutePrices p = prices;
+  auto arc = [off, in, p](solve::NodeId from, solve::NodeId to) -> solve::Cost {
+    const double mm = geometry::distance((*off)[from.index()], (*in)[to.index()]);
+    return to_ticks(p.rapid_price(mm));
+  };
+  if (n <= options.matrix_max_nodes) {
+    std::vector<solve::Cost> m(static_cast<std::size_t>(n) * static_cast<std::size_t>(n), 0);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        if (i != j) m[static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j)] =
+            arc(solve::NodeId(i), solve::NodeId(j));
+    b.set_cost_matrix(std::move(m));
+  } else {
+    b.set_cost_function(arc, false);
+  }
+  auto problem = b.build();
+  if (!problem) return problem.error();
+  rp.problem = std::move(problem).value();
+  return rp;
+}
+
+std::vector<const model::EntryCandidate*> route_entries(const model::CutJob& job, const RouteProblem& rp,
+                                                         const std::vector<solve::NodeId>& route) {
+  std::vector<const model::EntryCandidate*> out;
+  out.reserve(route.size());
+  for (auto v : route) {
+    const auto& node = rp.nodes[v.index()];
+    if (node.contour < 0) continue;
+    out.push_back(&job.contours[static_cast<std::size_t>(node.contour)].candidates[static_cast<std::size_t>(node.candidate)]);
+  }
+  return out;
+}
+
+}  // namespace cutroute::cost

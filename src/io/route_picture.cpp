@@ -1,0 +1,114 @@
+#include <cutroute/io/route_picture.hpp>
+
+#include <algorithm>
+
+#include <cutroute/io/svg.hpp>
+
+namespace cutroute::io {
+namespace {
+
+constexpr const char* kNs = "vector-effect=\"non-scaling-stroke\"";
+
+geometry::Box world_box(const model::Nest& nest, const nc::Toolpath& path) {
+  geometry::Box b;
+  for (const auto& c : nest.contours) b.add(c.box);
+  b.add(path.start);
+  b.add(path.end);
+  for (const auto& s : path.segments) b.add(s.pierce);
+  if (b.empty()) b = geometry::Box{0, 0, 100, 100};
+  return b;
+}
+
+}  // namespace
+
+std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, const RoutePictureOptions& options) {
+  const geometry::Box world = world_box(nest, path);
+  const double span = std::max(world.width(), world.height());
+  const double margin = span * 0.02 + 1.0;
+  SvgDocument svg(world, margin, options.width_px);
+  const double label_mm = std::max(span / 90.0, 0.5);
+  const double mark_mm = std::max(span / 400.0, 0.2);
+
+  if (!options.title.empty()) svg.add_raw("<title>" + xml_escape(options.title) + "</title>\n");
+  svg.add_raw("<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n");
+  if (nest.sheet) {
+    svg.add_contour(nest.contours[*nest.sheet].source.contour,
+                    std::string("fill=\"#eef0f2\" stroke=\"#7a828a\" stroke-width=\"1.5\" ") + kNs);
+  }
+  svg.begin_group("class=\"parts\" fill=\"#dbe7f3\" stroke=\"#9fb4c8\" stroke-width=\"0.8\"");
+  for (const auto& part : nest.parts) {
+    std::vector<const geometry::Contour*> rings{&nest.contours[part.outer].source.contour};
+    for (auto h : part.holes) rings.push_back(&nest.contours[h].source.contour);
+    svg.add_contours(rings, kNs);
+  }
+  svg.end_group();
+
+  geometry::Vec2 at = path.start;
+  for (std::size_t k = 0; k < path.segments.size(); ++k) {
+    const auto& s = path.segments[k];
+    svg.begin_group("class=\"seg\" data-k=\"" + std::to_string(k + 1) + "\"");
+    svg.add_raw("<title>" + std::to_string(k + 1) + ": " + xml_escape(s.label) + "</title>\n");
+    svg.add_line(at, s.pierce, std::string("fill=\"none\" stroke=\"#2f6fdf\" stroke-width=\"1\" stroke-dasharray=\"5 4\" ") + kNs);
+    for (const auto& piece : s.pieces) {
+      const bool lead = piece.role == nc::PieceRole::lead_in || piece.role == nc::PieceRole::lead_out;
+      svg.add_contour(piece.path, std::string("fill=\"none\" stroke=\"") + (lead ? "#1a9c3a" : "#c0392b") +
+                                      "\" stroke-width=\"" + (lead ? "1.5" : "1.6") + "\" " + kNs);
+    }
+    svg.add_circle(s.pierce, mark_mm, "fill=\"#f39c12\" stroke=\"#7a4a00\" stroke-width=\"0.6\" " + std::string(kNs));
+    svg.add_text(s.pierce + geometry::Vec2{mark_mm * 1.5, mark_mm * 1.5}, std::to_string(k + 1), label_mm,
+                 "fill=\"#5b1a12\" font-family=\"sans-serif\" font-weight=\"bold\"");
+    svg.end_group();
+    at = nc::tool_off_point(s);
+  }
+  svg.begin_group("class=\"seg\" data-k=\"" + std::to_string(path.segments.size() + 1) + "\"");
+  svg.add_line(at, path.end, std::string("fill=\"none\" stroke=\"#2f6fdf\" stroke-width=\"1\" stroke-dasharray=\"5 4\" ") + kNs);
+  svg.end_group();
+  svg.add_circle(path.start, mark_mm * 2.5, "fill=\"none\" stroke=\"#111111\" stroke-width=\"2\" " + std::string(kNs));
+  svg.add_text(path.start + geometry::Vec2{mark_mm * 3, -mark_mm * 6}, "start", label_mm,
+               "fill=\"#111111\" font-family=\"sans-serif\"");
+  return svg.str();
+}
+
+std::string route_to_html(const model::Nest& nest, const nc::Toolpath& path, const nlohmann::json& summary,
+                          const RoutePictureOptions& options) {
+  std::string rows;
+  for (const auto& [key, value] : summary.items()) {
+    if (value.is_object() || value.is_array()) continue;
+    rows += "<tr><th>" + xml_escape(key) + "</th><td>" + xml_escape(value.is_string() ? value.get<std::string>() : value.dump()) +
+            "</td></tr>\n";
+  }
+  const std::size_t n = path.segments.size();
+  std::string html;
+  html += "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>" + xml_escape(options.title) +
+          "</title>\n<style>\n"
+          "body{font-family:sans-serif;margin:16px;color:#222}\n"
+          "#controls{margin:8px 0;display:flex;gap:12px;align-items:center}\n"
+          "#step{width:480px}\n"
+          "table{border-collapse:collapse;margin-top:12px}th,td{border:1px solid #ccc;padding:3px 8px;text-align:left}\n"
+          "th{background:#f3f5f7;font-weight:normal;color:#555}\n"
+          "svg{max-width:100%;height:auto;border:1px solid #ddd}\n"
+          "</style></head><body>\n";
+  html += "<h1>" + xml_escape(options.title) + "</h1>\n";
+  html += "<div id=\"controls\"><button id=\"play\" type=\"button\">Play</button>"
+          "<input id=\"step\" type=\"range\" min=\"0\" max=\"" + std::to_string(n + 1) + "\" value=\"" + std::to_string(n + 1) +
+          "\"><span id=\"label\"></span></div>\n";
+  html += route_to_svg(nest, path, options).substr(std::string("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n").size());
+  html += "<table>\n" + rows + "</table>\n";
+  html += "<script>\n"
+          "const segs=[...document.querySelectorAll('g.seg')];\n"
+          "const step=document.getElementById('step'),label=document.getElementById('label'),play=document.getElementById('play');\n"
+          "function show(k){segs.forEach(g=>{g.style.display=(+g.dataset.k<=k)?'':'none';});\n"
+          " const g=segs.find(g=>+g.dataset.k===k);const t=g&&g.querySelector('title');\n"
+          " label.textContent=k+' / '+(segs.length)+(t?'  '+t.textContent:'');}\n"
+          "let timer=null;\n"
+          "step.addEventListener('input',()=>show(+step.value));\n"
+          "play.addEventListener('click',()=>{if(timer){clearInterval(timer);timer=null;play.textContent='Play';return;}\n"
+          " if(+step.value>=+step.max)step.value=0;play.textContent='Pause';\n"
+          " timer=setInterval(()=>{step.value=+step.value+1;show(+step.value);\n"
+          "  if(+step.value>=+step.max){clearInterval(timer);timer=null;play.textContent='Play';}},Math.max(60,6000/segs.length));});\n"
+          "show(+step.value);\n"
+          "</script>\n</body></html>\n";
+  return html;
+}
+
+}  // namespace cutroute::io

@@ -1,0 +1,42 @@
+#include <cutroute/nc/build_toolpath.hpp>
+
+namespace cutroute::nc {
+
+std::string contour_label(const model::Nest& nest, model::ContourId id) {
+  const auto& c = nest.contours[id];
+  if (!c.part.valid()) return "contour " + std::to_string(id.value() + 1);
+  const std::string part = "part " + std::to_string(c.part.value() + 1);
+  if (c.role == model::ContourRole::outer) return part + " outer";
+  const auto& holes = nest.parts[c.part].holes;
+  for (std::size_t k = 0; k < holes.size(); ++k) {
+    if (holes[k] == id) return part + " hole " + std::to_string(k + 1);
+  }
+  return part + " hole";
+}
+
+Toolpath build_toolpath(const model::Nest& nest, const std::vector<const model::EntryCandidate*>& sequence,
+                        const ToolpathOptions& options) {
+  Toolpath tp;
+  tp.start = options.start;
+  tp.end = options.end;
+  tp.pierce_time_s = options.pierce_time_s;
+  tp.segments.reserve(sequence.size());
+  for (const auto* e : sequence) {
+    CutSegment s;
+    s.pierce = e->pierce;
+    s.feed_mm_min = options.feed_mm_min;
+    s.label = contour_label(nest, e->contour);
+    if (options.kerf == KerfMode::controller) {
+      const auto role = nest.contours[e->contour].role;
+      const bool scrap_left = role == model::ContourRole::outer ? e->clockwise : !e->clockwise;
+      s.kerf = scrap_left ? KerfSide::left : KerfSide::right;
+    }
+    if (e->lead_in.vertices.size() >= 2) s.pieces.push_back({e->lead_in, PieceRole::lead_in, -1});
+    s.pieces.push_back({e->path, PieceRole::contour, e->contour.value()});
+    if (e->lead_out.vertices.size() >= 2) s.pieces.push_back({e->lead_out, PieceRole::lead_out, -1});
+    tp.segments.push_back(std::move(s));
+  }
+  return tp;
+}
+
+}  // namespace cutroute::nc

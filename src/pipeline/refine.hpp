@@ -1,0 +1,25 @@
+// refine_entries(): for a fixed cutting order, slide each entry along its contour to shorten rapids.
+#pragma once
+
+#include <vector>
+
+#include <cutroute/core/stop.hpp>
+#include <cutroute/cost/route_problem.hpp>
+#include <cutroute/model/cut_job.hpp>
+
+namespace cutroute::pipeline {
+
+// The continuous CCP step of the source paper, after the GTSP fixed the order on a finite set of
+// candidates: for each contour in turn, with its neighbours' points fixed, the entry arc length s
+// minimising rapid(prev tool-off -> pierce(s)) + rapid(tool-off(s) -> next pierce) + lead cut is
+// sought by sampling 24 points along the contour and a golden-section search around the best;
+// only admissible entries (EntryPlanner::entry_at) are taken and only improvements are kept.
+// Cost: passes × contours × ~40 entry evaluations. Returns the number of entries moved.
+int refine_entries(const model::EntryPlanner& planner, const cost::RoutePrices& prices, geometry::Vec2 start,
+                   std::optional<geometry::Vec2> park, std::vector<model::EntryCandidate>& sequence, int passes,
+                   const StopToken& stop);
+
+// The point where cutting an entry ends (end of lead-out, else of the contour).
+geometry::Vec2 tool_off(const model::EntryCandidate& e);
+
+}  // namespace cutroute::pipeline

@@ -1,0 +1,1 @@
+set(CUTROUTE_PIPELINE_SOURCES optimize.cpp refine.cpp)

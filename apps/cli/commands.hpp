@@ -26,6 +26,7 @@ void add_speed(CLI::App& root, Commands& out);
 void add_estimate(CLI::App& root, Commands& out);
 void add_gtsp(CLI::App& root, Commands& out);
 void add_machining(CLI::App& root, Commands& out);
+void add_optimize(CLI::App& root, Commands& out);
 
 // Prints "cutroute: <diagnostic>" to stderr and returns kInputError.
 int fail(const Diagnostic& d);

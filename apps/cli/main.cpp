@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("cutroute ") + cutroute::version());
   app.require_subcommand(1);
   Commands commands;
+  add_optimize(app, commands);
   add_inspect(app, commands);
   add_demo(app, commands);
   add_speed(app, commands);

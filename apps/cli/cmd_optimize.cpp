@@ -1,0 +1,242 @@
+// cutroute optimize: DXF nest(s) -> optimized cutting program, report, pictures (in parallel for several nests).
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <mutex>
+#include <thread>
+
+#include <cutroute/core/number_format.hpp>
+#include <cutroute/io/output_file.hpp>
+#include <cutroute/io/route_picture.hpp>
+#include <cutroute/pipeline/optimize.hpp>
+
+#include "commands.hpp"
+#include "input_options.hpp"
+
+namespace cutroute::cli {
+namespace {
+
+struct Opts {
+  std::vector<std::string> nests;
+  std::string out;
+  std::string report, svg, html;
+  std::string material;
+  double thickness = 0;
+  std::string machine;
+  bool interpolate = false;
+  std::string objective = "time";
+  double time_limit = 10;
+  std::uint64_t seed = 1;
+  int threads = 0;
+  std::string solver = "auto";
+  std::string start;
+  double kerf = -1;
+  std::string kerf_mode = "controller";
+  std::string dialect = "generic";
+  double entry_step = 0;
+  bool quiet = false;
+  InputOptions input;
+};
+
+struct Outputs {
+  std::string program, report, svg, html;
+};
+
+Result<geometry::Vec2> parse_point(const std::string& s, const char* what) {
+  const auto comma = s.find(',');
+  try {
+    if (comma == std::string::npos) throw std::invalid_argument("no comma");
+    std::size_t i1 = 0, i2 = 0;
+    const double x = std::stod(s.substr(0, comma), &i1);
+    const double y = std::stod(s.substr(comma + 1), &i2);
+    if (i1 != comma || i2 != s.size() - comma - 1 || !std::isfinite(x) || !std::isfinite(y)) throw std::invalid_argument("bad");
+    return geometry::Vec2{x, y};
+  } catch (const std::exception&) {
+    return make_error(std::string(what) + " wants X,Y in mm (got '" + s + "')");
+  }
+}
+
+// Progress line on a terminal: one line per nest, rewritten in place, at most 5 times a second.
+class ProgressLine {
+ public:
+  explicit ProgressLine(bool on) : on_(on), t0_(std::chrono::steady_clock::now()) {}
+  ProgressFn for_nest(const std::string& name) {
+    if (!on_) return {};
+    return [this, name](const ProgressEvent& e) {
+      std::lock_guard lock(mu_);
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last_ < std::chrono::milliseconds(200)) return;
+      last_ = now;
+      std::string line = "\r" + name + ": " + std::string(e.stage);
+      if (e.best) line += "  best " + format_fixed(*e.best, 2);
+      line += "  " + format_fixed(std::chrono::duration<double>(now - t0_).count(), 1) + " s      ";
+      std::cerr << line << std::flush;
+    };
+  }
+  void done() {
+    if (on_) std::cerr << "\r" << std::string(79, ' ') << "\r" << std::flush;
+  }
+
+ private:
+  bool on_;
+  std::mutex mu_;
+  std::chrono::steady_clock::time_point t0_, last_{};
+};
+
+int run(const Opts& o) {
+  auto load_options = to_load_options(o.input);
+  if (!load_options) {
+    std::cerr << "cutroute: " << load_options.error().message << '\n';
+    return kUsageError;
+  }
+  pipeline::OptimizeOptions po;
+  po.machine_file = o.machine;
+  po.material = o.material;
+  if (o.thickness > 0) po.thickness_mm = o.thickness;
+  po.interpolate = o.interpolate;
+  po.objective = o.objective == "cost" ? cost::Objective::cost : cost::Objective::time;
+  po.time_limit_s = o.time_limit;
+  po.seed = o.seed;
+  po.solver = o.solver == "exact" ? solve::SolverKind::exact
+              : o.solver == "heuristic" ? solve::SolverKind::heuristic : solve::SolverKind::automatic;
+  if (!o.start.empty()) {
+    auto p = parse_point(o.start, "--start");
+    if (!p) {
+      std::cerr << "cutroute: " << p.error().message << '\n';
+      return kUsageError;
+    }
+    po.start = *p;
+  }
+  if (o.kerf >= 0) po.kerf_mm = o.kerf;
+  if (o.kerf_mode == "cam") {
+    std::cerr << "cutroute: --kerf-mode cam (toolpath offset by the program) is not implemented yet; use "
+                 "--kerf-mode controller (G41/G42) or none\n";
+    return kUsageError;
+  }
+  po.kerf_mode = o.kerf_mode == "none" ? nc::KerfMode::none : nc::KerfMode::controller;
+  po.dialect = o.dialect;
+  po.entry_step_mm = o.entry_step;
+
+  // Output paths: one nest -> -o is the program file; several -> -o is a folder for all outputs.
+  const bool batch = o.nests.size() > 1;
+  if (batch && o.out.empty()) {
+    std::cerr << "cutroute: several nests need -o DIR for their outputs\n";
+    return kUsageError;
+  }
+  if (batch && (!o.report.empty() || !o.svg.empty() || !o.html.empty())) {
+    std::cerr << "cutroute: with several nests, every output goes to -o DIR (program, .json report, .svg, .html); "
+                 "--report/--svg/--html name files of a single nest\n";
+    return kUsageError;
+  }
+  std::vector<Outputs> outs(o.nests.size());
+  for (std::size_t i = 0; i < o.nests.size(); ++i) {
+    const std::string stem = std::filesystem::path(o.nests[i]).stem().string();
+    if (batch) {
+      std::error_code ec;
+      std::filesystem::create_directories(o.out, ec);
+      const auto base = (std::filesystem::path(o.out) / stem).string();
+      outs[i] = {base + ".ngc", base + ".json", base + ".svg", base + ".html"};
+    } else {
+      outs[i] = {o.out.empty() ? stem + ".ngc" : o.out, o.report, o.svg, o.html};
+    }
+  }
+
+  const std::size_t workers = std::min<std::size_t>(o.nests.size(), std::max(1u, std::thread::hardware_concurrency()));
+  po.threads = o.threads > 0 ? std::max(1, o.threads / static_cast<int>(workers))
+                             : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / static_cast<int>(workers));
+  ProgressLine progress(show_progress(o.quiet));
+  std::vector<int> codes(o.nests.size(), kOk);
+  std::vector<std::string> messages(o.nests.size());
+  std::atomic<std::size_t> next{0};
+  auto work = [&] {
+    for (std::size_t i = next++; i < o.nests.size(); i = next++) {
+      auto loaded = io::load_nest(o.nests[i], *load_options);
+      if (!loaded) {
+        messages[i] = format(loaded.error());
+        codes[i] = kInputError;
+        continue;
+      }
+      pipeline::OptimizeOptions mine = po;
+      mine.title = "cutroute " + std::filesystem::path(o.nests[i]).filename().string();
+      auto res = pipeline::optimize_nest(*loaded, mine, StopToken::global(), progress.for_nest(o.nests[i]));
+      if (!res) {
+        Diagnostic d = res.error();
+        if (d.file.empty()) d.file = o.nests[i];
+        messages[i] = format(d);
+        codes[i] = kInputError;
+        continue;
+      }
+      // The program last: a report or picture that fails to write leaves no program behind.
+      io::RoutePictureOptions pic{1400, std::filesystem::path(o.nests[i]).filename().string()};
+      Status st = Ok{};
+      if (st && !outs[i].report.empty()) st = io::write_file_atomic(outs[i].report, res->report.dump(2) + "\n");
+      if (st && !outs[i].svg.empty()) st = io::write_file_atomic(outs[i].svg, io::route_to_svg(loaded->nest, res->toolpath, pic));
+      if (st && !outs[i].html.empty())
+        st = io::write_file_atomic(outs[i].html, io::route_to_html(loaded->nest, res->toolpath, res->report, pic));
+      if (st) st = io::write_file_atomic(outs[i].program, res->program.text);
+      if (!st) {
+        messages[i] = format(st.error());
+        codes[i] = kInputError;
+        continue;
+      }
+      const auto& r = res->report;
+      messages[i] = o.nests[i] + ": " + std::to_string(r["pierces"].get<std::size_t>()) + " pierces, cut " +
+                    format_fixed(r["cut_length_mm"].get<double>(), 1) + " mm, rapid " +
+                    format_fixed(r["rapid_length_mm"].get<double>(), 1) + " mm, " +
+                    std::to_string(r["frames"].get<std::size_t>()) + " frames, T_cut " +
+                    format_fixed(r["t_cut_s"].get<double>(), 2) + " s (" +
+                    format_fixed(r["t_cut_const_speed_s"].get<double>(), 2) + " s at the set speed) -> " + outs[i].program;
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(work);
+  work();
+  for (auto& t : pool) t.join();
+  progress.done();
+
+  int code = kOk;
+  for (std::size_t i = 0; i < o.nests.size(); ++i) {
+    if (codes[i] != kOk) {
+      std::cerr << "cutroute: " << messages[i] << '\n';
+      code = codes[i];
+    } else if (!o.quiet) {
+      std::cout << messages[i] << '\n';
+    }
+  }
+  return code;
+}
+
+}  // namespace
+
+void add_optimize(CLI::App& root, Commands& out) {
+  auto o = std::make_shared<Opts>();
+  auto* app = root.add_subcommand("optimize", "Optimize the cutting route of DXF nest(s) and write the G-code program");
+  app->add_option("NEST", o->nests, "DXF nest file(s); several are optimized in parallel")->required();
+  app->add_option("-o,--output", o->out, "Program file (one nest) or output folder (several nests)");
+  app->add_option("--report", o->report, "Write the JSON report to this file");
+  app->add_option("--svg", o->svg, "Write the route picture to this SVG file");
+  app->add_option("--html", o->html, "Write a self-contained HTML page with the animated route");
+  app->add_option("--material", o->material, "Material (Table 1 name or alias), default from the machine profile");
+  app->add_option("--thickness", o->thickness, "Sheet thickness [mm]")->check(CLI::PositiveNumber);
+  app->add_option("--machine", o->machine, "Machine profile JSON (default: the built-in ByStar 3015-class laser)");
+  app->add_flag("--interpolate", o->interpolate, "Interpolate speeds between Table 1 thicknesses");
+  app->add_option("--objective", o->objective, "time (eq. 10) or cost (eq. 3)")->check(CLI::IsMember({"time", "cost"}));
+  app->add_option("--time-limit", o->time_limit, "Solver time limit [s]")->check(CLI::Range(0.0, 86400.0))->capture_default_str();
+  app->add_option("--seed", o->seed, "Random seed: same seed, input and options give identical outputs")->capture_default_str();
+  app->add_option("--threads", o->threads, "Solver threads (0: all cores)")->check(CLI::Range(0, 64));
+  app->add_option("--solver", o->solver, "auto, exact or heuristic")->check(CLI::IsMember({"auto", "exact", "heuristic"}));
+  app->add_option("--start", o->start, "Machine start and park position X,Y [mm] (default 0,0)");
+  app->add_option("--kerf", o->kerf, "Kerf width [mm] (default from the machine profile)")->check(CLI::Range(0.0, 20.0));
+  app->add_option("--kerf-mode", o->kerf_mode, "controller (G41/G42), cam, or none")
+      ->check(CLI::IsMember({"controller", "cam", "none"}));
+  app->add_option("--dialect", o->dialect, "Post-processor: generic, plasma-thc, or a dialect JSON file");
+  app->add_option("--entry-step", o->entry_step, "Spacing of entry candidates along edges [mm] (0: adaptive)")
+      ->check(CLI::Range(0.0, 1e6));
+  app->add_flag("-q,--quiet", o->quiet, "No progress and no summary");
+  add_input_options(app, o->input);
+  out.push_back({app, [o] { return run(*o); }});
+}
+
+}  // namespace cutroute::cli

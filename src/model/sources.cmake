@@ -1,1 +1,3 @@
-set(CUTROUTE_MODEL_SOURCES)
+set(CUTROUTE_MODEL_SOURCES
+  nest.cpp
+)

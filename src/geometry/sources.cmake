@@ -1,1 +1,9 @@
-set(CUTROUTE_GEOMETRY_SOURCES)
+set(CUTROUTE_GEOMETRY_SOURCES
+  chain.cpp
+  contour.cpp
+  intersect.cpp
+  segment.cpp
+  shapes.cpp
+  spatial_index.cpp
+  winding.cpp
+)

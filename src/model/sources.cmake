@@ -1,1 +1,6 @@
-set(CUTROUTE_MODEL_SOURCES demo_nest.cpp cut_job.cpp path_ops.cpp)
+set(CUTROUTE_MODEL_SOURCES
+  cut_job.cpp
+  demo_nest.cpp
+  nest.cpp
+  path_ops.cpp
+)

@@ -32,4 +32,12 @@ inline constexpr double kConstraintSlackRel = 1e-9;
 // Relative termination width of golden-section searches [dimensionless].
 inline constexpr double kGoldenSectionRel = 1e-10;
 
+// A drawn contour is an axis-aligned rectangle (a sheet border candidate) when each edge is
+// horizontal or vertical within this and its area equals its box's within this × perimeter [mm].
+inline constexpr double kSheetRectangleMm = 1e-3;
+
+// A drawn border matches `--sheet W,H` when each side differs from the given size by less than
+// this [mm]: users type nominal sizes, drawings carry them to a few decimals.
+inline constexpr double kSheetSizeMm = 0.5;
+
 }  // namespace cutroute::tol

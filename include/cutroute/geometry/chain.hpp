@@ -29,11 +29,29 @@ struct ChainResult {
   std::vector<ChainedContour> open;     // chains whose ends found no partner
   std::size_t dropped_zero_length = 0;  // pieces shorter than tol::kSamePointMm
   std::size_t dropped_duplicates = 0;   // pieces identical to another (either direction)
+  std::size_t dropped_invalid = 0;      // pieces with a NaN or infinite coordinate or bulge
 };
 
 // Joins pieces whose end points lie within snap_mm, in any input order and direction.
 // Where an end point meets several others, the nearest unused partner is taken.
 // Snapped end points are moved to their common midpoint so closed contours close exactly.
-ChainResult chain_contours(const std::vector<ChainPiece>& pieces, double snap_mm);
+//
+// Steps (chain.cpp has one function per step):
+//  1. classify: drop pieces with non-finite values and pieces shorter than tol::kSamePointMm;
+//     closed pieces pass through unchanged.
+//  2. drop exact duplicates: the same vertices (bit-exact, -0 == +0) read forwards or backwards,
+//     in the same group; the first in input order is kept. (Closed pieces that repeat another
+//     from a different start vertex are not caught here; model::build_nest() reports them.)
+//  3. match end points: all pairs of ends (same group) within snap_mm, found through a uniform
+//     grid of cell snap_mm, sorted by distance (ties by index) and matched greedily, so each end
+//     gets its nearest partner not already taken. Both ends of one piece may match each other
+//     (an open polyline or arc that closes itself), a single straight line may not.
+//  4. walk: pieces linked through matched ends form paths (open) and cycles (closed); each
+//     joint is moved to the midpoint of its two ends.
+// Output is deterministic: contours in input order of their first piece; a cycle starts at its
+// lowest-index piece, travelled in that piece's direction; an open chain starts at its free end
+// reached by walking backwards from its lowest-index piece.
+// Cost: O(n log n) for n pieces (plus k² for k ends crowded within one snap distance).
+// snap_mm below tol::kSamePointMm (or NaN) is raised to it.
 
 }  // namespace cutroute::geometry

@@ -1,6 +1,7 @@
 // Nest: closed contours of a sheet arranged in a containment tree: parts, holes, inner parts, sheet.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -54,20 +55,47 @@ struct NestOptions {
   // (case-insensitive substring), or an axis-aligned rectangle enclosing everything.
   std::optional<geometry::Vec2> sheet_size;
   double touch_tol_mm = 1e-6;   // boundaries closer than this count as touching [mm]
+  bool detect_sheet = true;     // false: never look for a border (sheet_size still applies)
 };
 
 struct Nest {
-  IdVector<ContourId, NestContour> contours;
-  IdVector<PartId, Part> parts;
+  IdVector<ContourId, NestContour> contours;   // the input contours in input order, minus the
+                                               // dropped ones (duplicates, invalid; see below)
+  IdVector<PartId, Part> parts;                // in order of their outer contour
   std::optional<ContourId> sheet;  // the sheet border, when recognised or given
   int max_depth = 0;               // deepest contour depth (sheet not counted)
   Diagnostics diagnostics;         // crossing / overlapping contours, duplicates, ...
+  // The sheet's extent [mm]: the border's box when there is a border contour; with
+  // options.sheet_size and no matching border, the rectangle (0, 0)–(W, H).
+  std::optional<geometry::Box> sheet_box;
+  std::size_t dropped_duplicates = 0;  // exact repeats of an earlier contour (error diagnostic each)
+  std::size_t dropped_invalid = 0;     // open, empty, zero-area or non-finite input (error diagnostic each)
 };
 
 // Builds the containment tree with exact arcs: parent = smallest containing contour;
 // contours that cross or overlap another produce an error diagnostic naming both.
 // Cost: O(n log n) box queries through a StaticSpatialIndex plus one exact point-in-contour
 // and one boundary-intersection test per candidate pair.
+//
+// Steps (nest.cpp has one function per step):
+//  1. prepare: area, box; drop (with an error diagnostic) contours that are not closed, have no
+//     area or non-finite coordinates, and exact duplicates (the same vertex cycle, bit-exact,
+//     from any start vertex and in either direction; the first in input order stays).
+//  2. find the sheet candidate: the largest contour that is an axis-aligned rectangle whose box
+//     encloses every other contour's box and that either matches options.sheet_size or lies
+//     on a layer named like sheet/plate/border/blech or is detected by geometry alone.
+//     Rotated rectangles are not recognised as borders.
+//  3. containment tree over the other contours: for every pair of overlapping boxes, one
+//     exact boundary test (touching within touch_tol_mm counts: error diagnostic naming both,
+//     and neither becomes the other's parent) and, when one box holds the other, one exact
+//     point-in-contour test of a vertex of the smaller. parent = the smallest container.
+//  4. a candidate found by geometry alone (no size, no layer) is accepted only when some
+//     contour inside it has a contour inside it in turn (a part with a hole): a lone
+//     rectangular plate with holes is thus a part, not a sheet. Rejected: rebuild with it.
+//  5. depth (sheet not counted), role by parity (even = outer, odd = hole), parts: each outer
+//     with its holes; an outer at depth >= 2 lies in a hole: inside_hole, parent_part.
+// The sheet border itself has role sheet, depth 0, no parent and no part. A contour touching
+// the sheet border gets a warning.
 Nest build_nest(std::vector<SourceContour> contours, const NestOptions& options);
 
 }  // namespace cutroute::model

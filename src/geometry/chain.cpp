@@ -1,0 +1,322 @@
+// chain_contours(): the steps listed in chain.hpp, one function each.
+#include <cutroute/geometry/chain.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <numeric>
+#include <tuple>
+#include <utility>
+
+#include <cutroute/core/tolerances.hpp>
+
+namespace cutroute::geometry {
+
+namespace {
+
+constexpr std::int32_t kNone = -1;
+
+bool finite_path(const Contour& c) {
+  for (const Vertex& v : c.vertices) {
+    if (!is_finite(v.p) || std::isnan(v.bulge)) return false;
+  }
+  return true;
+}
+
+// --- step 1: sort pieces into closed pass-throughs, dropped pieces and open pieces to chain ---
+
+struct Sorted {
+  std::vector<std::uint32_t> closed;  // indices into pieces
+  std::vector<std::uint32_t> open;
+};
+
+Sorted classify(const std::vector<ChainPiece>& pieces, ChainResult& result) {
+  Sorted s;
+  for (std::uint32_t i = 0; i < pieces.size(); ++i) {
+    const Contour& c = pieces[i].path;
+    if (!finite_path(c)) {
+      ++result.dropped_invalid;
+      continue;
+    }
+    if (segment_count(c) == 0 || !(length(c) >= tol::kSamePointMm)) {
+      ++result.dropped_zero_length;
+      continue;
+    }
+    (c.closed ? s.closed : s.open).push_back(i);
+  }
+  return s;
+}
+
+// --- step 2: exact duplicates (same vertices in either direction, same group) ---
+
+// Vertex i of a piece read forwards or backwards, with the bulge that leaves it in that
+// direction (0 for the last vertex of an open path), -0.0 folded into +0.0.
+Vertex canonical_vertex(const Contour& c, std::size_t i, bool backwards) {
+  const std::size_t n = c.vertices.size();
+  Vertex v;
+  if (!backwards) {
+    v = c.vertices[i];
+    if (!c.closed && i + 1 == n) v.bulge = 0.0;
+  } else if (c.closed) {
+    v.p = c.vertices[i == 0 ? 0 : n - i].p;
+    v.bulge = -c.vertices[n - 1 - i].bulge;
+  } else {
+    v.p = c.vertices[n - 1 - i].p;
+    v.bulge = i + 1 < n ? -c.vertices[n - 2 - i].bulge : 0.0;
+  }
+  v.p.x += 0.0;
+  v.p.y += 0.0;
+  v.bulge += 0.0;
+  return v;
+}
+
+int compare_vertex(const Vertex& a, const Vertex& b) {
+  if (a.p.x != b.p.x) return a.p.x < b.p.x ? -1 : 1;
+  if (a.p.y != b.p.y) return a.p.y < b.p.y ? -1 : 1;
+  if (a.bulge != b.bulge) return a.bulge < b.bulge ? -1 : 1;
+  return 0;
+}
+
+// The direction in which the piece reads lexicographically smaller: both copies of a
+// duplicated piece read the same in their canonical directions.
+bool canonical_backwards(const Contour& c) {
+  for (std::size_t i = 0; i < c.vertices.size(); ++i) {
+    const int k = compare_vertex(canonical_vertex(c, i, false), canonical_vertex(c, i, true));
+    if (k != 0) return k > 0;
+  }
+  return false;
+}
+
+std::uint64_t mix(std::uint64_t h, double v) {
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, &v, sizeof bits);
+  h ^= bits + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
+  return h * 0xBF58476D1CE4E5B9ull;
+}
+
+bool same_canonical(const Contour& a, bool a_back, const Contour& b, bool b_back) {
+  if (a.closed != b.closed || a.vertices.size() != b.vertices.size()) return false;
+  for (std::size_t i = 0; i < a.vertices.size(); ++i) {
+    if (compare_vertex(canonical_vertex(a, i, a_back), canonical_vertex(b, i, b_back)) != 0) return false;
+  }
+  return true;
+}
+
+// Removes later copies from `ids` (input order kept); returns how many were removed.
+std::size_t drop_duplicates(const std::vector<ChainPiece>& pieces, std::vector<std::uint32_t>& ids) {
+  struct Key {
+    std::int32_t group;
+    std::uint64_t hash;
+    std::uint32_t id;
+    bool backwards;
+  };
+  std::vector<Key> keys;
+  keys.reserve(ids.size());
+  for (std::uint32_t id : ids) {
+    const Contour& c = pieces[id].path;
+    const bool back = canonical_backwards(c);
+    std::uint64_t h = c.closed ? 1 : 2;
+    for (std::size_t i = 0; i < c.vertices.size(); ++i) {
+      const Vertex v = canonical_vertex(c, i, back);
+      h = mix(mix(mix(h, v.p.x), v.p.y), v.bulge);
+    }
+    keys.push_back({pieces[id].group, h, id, back});
+  }
+  std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
+    return std::tie(a.group, a.hash, a.id) < std::tie(b.group, b.hash, b.id);
+  });
+  std::vector<char> dropped(pieces.size(), 0);
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < keys.size();) {
+    std::size_t j = i;
+    while (j < keys.size() && keys[j].group == keys[i].group && keys[j].hash == keys[i].hash) ++j;
+    for (std::size_t x = i; x < j; ++x) {
+      if (dropped[keys[x].id]) continue;
+      for (std::size_t y = x + 1; y < j; ++y) {
+        if (dropped[keys[y].id]) continue;
+        if (same_canonical(pieces[keys[x].id].path, keys[x].backwards, pieces[keys[y].id].path, keys[y].backwards)) {
+          dropped[keys[y].id] = 1;
+          ++count;
+        }
+      }
+    }
+    i = j;
+  }
+  std::erase_if(ids, [&](std::uint32_t id) { return dropped[id] != 0; });
+  return count;
+}
+
+// --- step 3: match end points, nearest pairs first ---
+
+// End e of open piece k: e = 2k (start) or 2k + 1 (end); k indexes `open`.
+Vec2 end_point(const Contour& c, std::size_t e) {
+  return (e & 1) ? c.vertices.back().p : c.vertices.front().p;
+}
+
+// Grid cell index of a coordinate, clamped so that absurd coordinates cannot overflow.
+std::int64_t cell_of(double v, double cell) {
+  const double q = std::floor(v / cell);
+  constexpr double kLimit = 4.0e18;
+  return static_cast<std::int64_t>(std::clamp(q, -kLimit, kLimit));
+}
+
+// Why a grid and not nanoflann: the search radius is fixed (the snap), so a uniform grid with
+// cell = snap answers each query from 3×3 cells; sorted cell keys make it deterministic and
+// allocation-light, where a k-d tree would add a build and still need its results re-sorted.
+std::vector<std::int32_t> match_ends(const std::vector<ChainPiece>& pieces, const std::vector<std::uint32_t>& open,
+                                     double snap) {
+  const std::size_t n_ends = 2 * open.size();
+  struct Cell {
+    std::int64_t ix, iy;
+    std::uint32_t end;
+  };
+  std::vector<Cell> cells(n_ends);
+  std::vector<Vec2> pos(n_ends);
+  for (std::size_t e = 0; e < n_ends; ++e) {
+    pos[e] = end_point(pieces[open[e / 2]].path, e);
+    cells[e] = {cell_of(pos[e].x, snap), cell_of(pos[e].y, snap), static_cast<std::uint32_t>(e)};
+  }
+  std::sort(cells.begin(), cells.end(), [](const Cell& a, const Cell& b) {
+    return std::tie(a.ix, a.iy, a.end) < std::tie(b.ix, b.iy, b.end);
+  });
+
+  struct Candidate {
+    double dist;
+    std::uint32_t e, f;
+  };
+  std::vector<Candidate> cand;
+  cand.reserve(n_ends);
+  auto may_close_alone = [&](std::size_t k) {
+    const Contour& c = pieces[open[k]].path;
+    return segment_count(c) >= 2 || segment(c, 0).is_arc();
+  };
+  for (std::size_t e = 0; e < n_ends; ++e) {
+    const std::int64_t ix = cell_of(pos[e].x, snap), iy = cell_of(pos[e].y, snap);
+    const std::int32_t group = pieces[open[e / 2]].group;
+    for (std::int64_t dx = -1; dx <= 1; ++dx) {
+      const Cell lo{ix + dx, iy - 1, 0};
+      auto it = std::lower_bound(cells.begin(), cells.end(), lo, [](const Cell& a, const Cell& b) {
+        return std::tie(a.ix, a.iy) < std::tie(b.ix, b.iy);
+      });
+      for (; it != cells.end() && it->ix == ix + dx && it->iy <= iy + 1; ++it) {
+        const std::uint32_t f = it->end;
+        if (f <= e) continue;  // each pair once
+        if (pieces[open[f / 2]].group != group) continue;
+        if (f / 2 == e / 2 && !may_close_alone(e / 2)) continue;
+        const double d = distance(pos[e], pos[f]);
+        if (d <= snap) cand.push_back({d, static_cast<std::uint32_t>(e), f});
+      }
+    }
+  }
+  std::sort(cand.begin(), cand.end(), [](const Candidate& a, const Candidate& b) {
+    return std::tie(a.dist, a.e, a.f) < std::tie(b.dist, b.e, b.f);
+  });
+  std::vector<std::int32_t> partner(n_ends, kNone);
+  for (const Candidate& c : cand) {
+    if (partner[c.e] != kNone || partner[c.f] != kNone) continue;
+    partner[c.e] = static_cast<std::int32_t>(c.f);
+    partner[c.f] = static_cast<std::int32_t>(c.e);
+  }
+  return partner;
+}
+
+// --- step 4: walk the matched ends into chains, snapping each joint to its midpoint ---
+
+struct Walker {
+  const std::vector<ChainPiece>& pieces;
+  const std::vector<std::uint32_t>& open;
+  const std::vector<std::int32_t>& partner;
+
+  Vec2 end_pos(std::size_t e) const { return end_point(pieces[open[e / 2]].path, e); }
+  // Where end e ends up: the midpoint with its partner, or where it is when unmatched.
+  Vec2 snapped(std::size_t e) const {
+    const std::int32_t f = partner[e];
+    return f == kNone ? end_pos(e) : (end_pos(e) + end_pos(static_cast<std::size_t>(f))) * 0.5;
+  }
+
+  // Appends piece k entered at end e_in (its start when even), without its last vertex.
+  void append(ChainedContour& out, std::size_t e_in) const {
+    const std::size_t k = e_in / 2;
+    const ChainPiece& piece = pieces[open[k]];
+    const Contour path = (e_in & 1) ? reversed(piece.path) : piece.path;
+    const std::size_t first = out.contour.vertices.size();
+    out.contour.vertices.insert(out.contour.vertices.end(), path.vertices.begin(), path.vertices.end() - 1);
+    out.contour.vertices[first].p = snapped(e_in);
+    out.sources.push_back(piece.source);
+  }
+
+  ChainedContour walk(std::size_t first_piece, std::size_t e_start, bool cycle) const {
+    ChainedContour out;
+    out.group = pieces[open[first_piece]].group;
+    std::size_t e_in = e_start;
+    for (;;) {
+      append(out, e_in);
+      const std::size_t e_out = e_in ^ 1;
+      const std::int32_t next = partner[e_out];
+      if (next == kNone) {
+        out.contour.vertices.push_back({snapped(e_out), 0.0});
+        break;
+      }
+      if (static_cast<std::size_t>(next) / 2 == first_piece && cycle) break;
+      e_in = static_cast<std::size_t>(next);
+    }
+    out.contour.closed = cycle;
+    return out;
+  }
+};
+
+}  // namespace
+
+ChainResult chain_contours(const std::vector<ChainPiece>& pieces, double snap_mm) {
+  if (!(snap_mm >= tol::kSamePointMm) || !std::isfinite(snap_mm)) snap_mm = tol::kSamePointMm;
+  ChainResult result;
+  Sorted sorted = classify(pieces, result);
+  result.dropped_duplicates += drop_duplicates(pieces, sorted.closed);
+  result.dropped_duplicates += drop_duplicates(pieces, sorted.open);
+  const std::vector<std::uint32_t>& open = sorted.open;
+  const std::vector<std::int32_t> partner = match_ends(pieces, open, snap_mm);
+  const Walker walker{pieces, open, partner};
+
+  // Output in input order of each chain's first piece; closed inputs interleaved likewise.
+  std::vector<char> used(open.size(), 0);
+  std::size_t next_closed = 0;
+  auto flush_closed_before = [&](std::uint32_t piece_index) {
+    while (next_closed < sorted.closed.size() && sorted.closed[next_closed] < piece_index) {
+      const ChainPiece& p = pieces[sorted.closed[next_closed++]];
+      result.closed.push_back({p.path, {p.source}, p.group});
+    }
+  };
+  for (std::size_t k = 0; k < open.size(); ++k) {
+    if (used[k]) continue;
+    flush_closed_before(open[k]);
+    // Walk backwards from k's start to find the chain's free end, or come back round to k.
+    std::size_t e = 2 * k;
+    bool cycle = false;
+    for (;;) {
+      const std::int32_t f = partner[e];
+      if (f == kNone) break;
+      if (static_cast<std::size_t>(f) / 2 == k) {
+        cycle = true;
+        break;
+      }
+      e = static_cast<std::size_t>(f) ^ 1;  // the other end of the previous piece
+    }
+    ChainedContour chain = cycle ? walker.walk(k, 2 * k, true) : walker.walk(e / 2, e, false);
+    // Mark the pieces used: they are exactly the chain's pieces (sources are unique per piece
+    // only for the caller, so walk the partner links again instead of trusting them).
+    std::size_t e_in = cycle ? 2 * k : e;
+    const std::size_t first = e_in / 2;
+    for (;;) {
+      used[e_in / 2] = 1;
+      const std::int32_t next = partner[e_in ^ 1];
+      if (next == kNone || static_cast<std::size_t>(next) / 2 == first) break;
+      e_in = static_cast<std::size_t>(next);
+    }
+    (cycle ? result.closed : result.open).push_back(std::move(chain));
+  }
+  flush_closed_before(std::numeric_limits<std::uint32_t>::max());
+  return result;
+}
+
+}  // namespace cutroute::geometry

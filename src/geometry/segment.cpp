@@ -1,0 +1,100 @@
+// Segment: line or bulge arc as a value — length, centre, points, tangents, exact box.
+#include <cutroute/geometry/arc.hpp>
+#include <cutroute/geometry/contour.hpp>
+#include <cutroute/core/tolerances.hpp>
+
+#include "geometry/arc_detail.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace cutroute::geometry {
+
+bool Segment::is_arc() const {
+  const double beta = sanitize_bulge(bulge);
+  return std::abs(beta) > tol::kStraightBulge && a != b;
+}
+
+double Segment::sweep() const { return is_arc() ? 4.0 * std::atan(sanitize_bulge(bulge)) : 0.0; }
+
+double Segment::length() const {
+  const double d = norm(b - a);
+  if (!is_arc()) return d;
+  const double beta = sanitize_bulge(bulge);
+  // d (1+β²) atan(β)/β: well conditioned for small β, and for huge β about d·β·π/4.
+  return d * (1.0 + beta * beta) * (std::atan(beta) / beta);
+}
+
+Vec2 Segment::center() const {
+  const Vec2 m = (a + b) * 0.5;
+  if (!is_arc()) return m;
+  const double beta = sanitize_bulge(bulge);
+  return m + perp(b - a) * ((1.0 - beta * beta) / (4.0 * beta));
+}
+
+double Segment::radius() const {
+  if (!is_arc()) return a == b ? 0.0 : std::numeric_limits<double>::infinity();
+  const double beta = sanitize_bulge(bulge);
+  return norm(b - a) * (1.0 + beta * beta) / (4.0 * std::abs(beta));
+}
+
+Vec2 Segment::point_at(double t) const {
+  if (!(t > 0.0)) return a;  // also NaN
+  if (t >= 1.0) return b;
+  if (!is_arc()) return a + (b - a) * t;
+  const double beta = sanitize_bulge(bulge);
+  return arc_point_at_sweep(a, b, beta, 4.0 * std::atan(beta) * t);
+}
+
+Vec2 Segment::tangent_at(double t) const {
+  const Vec2 u = normalized(b - a);
+  if (!is_arc()) return u;
+  const double tt = std::isnan(t) ? 0.0 : std::clamp(t, 0.0, 1.0);
+  const double theta = sweep();
+  return rotated(u, theta * tt - theta / 2.0);
+}
+
+namespace detail {
+
+double arc_start_radial_angle(const Segment& s) {
+  const Vec2 c = s.b - s.a;
+  const double theta = s.sweep();
+  const double half_pi = std::numbers::pi / 2.0;
+  return std::atan2(c.y, c.x) - theta / 2.0 - (theta > 0 ? half_pi : -half_pi);
+}
+
+double sweep_to_angle(const Segment& s, double angle) {
+  const double two_pi = 2.0 * std::numbers::pi;
+  const double theta = s.sweep();
+  const double start = arc_start_radial_angle(s);
+  double phi = theta > 0 ? angle - start : start - angle;
+  phi = std::fmod(phi, two_pi);
+  if (phi < 0) phi += two_pi;
+  if (!(phi < two_pi)) phi = 0.0;  // rounding or NaN
+  return theta > 0 ? phi : -phi;
+}
+
+bool nearly_straight(const Segment& s) {
+  return !s.is_arc() || norm(s.b - s.a) * std::abs(sanitize_bulge(s.bulge)) / 2.0 <= tol::kCollinearMm;
+}
+
+}  // namespace detail
+
+Box Segment::bounding_box() const {
+  Box box;
+  box.add(a);
+  box.add(b);
+  if (!is_arc()) return box;
+  const double theta = sweep();
+  const double beta = sanitize_bulge(bulge);
+  static constexpr double kAxisAngles[4] = {0.0, std::numbers::pi / 2.0, std::numbers::pi, 3.0 * std::numbers::pi / 2.0};
+  for (double axis : kAxisAngles) {
+    const double phi = detail::sweep_to_angle(*this, axis);
+    if (std::abs(phi) < std::abs(theta)) box.add(arc_point_at_sweep(a, b, beta, phi));
+  }
+  return box;
+}
+
+}  // namespace cutroute::geometry

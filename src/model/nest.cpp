@@ -1,0 +1,353 @@
+// build_nest(): the steps listed in nest.hpp, one function each.
+#include <cutroute/model/nest.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <tuple>
+#include <unordered_map>
+#include <utility>
+
+#include <cutroute/core/tolerances.hpp>
+#include <cutroute/geometry/spatial_index.hpp>
+
+namespace cutroute::model {
+
+const char* to_string(ContourRole r) {
+  switch (r) {
+    case ContourRole::outer: return "outer";
+    case ContourRole::hole: return "hole";
+    case ContourRole::sheet: return "sheet";
+  }
+  return "outer";
+}
+
+namespace {
+
+using geometry::Box;
+using geometry::Contour;
+using geometry::Vec2;
+using geometry::Vertex;
+
+ContourId cid(std::size_t i) { return ContourId(static_cast<std::int32_t>(i)); }
+
+// "contour 3 (entity 1F, line 120, layer CUT)"
+std::string describe(const SourceContour& s, std::size_t input_index) {
+  std::string out = "contour " + std::to_string(input_index);
+  std::string extra;
+  auto add = [&](const std::string& part) { extra += (extra.empty() ? "" : ", ") + part; };
+  if (!s.handle.empty()) add("entity " + s.handle);
+  if (s.line) add("line " + std::to_string(*s.line));
+  if (!s.layer.empty()) add("layer " + s.layer);
+  if (!extra.empty()) out += " (" + extra + ")";
+  return out;
+}
+
+Diagnostic diagnostic_for(Severity severity, std::string message, const SourceContour& s) {
+  Diagnostic d;
+  d.severity = severity;
+  d.message = std::move(message);
+  d.line = s.line;
+  d.handle = s.handle;
+  d.layer = s.layer;
+  return d;
+}
+
+// --- step 1: prepare ---
+
+bool finite_contour(const Contour& c) {
+  for (const Vertex& v : c.vertices) {
+    if (!geometry::is_finite(v.p) || !std::isfinite(v.bulge)) return false;
+  }
+  return true;
+}
+
+// The vertex cycle read counter-clockwise from its lexicographically smallest vertex, -0 folded.
+std::vector<Vertex> canonical_cycle(const Contour& c, double signed_area) {
+  const Contour ccw = signed_area < 0 ? geometry::reversed(c) : c;
+  const std::size_t n = ccw.vertices.size();
+  std::size_t start = 0;
+  for (std::size_t i = 1; i < n; ++i) {
+    const Vec2 a = ccw.vertices[i].p, b = ccw.vertices[start].p;
+    if (a.x < b.x || (a.x == b.x && a.y < b.y)) start = i;
+  }
+  std::vector<Vertex> out;
+  out.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    Vertex v = ccw.vertices[(start + i) % n];
+    v.p.x += 0.0;
+    v.p.y += 0.0;
+    v.bulge += 0.0;
+    out.push_back(v);
+  }
+  return out;
+}
+
+std::uint64_t hash_cycle(const std::vector<Vertex>& cycle) {
+  std::uint64_t h = 0x84222325CBF29CE4ull;
+  for (const Vertex& v : cycle) {
+    for (double x : {v.p.x, v.p.y, v.bulge}) {
+      std::uint64_t bits = 0;
+      std::memcpy(&bits, &x, sizeof bits);
+      h = (h ^ bits) * 0x100000001B3ull;
+      h ^= h >> 29;
+    }
+  }
+  return h;
+}
+
+struct Prepared {
+  std::vector<std::size_t> input_index;  // ContourId -> index in the caller's vector
+};
+
+Prepared prepare(std::vector<SourceContour> contours, Nest& nest) {
+  Prepared prep;
+  std::unordered_multimap<std::uint64_t, std::size_t> kept_by_hash;  // hash -> position in nest.contours
+  std::vector<std::vector<Vertex>> cycles;
+  for (std::size_t i = 0; i < contours.size(); ++i) {
+    SourceContour& s = contours[i];
+    const Contour& c = s.contour;
+    const double a = c.closed && finite_contour(c) ? geometry::signed_area(c) : 0.0;
+    if (!c.closed || c.vertices.empty() || !finite_contour(c) || !(std::abs(a) > 0.0)) {
+      const char* why = !c.closed ? "is not closed" : (!finite_contour(c) ? "has a non-finite coordinate" : "has no area");
+      nest.diagnostics.push_back(diagnostic_for(Severity::error, describe(s, i) + " " + why + "; left out of the nest", s));
+      ++nest.dropped_invalid;
+      continue;
+    }
+    std::vector<Vertex> cycle = canonical_cycle(c, a);
+    const std::uint64_t h = hash_cycle(cycle);
+    bool duplicate = false;
+    const auto [first, last] = kept_by_hash.equal_range(h);
+    for (auto it = first; it != last; ++it) {
+      const std::size_t kept = it->second;
+      if (cycles[kept] == cycle) {
+        const std::size_t first_input = prep.input_index[kept];
+        nest.diagnostics.push_back(diagnostic_for(
+            Severity::error,
+            describe(s, i) + " duplicates " + describe(nest.contours[cid(kept)].source, first_input) + "; the copy is left out",
+            s));
+        ++nest.dropped_duplicates;
+        duplicate = true;
+        break;
+      }
+    }
+    if (duplicate) continue;
+    NestContour nc;
+    nc.area_mm2 = std::abs(a);
+    nc.box = geometry::bounding_box(c);
+    nc.source = std::move(s);
+    kept_by_hash.emplace(h, nest.contours.size());
+    cycles.push_back(std::move(cycle));
+    prep.input_index.push_back(i);
+    nest.contours.push_back(std::move(nc));
+  }
+  return prep;
+}
+
+// --- step 2: sheet candidate ---
+
+bool layer_names_sheet(const std::string& layer) {
+  std::string l = layer;
+  std::transform(l.begin(), l.end(), l.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  for (const char* word : {"sheet", "plate", "border", "blech"}) {
+    if (l.find(word) != std::string::npos) return true;
+  }
+  return false;
+}
+
+bool is_axis_aligned_rectangle(const NestContour& nc) {
+  const Contour& c = nc.source.contour;
+  const double tol = tol::kSheetRectangleMm;
+  for (std::size_t i = 0; i < geometry::segment_count(c); ++i) {
+    const geometry::Segment s = geometry::segment(c, i);
+    if (s.is_arc() && geometry::norm(s.b - s.a) * std::abs(s.bulge) / 2.0 > tol) return false;
+    if (std::abs(s.b.x - s.a.x) > tol && std::abs(s.b.y - s.a.y) > tol) return false;
+  }
+  // A rectilinear polygon with the area of its box is its box.
+  const double perimeter = 2.0 * (nc.box.width() + nc.box.height());
+  return std::abs(nc.area_mm2 - nc.box.width() * nc.box.height()) <= tol * perimeter;
+}
+
+enum class SheetReason { size, layer, geometry };
+struct SheetCandidate {
+  std::size_t index;
+  SheetReason reason;
+};
+
+std::optional<SheetCandidate> find_sheet_candidate(const Nest& nest, const NestOptions& options) {
+  if (nest.contours.empty()) return std::nullopt;
+  if (!options.sheet_size && !options.detect_sheet) return std::nullopt;
+  std::size_t largest = 0;
+  for (std::size_t i = 1; i < nest.contours.size(); ++i) {
+    if (nest.contours[cid(i)].area_mm2 > nest.contours[cid(largest)].area_mm2) largest = i;
+  }
+  const NestContour& c = nest.contours[cid(largest)];
+  if (!is_axis_aligned_rectangle(c)) return std::nullopt;
+  const Box outer = c.box.inflated(options.touch_tol_mm);
+  for (std::size_t i = 0; i < nest.contours.size(); ++i) {
+    if (i != largest && !outer.contains(nest.contours[cid(i)].box)) return std::nullopt;
+  }
+  if (options.sheet_size) {
+    const Vec2 want = *options.sheet_size;
+    auto near = [](double a, double b) { return std::abs(a - b) < tol::kSheetSizeMm; };
+    const bool fits = (near(c.box.width(), want.x) && near(c.box.height(), want.y)) ||
+                      (near(c.box.width(), want.y) && near(c.box.height(), want.x));
+    if (fits) return SheetCandidate{largest, SheetReason::size};
+  }
+  if (!options.detect_sheet || nest.contours.size() < 2) return std::nullopt;
+  if (layer_names_sheet(c.source.layer)) return SheetCandidate{largest, SheetReason::layer};
+  return SheetCandidate{largest, SheetReason::geometry};
+}
+
+// --- step 3: containment tree ---
+
+struct Tree {
+  std::vector<std::int32_t> parent;  // -1 at the top
+  Diagnostics crossings;
+};
+
+Tree build_tree(const Nest& nest, const Prepared& prep, std::optional<std::size_t> excluded, double tol_mm) {
+  const std::size_t n = nest.contours.size();
+  Tree tree;
+  tree.parent.assign(n, -1);
+  std::vector<Box> boxes(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (excluded && *excluded == i) continue;  // an empty box is never reported
+    boxes[i] = nest.contours[cid(i)].box.inflated(tol_mm);
+  }
+  const geometry::StaticSpatialIndex index(boxes);
+  // "a is bigger than b": larger area, ties by position, so parents always precede children.
+  auto bigger = [&](std::size_t a, std::size_t b) {
+    const double aa = nest.contours[cid(a)].area_mm2, ab = nest.contours[cid(b)].area_mm2;
+    return aa > ab || (aa == ab && a < b);
+  };
+  std::vector<std::uint32_t> hits;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (boxes[i].empty()) continue;
+    index.query(boxes[i], hits);
+    for (std::uint32_t j32 : hits) {
+      const std::size_t j = j32;
+      if (j <= i) continue;
+      const NestContour& ci = nest.contours[cid(i)];
+      const NestContour& cj = nest.contours[cid(j)];
+      if (geometry::intersects(ci.source.contour, cj.source.contour, tol_mm)) {
+        tree.crossings.push_back(diagnostic_for(Severity::error,
+                                                describe(ci.source, prep.input_index[i]) + " and " +
+                                                    describe(cj.source, prep.input_index[j]) +
+                                                    " cross, overlap or touch",
+                                                ci.source));
+        continue;
+      }
+      const std::size_t big = bigger(i, j) ? i : j;
+      const std::size_t small = big == i ? j : i;
+      const NestContour& cb = nest.contours[cid(big)];
+      const NestContour& cs = nest.contours[cid(small)];
+      if (!cb.box.inflated(tol_mm).contains(cs.box)) continue;
+      // Boundaries are farther apart than tol, so any vertex of the smaller one decides.
+      if (geometry::locate(cb.source.contour, cs.source.contour.vertices.front().p, tol_mm) !=
+          geometry::Location::inside) {
+        continue;
+      }
+      const std::int32_t current = tree.parent[small];
+      if (current < 0 || bigger(static_cast<std::size_t>(current), big)) tree.parent[small] = static_cast<std::int32_t>(big);
+    }
+  }
+  return tree;
+}
+
+// --- step 5: depth, roles, parts ---
+
+void assign_tree(Nest& nest, const Tree& tree, std::optional<std::size_t> sheet) {
+  const std::size_t n = nest.contours.size();
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const double aa = nest.contours[cid(a)].area_mm2, ab = nest.contours[cid(b)].area_mm2;
+    return aa > ab || (aa == ab && a < b);
+  });
+  nest.max_depth = 0;
+  for (std::size_t i : order) {  // parents come first in this order
+    NestContour& c = nest.contours[cid(i)];
+    if (sheet && *sheet == i) {
+      c.role = ContourRole::sheet;
+      c.depth = 0;
+      continue;
+    }
+    const std::int32_t p = tree.parent[i];
+    c.parent = p >= 0 ? ContourId(p) : ContourId();
+    c.depth = p >= 0 ? nest.contours[cid(static_cast<std::size_t>(p))].depth + 1 : 0;
+    c.role = c.depth % 2 == 0 ? ContourRole::outer : ContourRole::hole;
+    nest.max_depth = std::max(nest.max_depth, c.depth);
+  }
+  // Parts in contour order; holes attached in contour order too (deterministic).
+  for (std::size_t i = 0; i < n; ++i) {
+    NestContour& c = nest.contours[cid(i)];
+    if (c.role != ContourRole::outer) continue;
+    c.part = nest.parts.next_id();
+    Part part;
+    part.outer = ContourId(static_cast<std::int32_t>(i));
+    if (c.parent.valid()) {
+      part.inside_hole = c.parent;
+    }
+    nest.parts.push_back(part);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    NestContour& c = nest.contours[cid(i)];
+    if (c.role != ContourRole::hole) continue;
+    c.part = nest.contours[c.parent].part;
+    nest.parts[c.part].holes.push_back(ContourId(static_cast<std::int32_t>(i)));
+  }
+  for (Part& part : nest.parts) {
+    if (part.inside_hole.valid()) part.parent_part = nest.contours[part.inside_hole].part;
+  }
+}
+
+void warn_touching_sheet(Nest& nest, const Prepared& prep, std::size_t sheet, double tol_mm) {
+  const Box inner = nest.contours[cid(sheet)].box;
+  for (std::size_t i = 0; i < nest.contours.size(); ++i) {
+    if (i == sheet) continue;
+    const Box& b = nest.contours[cid(i)].box;
+    const bool touches = b.xmin <= inner.xmin + tol_mm || b.ymin <= inner.ymin + tol_mm ||
+                         b.xmax >= inner.xmax - tol_mm || b.ymax >= inner.ymax - tol_mm;
+    if (touches) {
+      nest.diagnostics.push_back(diagnostic_for(
+          Severity::warning, describe(nest.contours[cid(i)].source, prep.input_index[i]) + " touches the sheet border",
+          nest.contours[cid(i)].source));
+    }
+  }
+}
+
+}  // namespace
+
+Nest build_nest(std::vector<SourceContour> contours, const NestOptions& options) {
+  const double tol_mm = options.touch_tol_mm >= 0.0 ? options.touch_tol_mm : 0.0;
+  Nest nest;
+  const Prepared prep = prepare(std::move(contours), nest);
+  std::optional<SheetCandidate> sheet = find_sheet_candidate(nest, options);
+  std::optional<std::size_t> excluded;
+  if (sheet) excluded = sheet->index;
+  Tree tree = build_tree(nest, prep, excluded, tol_mm);
+  if (sheet && sheet->reason == SheetReason::geometry) {
+    const bool has_part_with_hole = std::any_of(tree.parent.begin(), tree.parent.end(), [](std::int32_t p) { return p >= 0; });
+    if (!has_part_with_hole) {
+      sheet.reset();
+      tree = build_tree(nest, prep, std::nullopt, tol_mm);
+    }
+  }
+  std::optional<std::size_t> sheet_index;
+  if (sheet) sheet_index = sheet->index;
+  assign_tree(nest, tree, sheet_index);
+  nest.diagnostics.insert(nest.diagnostics.end(), tree.crossings.begin(), tree.crossings.end());
+  if (sheet) {
+    nest.sheet = ContourId(static_cast<std::int32_t>(sheet->index));
+    nest.sheet_box = nest.contours[cid(sheet->index)].box;
+    warn_touching_sheet(nest, prep, sheet->index, tol_mm);
+  } else if (options.sheet_size) {
+    nest.sheet_box = Box{0.0, 0.0, options.sheet_size->x, options.sheet_size->y};
+  }
+  return nest;
+}
+
+}  // namespace cutroute::model

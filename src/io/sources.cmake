@@ -1,1 +1,1 @@
-set(CUTROUTE_IO_SOURCES output_file.cpp)
+set(CUTROUTE_IO_SOURCES output_file.cpp instance.cpp instance_distance.cpp)

@@ -1,16 +1,91 @@
-// cutroute gtsp: not yet implemented (placeholder until its issue lands).
+// cutroute gtsp: solve a GTSP / SOP / PCGLNS instance file and print objective, status and time.
+#include <charconv>
 #include <iostream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include <cutroute/core/stop.hpp>
+#include <cutroute/io/instance.hpp>
+#include <cutroute/solve/solve.hpp>
 
 #include "commands.hpp"
 
 namespace cutroute::cli {
 
-void add_gtsp(CLI::App& root, Commands& out) {
-  auto* app = root.add_subcommand("gtsp", "(not yet implemented)");
-  out.push_back({app, [] {
-    std::cerr << "cutroute: error: 'gtsp' is not implemented yet\n";
+namespace {
+
+struct GtspOptions {
+  std::string instance;
+  double time_limit_s = 60.0;
+  std::uint64_t seed = 1;
+  int threads = 0;
+  std::string solver = "auto";
+  bool json = false;
+};
+
+std::string seconds_text(double s) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, s, std::chars_format::fixed, 3);
+  return std::string(buf, r.ptr);
+}
+
+int run_gtsp(const GtspOptions& o) {
+  auto inst = io::read_instance(o.instance);
+  if (!inst) return fail(inst.error());
+  solve::SolveParams params;
+  params.time_limit_s = o.time_limit_s;
+  params.seed = o.seed;
+  params.threads = o.threads;
+  params.solver = o.solver == "exact" ? solve::SolverKind::exact
+                  : o.solver == "heuristic" ? solve::SolverKind::heuristic
+                                            : solve::SolverKind::automatic;
+  if (const auto problems = solve::check(params); !problems.empty()) {
+    std::cerr << "cutroute: error: " << problems.front() << '\n';
     return kUsageError;
-  }});
+  }
+  const solve::Solution s = solve::solve(inst->problem, params, StopToken::global());
+  if (o.json) {
+    nlohmann::json j;
+    j["instance"] = inst->name;
+    j["status"] = solve::to_string(s.status);
+    j["time_s"] = s.stats.seconds;
+    j["solver"] = s.stats.solver;
+    j["threads"] = s.stats.threads;
+    if (!s.route.empty()) j["objective"] = s.cost;
+    else j["objective"] = nullptr;
+    auto tour = nlohmann::json::array();
+    for (auto v : s.route) tour.push_back(v.value() + 1);
+    j["tour"] = tour;
+    if (s.lower_bound) j["lower_bound"] = *s.lower_bound;
+    std::cout << j.dump() << '\n';
+  } else {
+    std::cout << "instance:  " << inst->name << '\n';
+    if (!s.route.empty()) std::cout << "objective: " << s.cost << '\n';
+    std::cout << "status:    " << solve::to_string(s.status) << '\n';
+    if (s.lower_bound) std::cout << "lower bound: " << *s.lower_bound << '\n';
+    std::cout << "time:      " << seconds_text(s.stats.seconds) << " s (" << s.stats.solver << ", " << s.stats.threads
+              << (s.stats.threads == 1 ? " thread" : " threads") << ")\n";
+  }
+  if (s.status == solve::SolveStatus::infeasible) {
+    std::cerr << "cutroute: " << o.instance << ": error: the instance has no feasible route\n";
+    return kInputError;
+  }
+  return kOk;
+}
+
+}  // namespace
+
+void add_gtsp(CLI::App& root, Commands& out) {
+  auto opts = std::make_shared<GtspOptions>();
+  auto* app = root.add_subcommand("gtsp", "Solve a routing instance (.gtsp GTSPLIB, .sop TSPLIB SOP, .pcglns PCGTSP)");
+  app->add_option("instance", opts->instance, "Instance file")->required();
+  app->add_option("--time-limit", opts->time_limit_s, "Wall-clock limit in seconds (default 60)")->check(CLI::NonNegativeNumber);
+  app->add_option("--seed", opts->seed, "Random seed (default 1)");
+  app->add_option("--threads", opts->threads, "Search threads (default: all cores)")->check(CLI::Range(0, 256));
+  app->add_option("--solver", opts->solver, "auto | exact | heuristic")->check(CLI::IsMember({"auto", "exact", "heuristic"}));
+  app->add_flag("--json", opts->json, "Print one JSON object");
+  out.push_back({app, [opts] { return run_gtsp(*opts); }});
 }
 
 }  // namespace cutroute::cli

@@ -1,1 +1,10 @@
-set(CUTROUTE_IO_SOURCES output_file.cpp svg.cpp nest_loader.cpp nest_svg.cpp inspect_report.cpp route_picture.cpp)
+set(CUTROUTE_IO_SOURCES
+  inspect_report.cpp
+  instance.cpp
+  instance_distance.cpp
+  nest_loader.cpp
+  nest_svg.cpp
+  output_file.cpp
+  route_picture.cpp
+  svg.cpp
+)

@@ -1,0 +1,47 @@
+// The heuristic solver: precedence-respecting construction, local-search operators, and the
+// multi-start adaptive large neighbourhood search (ALNS) built from them. docs/SOLVER.md explains
+// every operator by example (STYLE.md #9); the comments here give the contract and the cost.
+#pragma once
+
+#include <vector>
+
+#include <cutroute/core/random.hpp>
+#include <cutroute/core/stop.hpp>
+#include <cutroute/solve/params.hpp>
+#include <cutroute/solve/problem.hpp>
+#include <cutroute/solve/solution.hpp>
+
+namespace cutroute::solve {
+
+// Random precedence-respecting cheapest insertion: clusters are taken in a random topological order
+// (a cluster becomes available once all its predecessors are placed) and each is inserted with its
+// best node at the cheapest position after its predecessors. O(m * n) for m clusters, n nodes.
+// The result visits every cluster once and keeps precedence; it may use a forbidden arc when the
+// construction is forced to (the local search then tries to remove it).
+std::vector<NodeId> construct_route(const Problem& p, Rng& rng);
+
+// Local-search operators on a complete route (route[0] in the start cluster, precedence kept).
+// Each returns true when it made the route strictly cheaper; none ever makes it more expensive,
+// moves route[0] out of position 0, or breaks a precedence.
+//   reinsertion: remove one cluster, put it back at its best position with its best node. O(m * n) a pass.
+//   two_opt: reverse a segment (symmetric problems only; no precedence pair inside it). O(m^2) a pass.
+//   or_opt: move a segment of 2 or 3 clusters elsewhere, same direction. O(m^2) a pass.
+//   cluster_optimise: for the fixed cluster order, the best node of every cluster (shortest path
+//     through the layered graph, all nodes of the smallest cluster tried as the cyclic start when
+//     the work fits `max_work`, else only its current node). O(k_min * sum |C_i||C_i+1|).
+bool reinsertion_pass(const Problem& p, std::vector<NodeId>& route);
+bool two_opt_pass(const Problem& p, std::vector<NodeId>& route);
+bool or_opt_pass(const Problem& p, std::vector<NodeId>& route);
+bool cluster_optimise(const Problem& p, std::vector<NodeId>& route, double max_work = 2.0e6);
+// All of the above until none improves.
+void local_search(const Problem& p, std::vector<NodeId>& route);
+
+// The metaheuristic (docs/SOLVER.md): per thread, construction + local search, then rounds of
+// destroy (random / segment / worst / related removal of 1..30 % of the clusters), repair (cheapest
+// unified insertion, optionally noisy), local search and threshold acceptance; after every round
+// all threads continue from the best route so far. Stops on time limit, target, stagnation, cancel.
+// Deterministic for a fixed seed and thread count when no time limit or cancel cuts it.
+Solution solve_heuristic(const Problem& p, const SolveParams& params, const StopToken& stop,
+                         const ProgressFn& progress = {});
+
+}  // namespace cutroute::solve

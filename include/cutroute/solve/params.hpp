@@ -1,0 +1,53 @@
+// SolveParams: plain solver settings with documented defaults, three presets, and a checker.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <cutroute/solve/problem.hpp>
+
+namespace cutroute::solve {
+
+enum class SolverKind {
+  automatic,  // exact when the DP is estimated to finish fast (exact_auto_max_work), else heuristic
+  exact,      // dynamic programming; at a limit returns its best route and a lower bound
+  heuristic,  // construction + local search + adaptive large neighbourhood search, multi-start
+};
+const char* to_string(SolverKind k);
+
+struct SolveParams {
+  SolverKind solver = SolverKind::automatic;
+  std::uint64_t seed = 1;              // same seed + threads + input -> same route (see docs/SOLVER.md)
+  int threads = 0;                     // 0: std::thread::hardware_concurrency(), at most 8
+  double time_limit_s = 60.0;          // wall-clock limit of solve() [s]; <= 0 means none
+  std::optional<Cost> target_cost;     // stop as soon as a route this cheap is found
+
+  // Heuristic (docs/SOLVER.md "Metaheuristic").
+  // Synchronisation: threads work in rounds of `round_iterations` destroy/repair steps, then all
+  // restart from the best route (lowest cost, lowest thread index on ties): deterministic.
+  int round_iterations = 0;            // 0: automatic, ~ 40 + cluster_count / 2
+  // Stop after this many rounds in a row without improving the best route.
+  int stagnation_rounds = 6;
+  // Largest share of the clusters one destroy step may remove.
+  double max_removal_fraction = 0.3;
+  // Threshold acceptance: a worse route is accepted when within this relative amount of the
+  // current one; the threshold decays linearly to 0 over each round.
+  double accept_threshold = 0.01;
+
+  // Exact DP (solve/exact_dp.hpp).
+  std::size_t exact_memory_limit_bytes = std::size_t{1536} << 20;  // 1.5 GiB
+  // automatic picks the DP when its estimated transition count is below this (about 1 s of work).
+  double exact_auto_max_work = 4.0e8;
+
+  static SolveParams fast();      // ~10x less search than default: quick answers for previews
+  static SolveParams standard();  // the default: GTSPLIB <= 217 clusters within ~0.05 % in seconds
+  static SolveParams thorough();  // ~4x more stagnation tolerance, larger neighbourhoods
+};
+
+// Human-readable problems with `p` (empty when valid), e.g. "threads must be >= 0 (got -1)".
+std::vector<std::string> check(const SolveParams& p);
+
+}  // namespace cutroute::solve

@@ -1,0 +1,154 @@
+// solve::Problem: clusters of nodes, integer arc costs, precedence and forbidden arcs, built once and immutable.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <cutroute/core/ids.hpp>
+#include <cutroute/core/result.hpp>
+
+namespace cutroute::solve {
+
+struct NodeTag;
+struct ClusterTag;
+using NodeId = Id<NodeTag>;        // 0-based; io/ maps file ids (1-based) to these
+using ClusterId = Id<ClusterTag>;  // 0-based
+using Cost = std::int64_t;         // one fixed unit chosen by the caller (ticks for cutting, see core/units.hpp)
+
+// Every arc and inner cost must lie in [0, kMaxCost]. 2^40 ticks are 12.7 days of machine time, far
+// above any real arc, and sums of up to 2^22 arcs of kForbiddenCost still fit in int64 (no overflow
+// checks in the hot loops of the heuristics).
+inline constexpr Cost kMaxCost = Cost{1} << 40;
+// What arc_cost() returns for a forbidden arc (a cost callback returns it to forbid one). Larger than
+// any allowed arc, so the heuristics avoid forbidden arcs as very expensive ones without a special
+// case; validate() rejects them outright.
+inline constexpr Cost kForbiddenCost = Cost{1} << 41;
+
+// Cost of travelling from one node to another (not including the inner cost of the target).
+// Must be pure and thread-safe: the heuristics call it from several threads.
+using CostFn = std::function<Cost(NodeId from, NodeId to)>;
+
+// closed_tour: the route returns from its last node to its first (the arc is paid);
+// open_path: it ends at its last node (SOP, cutting routes that end anywhere).
+enum class RouteKind { closed_tour, open_path };
+
+class ProblemBuilder;
+
+// The routing problem: visit exactly one node of every cluster, starting in the start cluster,
+// keeping every precedence "cluster a before cluster b" (counted from the start of the route),
+// using no forbidden arc; minimise the sum of arc costs plus the inner cost of every visited node.
+// Immutable once built: only ProblemBuilder::build() makes one, after checking it.
+class Problem {
+ public:
+  Problem() = default;
+
+  int node_count() const { return static_cast<int>(cluster_of_.size()); }
+  int cluster_count() const { return static_cast<int>(cluster_begin_.size()) - 1; }
+  ClusterId cluster_of(NodeId v) const { return cluster_of_[v]; }
+  // The nodes of a cluster, in the order given to the builder.
+  std::span<const NodeId> nodes_of(ClusterId c) const {
+    return {members_.data() + cluster_begin_[c.index()], members_.data() + cluster_begin_[c.index() + 1]};
+  }
+  int cluster_size(ClusterId c) const { return cluster_begin_[c.index() + 1] - cluster_begin_[c.index()]; }
+
+  // Travel cost from -> to; kForbiddenCost for a forbidden arc.
+  Cost arc_cost(NodeId from, NodeId to) const {
+    if (!matrix_.empty()) return matrix_[from.index() * n_ + to.index()];
+    return arc_from_function(from, to);
+  }
+  bool forbidden(NodeId from, NodeId to) const { return arc_cost(from, to) >= kForbiddenCost; }
+  Cost inner_cost(NodeId v) const { return inner_.empty() ? 0 : inner_[v.index()]; }
+  // What the solvers add when the route enters `to` from `from`: arc plus inner cost of `to`,
+  // or kForbiddenCost. Every route cost is a sum of these (plus the first node's inner cost on a path).
+  Cost step(NodeId from, NodeId to) const {
+    const Cost a = arc_cost(from, to);
+    return a >= kForbiddenCost ? kForbiddenCost : a + inner_cost(to);
+  }
+
+  ClusterId start_cluster() const { return start_; }
+  RouteKind kind() const { return kind_; }
+  bool closed() const { return kind_ == RouteKind::closed_tour; }
+  // True when arc_cost(a, b) == arc_cost(b, a) for all nodes (checked for matrices, declared for callbacks).
+  bool symmetric() const { return symmetric_; }
+  bool has_matrix() const { return !matrix_.empty(); }
+
+  // Precedence as given to the builder (before, after), without duplicates.
+  const std::vector<std::pair<ClusterId, ClusterId>>& precedence() const { return precedence_; }
+  bool has_precedence() const { return !precedence_.empty(); }
+  // Transitive closure: every cluster that must come before c / after c, sorted by id.
+  std::span<const ClusterId> all_before(ClusterId c) const { return closure(before_, c); }
+  std::span<const ClusterId> all_after(ClusterId c) const { return closure(after_, c); }
+  bool must_precede(ClusterId a, ClusterId b) const;  // O(log) in the closure of b
+
+  const std::string& name() const { return name_; }
+
+ private:
+  friend class ProblemBuilder;
+  Cost arc_from_function(NodeId from, NodeId to) const;
+  struct Closure {
+    std::vector<int> begin;  // size cluster_count + 1
+    std::vector<ClusterId> items;
+  };
+  static std::span<const ClusterId> closure(const Closure& cl, ClusterId c) {
+    if (cl.begin.empty()) return {};
+    return {cl.items.data() + cl.begin[c.index()], cl.items.data() + cl.begin[c.index() + 1]};
+  }
+
+  std::size_t n_ = 0;
+  std::vector<Cost> matrix_;  // row-major n x n travel costs (kForbiddenCost folded in); empty with a callback
+  std::shared_ptr<const CostFn> fn_;
+  std::vector<std::uint64_t> forbidden_keys_;  // sorted from*n+to, only used with a callback
+  std::vector<Cost> inner_;                    // empty when all zero
+  IdVector<NodeId, ClusterId> cluster_of_;
+  std::vector<int> cluster_begin_{0};
+  std::vector<NodeId> members_;
+  ClusterId start_{0};
+  RouteKind kind_ = RouteKind::closed_tour;
+  bool symmetric_ = false;
+  std::vector<std::pair<ClusterId, ClusterId>> precedence_;
+  Closure before_, after_;
+  std::string name_;
+};
+
+// Collects the parts of a Problem and checks them in build(): every node in exactly one cluster,
+// costs within [0, kMaxCost] (or forbidden), precedence acyclic and never before the start cluster.
+class ProblemBuilder {
+ public:
+  explicit ProblemBuilder(int node_count);
+
+  ProblemBuilder& set_name(std::string name);
+  // Row-major node_count x node_count travel costs; negative entries are rejected, entries equal to
+  // kForbiddenCost forbid the arc. The diagonal is never used.
+  ProblemBuilder& set_cost_matrix(std::vector<Cost> matrix);
+  // On-demand costs (large nests); `symmetric` is the caller's promise that cost(a,b) == cost(b,a).
+  ProblemBuilder& set_cost_function(CostFn fn, bool symmetric);
+  ProblemBuilder& set_inner_cost(NodeId v, Cost c);
+  ClusterId add_cluster(std::vector<NodeId> nodes);
+  ProblemBuilder& add_precedence(ClusterId before, ClusterId after);
+  ProblemBuilder& forbid_arc(NodeId from, NodeId to);
+  ProblemBuilder& set_start_cluster(ClusterId c);
+  ProblemBuilder& set_kind(RouteKind kind);
+
+  // The checked, closed Problem, or the first problem found (message names the node/cluster).
+  Result<Problem> build();
+
+ private:
+  int n_;
+  std::vector<Cost> matrix_;
+  std::shared_ptr<const CostFn> fn_;
+  bool fn_symmetric_ = false;
+  std::vector<Cost> inner_;
+  std::vector<std::vector<NodeId>> clusters_;
+  std::vector<std::pair<ClusterId, ClusterId>> precedence_;
+  std::vector<std::pair<NodeId, NodeId>> forbidden_;
+  ClusterId start_{0};
+  RouteKind kind_ = RouteKind::closed_tour;
+  std::string name_;
+};
+
+}  // namespace cutroute::solve

@@ -1,0 +1,19 @@
+// solve(): the one entry point: picks the exact DP or the metaheuristic and returns a validated Solution.
+#pragma once
+
+#include <cutroute/core/stop.hpp>
+#include <cutroute/solve/params.hpp>
+#include <cutroute/solve/problem.hpp>
+#include <cutroute/solve/solution.hpp>
+
+namespace cutroute::solve {
+
+// Steps: 1. automatic -> exact when estimate_exact_work() is small, else heuristic;
+// 2. exact: a short heuristic run gives the upper bound the DP prunes with, then the DP;
+// 3. heuristic: multi-start ALNS until time limit, target, stagnation or cancel;
+// 4. the result is checked with validate() (a failure is a bug: it throws std::logic_error).
+// `stop` adds an external cancel and deadline to params.time_limit_s.
+Solution solve(const Problem& problem, const SolveParams& params, const StopToken& stop = {},
+               const ProgressFn& progress = {});
+
+}  // namespace cutroute::solve

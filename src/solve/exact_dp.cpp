@@ -1,0 +1,295 @@
+#include <cutroute/solve/exact_dp.hpp>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cassert>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace cutroute::solve {
+namespace {
+
+constexpr Cost kInf = std::numeric_limits<Cost>::max() / 4;
+constexpr int kMaxDpClusters = 30;
+
+// The start cluster the DP enumerates: the problem's own, or for a closed tour without precedence
+// the smallest cluster (any rotation of a closed tour costs the same; fewer start nodes = fewer runs).
+ClusterId dp_start_cluster(const Problem& p) {
+  if (!p.closed() || p.has_precedence()) return p.start_cluster();
+  ClusterId best = p.start_cluster();
+  for (int c = 0; c < p.cluster_count(); ++c)
+    if (p.cluster_size(ClusterId(c)) < p.cluster_size(best)) best = ClusterId(c);
+  return best;
+}
+
+struct Layout {
+  ClusterId start;
+  int mp = 0;                       // non-start clusters
+  int np = 0;                       // non-start nodes
+  std::vector<ClusterId> cluster;   // bit -> cluster
+  std::vector<int> first, size;     // bit -> local node range
+  std::vector<NodeId> node;         // local -> node
+  std::vector<int> bit_of_local;    // local -> bit
+  std::vector<std::uint32_t> pred;  // bit -> mask of bits that must come earlier
+};
+
+Layout make_layout(const Problem& p) {
+  Layout L;
+  L.start = dp_start_cluster(p);
+  std::vector<int> bit_of(static_cast<std::size_t>(p.cluster_count()), -1);
+  for (int c = 0; c < p.cluster_count(); ++c) {
+    if (ClusterId(c) == L.start) continue;
+    bit_of[c] = L.mp++;
+    L.cluster.push_back(ClusterId(c));
+    L.first.push_back(L.np);
+    L.size.push_back(p.cluster_size(ClusterId(c)));
+    for (NodeId v : p.nodes_of(ClusterId(c))) {
+      L.node.push_back(v);
+      L.bit_of_local.push_back(bit_of[c]);
+      ++L.np;
+    }
+  }
+  if (L.mp > kMaxDpClusters) return L;
+  L.pred.assign(static_cast<std::size_t>(L.mp), 0);
+  for (int b = 0; b < L.mp; ++b)
+    for (ClusterId a : p.all_before(L.cluster[b]))
+      if (bit_of[a.index()] >= 0) L.pred[b] |= std::uint32_t{1} << bit_of[a.index()];
+  return L;
+}
+
+}  // namespace
+
+double estimate_exact_work(const Problem& p) {
+  const ClusterId s = dp_start_cluster(p);
+  const double mp = p.cluster_count() - 1;
+  if (mp > kMaxDpClusters) return std::numeric_limits<double>::infinity();
+  const double a = mp > 0 ? (p.node_count() - p.cluster_size(s)) / mp : 0.0;
+  return p.cluster_size(s) * std::ldexp(1.0, static_cast<int>(mp)) * std::max(1.0, mp * (mp - 1) / 4.0) * a * a;
+}
+
+std::size_t estimate_exact_memory(const Problem& p) {
+  const ClusterId s = dp_start_cluster(p);
+  const int mp = p.cluster_count() - 1;
+  if (mp > kMaxDpClusters) return std::numeric_limits<std::size_t>::max();
+  const auto subsets = std::size_t{1} << mp;
+  const auto np = static_cast<std::size_t>(p.node_count() - p.cluster_size(s));
+  return subsets * np * sizeof(Cost) + subsets + subsets * sizeof(std::uint32_t);
+}
+
+Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const StopToken& stop, const Solution* incumbent) {
+  Solution out;
+  out.stats.solver = "exact";
+  Cost ub = kInf;
+  if (incumbent && !incumbent->route.empty() && incumbent->cost < kForbiddenCost) {
+    out.route = incumbent->route;
+    out.cost = incumbent->cost;
+    out.status = SolveStatus::feasible;
+    ub = incumbent->cost;
+  }
+  const Layout L = make_layout(p);
+  const int mp = L.mp;
+  const int np = L.np;
+  const auto start_nodes = p.nodes_of(L.start);
+
+  // Cheapest step into each cluster from anywhere outside it (the LB(S) terms).
+  std::vector<Cost> min_in(static_cast<std::size_t>(mp), kInf);
+  for (int b = 0; b < mp; ++b)
+    for (int j = L.first[b]; j < L.first[b] + L.size[b]; ++j)
+      for (NodeId u = NodeId(0); u.value() < p.node_count(); u = NodeId(u.value() + 1))
+        if (p.cluster_of(u) != L.cluster[b]) min_in[b] = std::min(min_in[b], p.step(u, L.node[j]));
+  Cost min_in_all = 0;
+  for (Cost c : min_in) min_in_all = std::min(kInf, min_in_all + c);
+  auto closing_lb = [&](NodeId s) {
+    if (!p.closed() || mp == 0) return Cost{0};
+    Cost best = kInf;
+    for (int j = 0; j < np; ++j) best = std::min(best, p.arc_cost(L.node[j], s));
+    return best >= kForbiddenCost ? kInf : best;
+  };
+
+  auto fail_to_run = [&](bool limit) {
+    Cost lb = kInf;
+    for (NodeId s : start_nodes) lb = std::min(lb, p.inner_cost(s) + min_in_all + closing_lb(s));
+    if (lb < kInf) out.lower_bound = std::min(lb, out.route.empty() ? lb : out.cost);
+    out.stats.stopped_by_limit = limit;
+    return out;
+  };
+  if (mp > kMaxDpClusters || estimate_exact_memory(p) > memory_limit_bytes) return fail_to_run(true);
+
+  // Trivial case: a single cluster.
+  if (mp == 0) {
+    Cost best = kInf;
+    NodeId arg;
+    for (NodeId s : start_nodes)
+      if (p.inner_cost(s) < best) best = p.inner_cost(s), arg = s;
+    out.route = {arg};
+    out.cost = best;
+    out.status = SolveStatus::optimal;
+    out.lower_bound = best;
+    return out;
+  }
+
+  const auto subsets = std::size_t{1} << mp;
+  const std::uint32_t full = static_cast<std::uint32_t>(subsets - 1);
+  const auto unp = static_cast<std::size_t>(np);
+  // Local step matrix: the DP's inner loop reads it sequentially.
+  std::vector<Cost> w(unp * unp);
+  for (int i = 0; i < np; ++i)
+    for (int j = 0; j < np; ++j) {
+      const Cost c = L.bit_of_local[i] == L.bit_of_local[j] ? kForbiddenCost : p.step(L.node[i], L.node[j]);
+      w[static_cast<std::size_t>(i) * unp + static_cast<std::size_t>(j)] = c >= kForbiddenCost ? kInf : c;
+    }
+  std::vector<Cost> F(subsets * unp);
+  std::vector<std::uint8_t> seen(subsets);
+  std::vector<std::uint32_t> layer, next;
+  auto lb_rest = [&](std::uint32_t S, Cost close_lb) {
+    Cost in_s = 0;
+    for (std::uint32_t r = S; r; r &= r - 1) in_s += min_in[std::countr_zero(r)];
+    const Cost rest = min_in_all - in_s;
+    return rest >= kInf || close_lb >= kInf ? kInf : rest + close_lb;
+  };
+
+  Cost lower_bound = kInf;  // min over start nodes handled so far (finished ones contribute ub later)
+  bool stopped = false;
+  long long expanded = 0;
+  std::size_t si = 0;
+  for (; si < start_nodes.size() && !stopped; ++si) {
+    const NodeId s = start_nodes[si];
+    const Cost close_lb = closing_lb(s);
+    std::fill(F.begin(), F.end(), kInf);
+    std::fill(seen.begin(), seen.end(), 0);
+    layer.clear();
+    for (int b = 0; b < mp; ++b) {
+      if (L.pred[b] != 0) continue;
+      const std::uint32_t T = std::uint32_t{1} << b;
+      const Cost rest = lb_rest(T, close_lb);
+      for (int j = L.first[b]; j < L.first[b] + L.size[b]; ++j) {
+        const Cost st = p.step(s, L.node[j]);
+        if (st >= kForbiddenCost) continue;
+        const Cost val = p.inner_cost(s) + st;
+        if (rest < kInf && val + rest >= ub) continue;
+        F[T * unp + static_cast<std::size_t>(j)] = val;
+        if (!seen[T]) seen[T] = 1, layer.push_back(T);
+      }
+    }
+    // Layers 1 .. mp-1 expand into the next; layer mp is the full set.
+    for (int k = 1; k < mp && !layer.empty(); ++k) {
+      next.clear();
+      for (std::size_t li = 0; li < layer.size(); ++li) {
+        if ((li & 255) == 0 && stop.stop_requested()) {
+          stopped = true;
+          break;
+        }
+        const std::uint32_t S = layer[li];
+        const Cost* FS = &F[S * unp];
+        for (std::uint32_t avail = full & ~S; avail; avail &= avail - 1) {
+          const int b = std::countr_zero(avail);
+          if ((L.pred[b] & ~S) != 0) continue;
+          const std::uint32_t T = S | (std::uint32_t{1} << b);
+          const Cost rest = lb_rest(T, close_lb);
+          if (rest >= kInf) continue;
+          Cost* FT = &F[T * unp];
+          const int jb = L.first[b], je = L.first[b] + L.size[b];
+          bool any = false;
+          for (std::uint32_t in = S; in; in &= in - 1) {
+            const int a = std::countr_zero(in);
+            for (int i = L.first[a]; i < L.first[a] + L.size[a]; ++i) {
+              const Cost fi = FS[i];
+              if (fi >= kInf || fi + rest >= ub) continue;
+              const Cost* wi = &w[static_cast<std::size_t>(i) * unp];
+              ++expanded;
+              for (int j = jb; j < je; ++j) {
+                const Cost val = fi + wi[j];
+                if (val < FT[j] && val + rest < ub) FT[j] = val, any = true;
+              }
+            }
+          }
+          if (any && !seen[T]) seen[T] = 1, next.push_back(T);
+        }
+      }
+      if (stopped) {
+        // Layer k is final (all its predecessors were expanded): every route from s passes it.
+        Cost lb_s = ub;
+        for (std::uint32_t S : layer) {
+          const Cost rest = lb_rest(S, close_lb);
+          for (std::uint32_t in = S; in; in &= in - 1) {
+            const int a = std::countr_zero(in);
+            for (int i = L.first[a]; i < L.first[a] + L.size[a]; ++i)
+              if (F[S * unp + static_cast<std::size_t>(i)] < kInf) lb_s = std::min(lb_s, F[S * unp + static_cast<std::size_t>(i)] + rest);
+          }
+        }
+        lower_bound = std::min(lower_bound, lb_s);
+        break;
+      }
+      layer.swap(next);
+    }
+    if (stopped) break;
+    // Close the routes of the full layer.
+    if (seen[full]) {
+      Cost best = kInf;
+      int arg = -1;
+      for (int j = 0; j < np; ++j) {
+        const Cost f = F[full * unp + static_cast<std::size_t>(j)];
+        if (f >= kInf) continue;
+        Cost total = f;
+        if (p.closed()) {
+          const Cost c = p.arc_cost(L.node[j], s);
+          if (c >= kForbiddenCost) continue;
+          total += c;
+        }
+        if (total < best) best = total, arg = j;
+      }
+      if (arg >= 0 && best < ub) {
+        // Walk back: the predecessor u of v in S is any with F(S \ b, u) + w(u, v) == F(S, v).
+        std::vector<NodeId> rev;
+        std::uint32_t S = full;
+        int v = arg;
+        while (true) {
+          rev.push_back(L.node[v]);
+          const std::uint32_t R = S & ~(std::uint32_t{1} << L.bit_of_local[v]);
+          if (R == 0) break;
+          const Cost target = F[S * unp + static_cast<std::size_t>(v)];
+          int found = -1;
+          for (int i = 0; i < np && found < 0; ++i)
+            if (((R >> L.bit_of_local[i]) & 1u) && F[R * unp + static_cast<std::size_t>(i)] < kInf &&
+                F[R * unp + static_cast<std::size_t>(i)] + w[static_cast<std::size_t>(i) * unp + static_cast<std::size_t>(v)] == target)
+              found = i;
+          assert(found >= 0 && "DP table inconsistent");
+          if (found < 0) break;
+          S = R;
+          v = found;
+        }
+        rev.push_back(s);
+        out.route.assign(rev.rbegin(), rev.rend());
+        out.cost = best;
+        out.status = SolveStatus::feasible;
+        ub = best;
+      }
+    }
+  }
+  out.stats.iterations = expanded;
+  // Rotate a closed tour so it begins in the problem's start cluster (the DP may have used another).
+  if (!out.route.empty() && p.cluster_of(out.route[0]) != p.start_cluster()) {
+    auto it = std::find_if(out.route.begin(), out.route.end(), [&](NodeId v) { return p.cluster_of(v) == p.start_cluster(); });
+    std::rotate(out.route.begin(), it, out.route.end());
+  }
+  if (!stopped) {
+    if (out.route.empty()) {
+      out.status = SolveStatus::infeasible;
+    } else {
+      out.status = SolveStatus::optimal;
+      out.lower_bound = out.cost;
+    }
+    return out;
+  }
+  // Start nodes not begun: their trivial bound.
+  for (std::size_t k = si + 1; k < start_nodes.size(); ++k)
+    lower_bound = std::min(lower_bound, p.inner_cost(start_nodes[k]) + lb_rest(0, closing_lb(start_nodes[k])));
+  lower_bound = std::min(lower_bound, ub);  // finished start nodes: nothing below ub
+  if (lower_bound < kInf) out.lower_bound = lower_bound;
+  out.stats.stopped_by_limit = true;
+  return out;
+}
+
+}  // namespace cutroute::solve

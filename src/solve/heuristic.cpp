@@ -1,0 +1,243 @@
+#include <cutroute/solve/heuristic.hpp>
+
+#include <algorithm>
+#include <barrier>
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include "tour.hpp"
+
+namespace cutroute::solve {
+
+using detail::Ops;
+using detail::Tour;
+
+std::vector<NodeId> construct_route(const Problem& p, Rng& rng) {
+  Ops ops(p);
+  Tour t;
+  ops.construct(t, rng);
+  return t.seq;
+}
+
+namespace {
+
+template <class F>
+bool on_route(const Problem& p, std::vector<NodeId>& route, F&& f) {
+  Ops ops(p);
+  Tour t;
+  t.seq = route;
+  ops.init(t);
+  const bool improved = f(ops, t);
+  route = t.seq;
+  return improved;
+}
+
+}  // namespace
+
+bool reinsertion_pass(const Problem& p, std::vector<NodeId>& r) {
+  return on_route(p, r, [](const Ops& o, Tour& t) { return o.reinsertion_pass(t); });
+}
+bool two_opt_pass(const Problem& p, std::vector<NodeId>& r) {
+  return on_route(p, r, [](const Ops& o, Tour& t) { return o.two_opt_pass(t); });
+}
+bool or_opt_pass(const Problem& p, std::vector<NodeId>& r) {
+  return on_route(p, r, [](const Ops& o, Tour& t) { return o.or_opt_pass(t); });
+}
+bool cluster_optimise(const Problem& p, std::vector<NodeId>& r, double max_work) {
+  return on_route(p, r, [max_work](const Ops& o, Tour& t) { return o.cluster_optimise(t, max_work); });
+}
+void local_search(const Problem& p, std::vector<NodeId>& r) {
+  on_route(p, r, [](const Ops& o, Tour& t) {
+    o.local_search(t);
+    return true;
+  });
+}
+
+namespace {
+
+// One search thread: its own random stream, current and best route.
+class Worker {
+ public:
+  Worker(const Ops& ops, const SolveParams& params, Rng rng) : ops_(ops), params_(params), rng_(rng) {}
+
+  void start() {
+    ops_.construct(cur_, rng_);
+    ops_.local_search(cur_);
+    best_ = cur_;
+  }
+
+  // `iterations` destroy/repair steps; returns early when `stop` fires or the target is reached.
+  void round(int iterations, const StopToken& stop) {
+    const Problem& p = ops_.problem();
+    const int movable = p.cluster_count() - 1;
+    if (movable < 1) return;
+    const int kmax = std::max(1, static_cast<int>(params_.max_removal_fraction * movable));
+    for (int it = 0; it < iterations; ++it) {
+      if (stop.stop_requested() || stop.target_reached(best_.cost)) return;
+      ++iterations_;
+      trial_ = cur_;
+      const double u = rng_.uniform01();
+      const int k = std::min(movable, 1 + static_cast<int>(u * u * kmax));
+      destroy(trial_, k);
+      repair(trial_);
+      ops_.local_search(trial_);
+      const double thr = params_.accept_threshold * (1.0 - static_cast<double>(it) / iterations);
+      if (static_cast<double>(trial_.cost) <= static_cast<double>(cur_.cost) * (1.0 + thr)) std::swap(cur_, trial_);
+      if (cur_.cost < best_.cost) best_ = cur_;
+    }
+  }
+
+  void restart_from(const Tour& t) {
+    cur_ = t;
+    best_ = t;
+  }
+  const Tour& best() const { return best_; }
+  long long iterations() const { return iterations_; }
+
+ private:
+  void destroy(Tour& t, int k) {
+    removed_.clear();
+    const Problem& p = ops_.problem();
+    const int L = static_cast<int>(t.seq.size());
+    switch (rng_.below(4)) {
+      case 0: {  // random clusters
+        for (int r = 0; r < k; ++r) {
+          const int i = 1 + static_cast<int>(rng_.below(static_cast<std::uint64_t>(t.seq.size() - 1)));
+          removed_.push_back(ops_.cl(t.seq[static_cast<std::size_t>(i)]));
+          ops_.remove_at(t, i);
+        }
+        break;
+      }
+      case 1: {  // a segment of consecutive clusters
+        const int i = 1 + static_cast<int>(rng_.below(static_cast<std::uint64_t>(L - k)));
+        for (int r = 0; r < k; ++r) {
+          removed_.push_back(ops_.cl(t.seq[static_cast<std::size_t>(i)]));
+          ops_.remove_at(t, i);
+        }
+        break;
+      }
+      case 2: {  // worst: the clusters whose removal saves most, randomised (Ropke & Pisinger 2006)
+        scored_.clear();
+        for (int i = 1; i < L; ++i) scored_.emplace_back(-ops_.removal_gain(t, i), ops_.cl(t.seq[static_cast<std::size_t>(i)]).value());
+        pick_biased(t, k);
+        break;
+      }
+      default: {  // related: the clusters whose nodes are closest to a random seed node
+        const NodeId seed = t.seq[static_cast<std::size_t>(1 + rng_.below(static_cast<std::uint64_t>(L - 1)))];
+        scored_.clear();
+        for (int i = 1; i < L; ++i) {
+          const NodeId v = t.seq[static_cast<std::size_t>(i)];
+          const Cost d = v == seed ? 0 : std::min(p.arc_cost(seed, v), p.arc_cost(v, seed));
+          scored_.emplace_back(d, ops_.cl(v).value());
+        }
+        pick_biased(t, k);
+        break;
+      }
+    }
+  }
+
+  // Removes k clusters from scored_ (lower score first), the r-th pick drawn at rank floor(u^3 * size).
+  void pick_biased(Tour& t, int k) {
+    std::sort(scored_.begin(), scored_.end());
+    for (int r = 0; r < k && !scored_.empty(); ++r) {
+      const double u = rng_.uniform01();
+      const auto idx = static_cast<std::size_t>(u * u * u * static_cast<double>(scored_.size()));
+      const ClusterId c(scored_[idx].second);
+      scored_.erase(scored_.begin() + static_cast<std::ptrdiff_t>(idx));
+      removed_.push_back(c);
+      ops_.remove_at(t, t.pos[c.index()]);
+    }
+  }
+
+  void repair(Tour& t) {
+    rng_.shuffle(removed_.begin(), removed_.end());
+    const double noise = rng_.chance(0.5) ? 0.0 : 0.1;
+    // Precedence: insert predecessors first when both were removed (a topological order of the removed set).
+    const Problem& p = ops_.problem();
+    if (p.has_precedence())
+      std::stable_sort(removed_.begin(), removed_.end(), [&](ClusterId a, ClusterId b) {
+        return p.all_before(a).size() < p.all_before(b).size();
+      });
+    for (ClusterId c : removed_) ops_.insert(t, ops_.best_insertion(t, c, noise, &rng_));
+  }
+
+  const Ops& ops_;
+  const SolveParams& params_;
+  Rng rng_;
+  Tour cur_, best_, trial_;
+  std::vector<ClusterId> removed_;
+  std::vector<std::pair<Cost, int>> scored_;
+  long long iterations_ = 0;
+};
+
+}  // namespace
+
+Solution solve_heuristic(const Problem& p, const SolveParams& params, const StopToken& stop_in, const ProgressFn& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  StopToken stop = params.time_limit_s > 0 ? stop_in.with_time_limit(params.time_limit_s) : stop_in;
+  if (params.target_cost) stop = stop.with_target(*params.target_cost);
+  int threads = params.threads > 0 ? params.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  threads = std::min(threads, params.threads > 0 ? 256 : 8);
+  if (p.cluster_count() <= 3) threads = 1;
+  const int round_iters = params.round_iterations > 0 ? params.round_iterations : 40 + p.cluster_count() / 2;
+
+  const Ops ops(p);
+  Rng master(params.seed);
+  std::vector<Worker> workers;
+  workers.reserve(static_cast<std::size_t>(threads));
+  for (int i = 0; i < threads; ++i) workers.emplace_back(ops, params, master.split());
+
+  Tour global;
+  int stagnant = 0;
+  bool done = false;
+  bool first = true;
+  // Runs between rounds on one thread: picks the best route (ties: lowest thread index), decides stop.
+  auto combine = [&]() noexcept {
+    const Tour* best = &workers[0].best();
+    for (const Worker& w : workers)
+      if (w.best().cost < best->cost) best = &w.best();
+    if (first || best->cost < global.cost) {
+      global = *best;
+      stagnant = 0;
+    } else {
+      ++stagnant;
+    }
+    first = false;
+    for (Worker& w : workers) w.restart_from(global);
+    done = stop.stop_requested() || stop.target_reached(global.cost) || stagnant >= params.stagnation_rounds;
+    if (progress) progress({"heuristic", -1.0, static_cast<double>(global.cost)});
+  };
+
+  auto body = [&](int i, auto&& sync) {
+    workers[static_cast<std::size_t>(i)].start();
+    sync();
+    while (!done) {
+      workers[static_cast<std::size_t>(i)].round(round_iters, stop);
+      sync();
+    }
+  };
+  if (threads == 1) {
+    body(0, combine);
+  } else {
+    std::barrier bar(threads, combine);
+    std::vector<std::thread> pool;
+    for (int i = 1; i < threads; ++i) pool.emplace_back([&, i] { body(i, [&] { bar.arrive_and_wait(); }); });
+    body(0, [&] { bar.arrive_and_wait(); });
+    for (auto& th : pool) th.join();
+  }
+
+  Solution s;
+  s.route = global.seq;
+  s.cost = ops.full_cost(global.seq);
+  s.status = s.cost < kForbiddenCost ? SolveStatus::feasible : SolveStatus::no_solution;
+  if (s.status == SolveStatus::no_solution) s.route.clear(), s.cost = 0;
+  s.stats.solver = "heuristic";
+  s.stats.threads = threads;
+  for (const Worker& w : workers) s.stats.iterations += w.iterations();
+  s.stats.stopped_by_limit = stop.stop_requested();
+  s.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return s;
+}
+
+}  // namespace cutroute::solve

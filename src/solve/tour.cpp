@@ -1,0 +1,337 @@
+#include "tour.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace cutroute::solve::detail {
+
+namespace {
+constexpr Cost kHuge = std::numeric_limits<Cost>::max() / 4;
+}
+
+Ops::Ops(const Problem& p) : p_(p), m_(p.cluster_count()), closed_(p.closed()), prec_(p.has_precedence()) {}
+
+Cost Ops::full_cost(const std::vector<NodeId>& seq) const {
+  if (seq.empty()) return 0;
+  const std::size_t L = seq.size();
+  Cost c = closed_ ? 0 : p_.inner_cost(seq[0]);
+  for (std::size_t i = 0; i + 1 < L; ++i) c += link(seq[i], seq[i + 1]);
+  if (closed_) c += link(seq[L - 1], seq[0]);
+  return c;
+}
+
+void Ops::reindex(Tour& t, int from, int to) const {
+  for (int i = from; i < to; ++i) t.pos[cl(t.seq[static_cast<std::size_t>(i)]).index()] = i;
+}
+
+void Ops::init(Tour& t) const {
+  t.pos.assign(static_cast<std::size_t>(m_), -1);
+  reindex(t, 0, static_cast<int>(t.seq.size()));
+  t.cost = full_cost(t.seq);
+}
+
+std::pair<int, int> Ops::window(const Tour& t, ClusterId c) const {
+  int lo = 1, hi = static_cast<int>(t.seq.size());
+  if (prec_) {
+    for (ClusterId a : p_.all_before(c)) lo = std::max(lo, t.pos[a.index()] + 1);
+    for (ClusterId b : p_.all_after(c))
+      if (t.pos[b.index()] >= 0) hi = std::min(hi, t.pos[b.index()]);
+  }
+  return {lo, hi};
+}
+
+Ops::Insertion Ops::best_insertion(const Tour& t, ClusterId c, double noise, Rng* rng) const {
+  const auto [lo, hi] = window(t, c);
+  const int L = static_cast<int>(t.seq.size());
+  const auto nodes = p_.nodes_of(c);
+  Insertion best;
+  double best_key = std::numeric_limits<double>::infinity();
+  Cost best_delta = kHuge;
+  for (int at = lo; at <= hi; ++at) {
+    const NodeId prev = t.seq[static_cast<std::size_t>(at - 1)];
+    const NodeId next = at < L ? t.seq[static_cast<std::size_t>(at)] : (closed_ ? t.seq[0] : NodeId{});
+    const Cost base = next.valid() ? link(prev, next) : 0;
+    Cost pos_best = kHuge;
+    NodeId pos_node;
+    for (NodeId v : nodes) {
+      const Cost d = link(prev, v) + (next.valid() ? link(v, next) : 0) - base;
+      if (d < pos_best) pos_best = d, pos_node = v;
+    }
+    if (noise > 0.0 && rng) {
+      const double key = static_cast<double>(pos_best) * (1.0 + noise * rng->uniform01());
+      if (key < best_key) best_key = key, best = {at, pos_node, pos_best};
+    } else if (pos_best < best_delta) {
+      best_delta = pos_best;
+      best = {at, pos_node, pos_best};
+    }
+  }
+  return best;
+}
+
+void Ops::insert(Tour& t, const Insertion& ins) const {
+  t.seq.insert(t.seq.begin() + ins.at, ins.node);
+  reindex(t, ins.at, static_cast<int>(t.seq.size()));
+  t.cost += ins.delta;
+}
+
+Cost Ops::removal_gain(const Tour& t, int i) const {
+  const NodeId prev = t.seq[static_cast<std::size_t>(i - 1)];
+  const NodeId v = t.seq[static_cast<std::size_t>(i)];
+  const NodeId next = after(t, i);
+  return link(prev, v) + (next.valid() ? link(v, next) - link(prev, next) : 0);
+}
+
+void Ops::remove_at(Tour& t, int i) const {
+  t.cost -= removal_gain(t, i);
+  t.pos[cl(t.seq[static_cast<std::size_t>(i)]).index()] = -1;
+  t.seq.erase(t.seq.begin() + i);
+  reindex(t, i, static_cast<int>(t.seq.size()));
+}
+
+// Reinsertion (Or-opt of one cluster with node re-selection), e.g. cluster C in
+//   S a1 B2 C3 D1 E2  ->  S a1 B2 D1 C1 E2   (C moved after D, entered at its node 1 instead of 3).
+// Fixed: position 0. Precedence: C only between its last predecessor and first successor present.
+bool Ops::reinsertion_pass(Tour& t) const {
+  bool improved = false;
+  const int L = static_cast<int>(t.seq.size());
+  for (int c = 0; c < m_ && L > 1; ++c) {
+    if (ClusterId(c) == p_.start_cluster()) continue;
+    const int i = t.pos[static_cast<std::size_t>(c)];
+    const Cost before = t.cost;
+    const NodeId old = t.seq[static_cast<std::size_t>(i)];
+    remove_at(t, i);
+    Insertion ins = best_insertion(t, ClusterId(c), 0.0, nullptr);
+    // Keep the old place on ties so that a pass without improvement leaves the route unchanged.
+    if (t.cost + ins.delta >= before) {
+      Tour& u = t;
+      const NodeId prev = u.seq[static_cast<std::size_t>(i - 1)];
+      const NodeId next = i < static_cast<int>(u.seq.size()) ? u.seq[static_cast<std::size_t>(i)] : (closed_ ? u.seq[0] : NodeId{});
+      ins = {i, old, link(prev, old) + (next.valid() ? link(old, next) - link(prev, next) : 0)};
+    } else {
+      improved = true;
+    }
+    insert(t, ins);
+  }
+  return improved;
+}
+
+// 2-opt: reverse seq[i..j], e.g. S a b c d e -> S a d c b e (i = 2, j = 4). Symmetric arcs only,
+// so only the two boundary arcs change (inner costs are unchanged: each node is still entered once).
+// No precedence pair may lie inside the reversed segment.
+bool Ops::two_opt_pass(Tour& t) const {
+  if (!p_.symmetric()) return false;
+  const int L = static_cast<int>(t.seq.size());
+  bool improved = false;
+  for (int i = 1; i + 1 < L; ++i) {
+    for (int j = i + 1; j < L; ++j) {
+      const NodeId a = t.seq[static_cast<std::size_t>(i - 1)], b = t.seq[static_cast<std::size_t>(i)];
+      const NodeId c = t.seq[static_cast<std::size_t>(j)];
+      if (prec_) {
+        bool blocked = false;
+        for (ClusterId x : p_.all_before(cl(c))) {
+          const int px = t.pos[x.index()];
+          if (px >= i && px < j) {
+            blocked = true;
+            break;
+          }
+        }
+        if (blocked) break;  // any longer segment contains the same pair
+      }
+      const NodeId d = after(t, j);
+      Cost delta = p_.arc_cost(a, c) - p_.arc_cost(a, b);
+      if (d.valid() && d != b) delta += p_.arc_cost(b, d) - p_.arc_cost(c, d);
+      if (delta < 0) {
+        std::reverse(t.seq.begin() + i, t.seq.begin() + j + 1);
+        reindex(t, i, j + 1);
+        t.cost += delta;
+        improved = true;
+      }
+    }
+  }
+  return improved;
+}
+
+// Or-opt: move a segment of k = 2 or 3 clusters, same direction, e.g. (k = 2)
+//   S a [b c] d e f -> S a d e [b c] f.
+// Moving forward over a cluster y is refused when a segment cluster must precede y; moving backward
+// over y when y must precede a segment cluster.
+bool Ops::or_opt_pass(Tour& t) const {
+  const int L = static_cast<int>(t.seq.size());
+  bool improved = false;
+  for (int k = 2; k <= 3; ++k) {
+    for (int i = 1; i + k <= L; ++i) {
+      const int e = i + k - 1;
+      const NodeId prev = t.seq[static_cast<std::size_t>(i - 1)];
+      const NodeId f = t.seq[static_cast<std::size_t>(i)], l = t.seq[static_cast<std::size_t>(e)];
+      const NodeId next = after(t, e);
+      if (next == prev) continue;  // the segment is all but the start: nowhere to go
+      const Cost gain = link(prev, f) + (next.valid() ? link(l, next) - link(prev, next) : 0);
+      Cost best = 0;
+      int best_t = -1;
+      // Forward: insert after seq[tt], tt > e.
+      for (int tt = e + 1; tt < L; ++tt) {
+        const NodeId y = t.seq[static_cast<std::size_t>(tt)];
+        if (prec_) {
+          bool stop = false;
+          for (int s = i; s <= e && !stop; ++s) stop = p_.must_precede(cl(t.seq[static_cast<std::size_t>(s)]), cl(y));
+          if (stop) break;
+        }
+        const NodeId z = after(t, tt);
+        const Cost add = link(y, f) + (z.valid() ? link(l, z) - link(y, z) : 0);
+        if (add - gain < best) best = add - gain, best_t = tt;
+      }
+      // Backward: insert after seq[tt], tt < i - 1.
+      for (int tt = i - 2; tt >= 0; --tt) {
+        const NodeId jumped = t.seq[static_cast<std::size_t>(tt + 1)];
+        if (prec_) {
+          bool stop = false;
+          for (int s = i; s <= e && !stop; ++s) stop = p_.must_precede(cl(jumped), cl(t.seq[static_cast<std::size_t>(s)]));
+          if (stop) break;
+        }
+        const NodeId y = t.seq[static_cast<std::size_t>(tt)];
+        const NodeId z = jumped;
+        const Cost add = link(y, f) + link(l, z) - link(y, z);
+        if (add - gain < best) best = add - gain, best_t = tt;
+      }
+      if (best_t < 0) continue;
+      if (best_t > e) {
+        std::rotate(t.seq.begin() + i, t.seq.begin() + e + 1, t.seq.begin() + best_t + 1);
+        reindex(t, i, best_t + 1);
+      } else {
+        std::rotate(t.seq.begin() + best_t + 1, t.seq.begin() + i, t.seq.begin() + e + 1);
+        reindex(t, best_t + 1, e + 1);
+      }
+      t.cost += best;
+      improved = true;
+    }
+  }
+  return improved;
+}
+
+// Cluster optimisation: the order of clusters stays, each cluster's node is chosen by a shortest
+// path through the layered graph C_r -> C_r+1 -> ... -> C_r (closed: starting from each node of the
+// smallest cluster C_r; open: from all nodes of the start cluster at once).
+bool Ops::cluster_optimise(Tour& t, double max_work) const {
+  const int L = static_cast<int>(t.seq.size());
+  if (L == 0) return false;
+  int r = 0;
+  if (closed_) {
+    for (int i = 1; i < L; ++i)
+      if (p_.cluster_size(cl(t.seq[static_cast<std::size_t>(i)])) < p_.cluster_size(cl(t.seq[static_cast<std::size_t>(r)]))) r = i;
+  }
+  auto layer_cluster = [&](int l) { return cl(t.seq[static_cast<std::size_t>((r + l) % L)]); };
+  std::vector<int> off(static_cast<std::size_t>(L) + 1, 0);
+  double work = 0;
+  for (int l = 0; l < L; ++l) {
+    off[static_cast<std::size_t>(l) + 1] = off[static_cast<std::size_t>(l)] + p_.cluster_size(layer_cluster(l));
+    if (l > 0) work += static_cast<double>(p_.cluster_size(layer_cluster(l))) * p_.cluster_size(layer_cluster(l - 1));
+  }
+  const int total = off[static_cast<std::size_t>(L)];
+  std::vector<Cost> D(static_cast<std::size_t>(total));
+  std::vector<int> pred(static_cast<std::size_t>(total));
+  Cost best = t.cost;
+  std::vector<NodeId> best_seq;
+  std::vector<int> chain(static_cast<std::size_t>(L));
+  auto run = [&](std::span<const NodeId> sources) {
+    const auto s0 = p_.nodes_of(layer_cluster(0));
+    for (std::size_t a = 0; a < s0.size(); ++a) {
+      const bool src = std::find(sources.begin(), sources.end(), s0[a]) != sources.end();
+      D[a] = src ? (closed_ ? 0 : p_.inner_cost(s0[a])) : kHuge;
+      pred[a] = -1;
+    }
+    for (int l = 1; l < L; ++l) {
+      const auto A = p_.nodes_of(layer_cluster(l - 1));
+      const auto B = p_.nodes_of(layer_cluster(l));
+      const int oa = off[static_cast<std::size_t>(l - 1)], ob = off[static_cast<std::size_t>(l)];
+      for (std::size_t b = 0; b < B.size(); ++b) {
+        Cost bv = kHuge;
+        int arg = -1;
+        for (std::size_t a = 0; a < A.size(); ++a) {
+          const Cost da = D[static_cast<std::size_t>(oa) + a];
+          if (da >= kHuge) continue;
+          const Cost v = da + link(A[a], B[b]);
+          if (v < bv) bv = v, arg = oa + static_cast<int>(a);
+        }
+        D[static_cast<std::size_t>(ob) + b] = bv;
+        pred[static_cast<std::size_t>(ob) + b] = arg;
+      }
+    }
+    const auto Z = p_.nodes_of(layer_cluster(L - 1));
+    const int oz = off[static_cast<std::size_t>(L - 1)];
+    for (std::size_t z = 0; z < Z.size(); ++z) {
+      Cost v = D[static_cast<std::size_t>(oz) + z];
+      if (v >= kHuge) continue;
+      int idx = oz + static_cast<int>(z);
+      NodeId first;
+      // Walk back to find the source when closed (the closing link depends on it).
+      for (int l = L - 1; l >= 0; --l) {
+        chain[static_cast<std::size_t>(l)] = idx;
+        if (l > 0) idx = pred[static_cast<std::size_t>(idx)];
+      }
+      first = s0[static_cast<std::size_t>(chain[0])];
+      if (closed_) v += L == 1 ? p_.inner_cost(first) : link(Z[z], first);
+      if (v < best) {
+        best = v;
+        best_seq.assign(static_cast<std::size_t>(L), NodeId{});
+        for (int l = 0; l < L; ++l) {
+          const int li = chain[static_cast<std::size_t>(l)] - off[static_cast<std::size_t>(l)];
+          best_seq[static_cast<std::size_t>((r + l) % L)] = p_.nodes_of(layer_cluster(l))[static_cast<std::size_t>(li)];
+        }
+      }
+    }
+  };
+  const auto s0 = p_.nodes_of(layer_cluster(0));
+  if (!closed_) {
+    run(s0);
+  } else if (work * static_cast<double>(s0.size()) <= max_work) {
+    for (const NodeId& s : s0) run(std::span<const NodeId>(&s, 1));
+  } else {
+    const NodeId cur = t.seq[static_cast<std::size_t>(r)];
+    run(std::span<const NodeId>(&cur, 1));
+  }
+  if (best_seq.empty()) return false;
+  t.seq = std::move(best_seq);
+  t.cost = best;
+  return true;
+}
+
+void Ops::local_search(Tour& t) const {
+  for (int guard = 0; guard < 1000; ++guard) {
+    bool improved = reinsertion_pass(t);
+    improved = two_opt_pass(t) || improved;
+    improved = or_opt_pass(t) || improved;
+    improved = cluster_optimise(t, 2.0e6) || improved;
+    if (!improved) break;
+  }
+}
+
+void Ops::construct(Tour& t, Rng& rng) const {
+  // Random topological order of the non-start clusters.
+  // A cluster is available when all its (transitive) predecessors are placed.
+  std::vector<int> indeg(static_cast<std::size_t>(m_), 0);
+  for (int c = 0; c < m_; ++c) indeg[static_cast<std::size_t>(c)] = static_cast<int>(p_.all_before(ClusterId(c)).size());
+  const ClusterId s = p_.start_cluster();
+  std::vector<int> avail;
+  for (ClusterId b : p_.all_after(s)) --indeg[b.index()];
+  for (int c = 0; c < m_; ++c)
+    if (ClusterId(c) != s && indeg[static_cast<std::size_t>(c)] == 0) avail.push_back(c);
+  // Start node: the start cluster's node with the cheapest inner cost (cluster optimisation fixes it later).
+  NodeId first = p_.nodes_of(s)[0];
+  for (NodeId v : p_.nodes_of(s))
+    if (p_.inner_cost(v) < p_.inner_cost(first)) first = v;
+  t.seq.assign(1, first);
+  t.pos.assign(static_cast<std::size_t>(m_), -1);
+  t.pos[s.index()] = 0;
+  t.cost = p_.inner_cost(first);  // one-node route, closed or open
+  while (!avail.empty()) {
+    const std::size_t k = rng.below(avail.size());
+    const int c = avail[k];
+    avail[k] = avail.back();
+    avail.pop_back();
+    insert(t, best_insertion(t, ClusterId(c), 0.0, nullptr));
+    for (ClusterId b : p_.all_after(ClusterId(c)))
+      if (--indeg[b.index()] == 0) avail.push_back(b.value());
+  }
+}
+
+}  // namespace cutroute::solve::detail

@@ -1,0 +1,67 @@
+// Private: a route under construction or improvement (nodes, cluster positions, cost) and the
+// operators of solve/heuristic.hpp working on it without reallocating.
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include <cutroute/core/random.hpp>
+#include <cutroute/solve/problem.hpp>
+
+namespace cutroute::solve::detail {
+
+// A route over some (partial) or all (complete) clusters; seq[0] is always in the start cluster.
+// Cost convention: closed tour = sum of link() around the cycle; open path = inner(seq[0]) + sum of
+// link() along it. link(a, a) = inner(a) makes the one-node cycle consistent.
+struct Tour {
+  std::vector<NodeId> seq;
+  std::vector<int> pos;  // by cluster: index in seq, -1 when absent
+  Cost cost = 0;
+};
+
+class Ops {
+ public:
+  explicit Ops(const Problem& p);
+
+  const Problem& problem() const { return p_; }
+  Cost link(NodeId a, NodeId b) const { return a == b ? p_.inner_cost(b) : p_.step(a, b); }
+  ClusterId cl(NodeId v) const { return p_.cluster_of(v); }
+
+  Cost full_cost(const std::vector<NodeId>& seq) const;
+  void init(Tour& t) const;                      // pos and cost from seq
+  void reindex(Tour& t, int from, int to) const; // pos for seq[from, to)
+  // The node after index i: the next one, the first one (closed tour), or an invalid id (path end).
+  NodeId after(const Tour& t, int i) const {
+    const int L = static_cast<int>(t.seq.size());
+    if (i + 1 < L) return t.seq[static_cast<std::size_t>(i + 1)];
+    return p_.closed() ? t.seq[0] : NodeId{};
+  }
+
+  struct Insertion {
+    int at = -1;  // index the node will have
+    NodeId node;
+    Cost delta = 0;
+  };
+  // Indices at which cluster c may be inserted keeping precedence with the clusters present: [lo, hi].
+  std::pair<int, int> window(const Tour& t, ClusterId c) const;
+  // Best (position, node) for c; with noise > 0 each position's cost is multiplied by 1 + noise * u.
+  Insertion best_insertion(const Tour& t, ClusterId c, double noise, Rng* rng) const;
+  void insert(Tour& t, const Insertion& ins) const;
+  Cost removal_gain(const Tour& t, int i) const;
+  void remove_at(Tour& t, int i) const;
+
+  bool reinsertion_pass(Tour& t) const;
+  bool two_opt_pass(Tour& t) const;
+  bool or_opt_pass(Tour& t) const;
+  bool cluster_optimise(Tour& t, double max_work) const;
+  void local_search(Tour& t) const;
+  void construct(Tour& t, Rng& rng) const;
+
+ private:
+  const Problem& p_;
+  int m_;
+  bool closed_;
+  bool prec_;
+};
+
+}  // namespace cutroute::solve::detail

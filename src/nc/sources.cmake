@@ -1,1 +1,1 @@
-set(CUTROUTE_NC_SOURCES)
+set(CUTROUTE_NC_SOURCES dialect.cpp frames.cpp gcode_reader.cpp)

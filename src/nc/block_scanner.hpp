@@ -88,8 +88,10 @@ ScanResult scan_block(std::string_view line, OnWord&& on_word) {
     ++p;
     while (p < end && is_blank(*p)) ++p;
     bool negative = false;
+    bool sign = false;
     if (p < end && (*p == '+' || *p == '-')) {
       negative = *p == '-';
+      sign = true;
       ++p;
     }
     const char* num = p;
@@ -100,14 +102,16 @@ ScanResult scan_block(std::string_view line, OnWord&& on_word) {
       ++p;
     }
     if (digits == 0) {
-      r.error = (p == num && (p == end || is_alpha(*p) || is_blank(*p) || *p == '(' || *p == ';'))
+      r.error = (!sign && p == num && (p == end || is_alpha(*p) || is_blank(*p) || *p == '(' || *p == ';'))
                     ? ScanError::missing_number
                     : ScanError::malformed_number;
       r.column = w.column;
       r.letter = w.letter;
       return r;
     }
-    const bool bad_follower = p < end && !(is_alpha(*p) || is_blank(*p) || *p == '(' || *p == ';');
+    // "1e5" is an exponent, which RS274 numbers do not have; it is not the words 1 and E5.
+    const bool exponent = p + 1 < end && (*p == 'e' || *p == 'E') && (is_digit(p[1]) || p[1] == '+' || p[1] == '-');
+    const bool bad_follower = exponent || (p < end && !(is_alpha(*p) || is_blank(*p) || *p == '(' || *p == ';'));
     if (dots > 1 || bad_follower) {
       r.error = ScanError::malformed_number;
       r.column = w.column;

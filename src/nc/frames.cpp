@@ -14,7 +14,7 @@ struct LineClass {
 LineClass classify(std::string_view line) {
   LineClass c;
   const auto r = detail::scan_block(line, [&](const detail::Word& w) {
-    if (w.letter != 'N') c.frame = true;
+    if (w.letter != 'N' && w.letter != 'O') c.frame = true;
     if (w.letter == 'M' && (w.value == 2.0 || w.value == 30.0)) c.end = true;
   });
   if (r.error != detail::ScanError::none || r.tape_mark) return {};

@@ -113,7 +113,7 @@ class Reader {
     Block b;
     Diagnostic dup;
     const auto scan = detail::scan_block(line, [&](const detail::Word& w) {
-      if (w.letter != 'N') b.frame = true;
+      if (w.letter != 'N' && w.letter != 'O') b.frame = true;
       if (w.letter == 'G') {
         const double t = w.value * 10.0;
         const long r = std::lround(t);

@@ -1,16 +1,169 @@
-// cutroute estimate: not yet implemented (placeholder until its issue lands).
+// cutroute estimate: cutting time (eq. 1 and eq. 10) and cost (eq. 3) of a G-code program.
+#include <charconv>
 #include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include <cutroute/core/units.hpp>
+#include <cutroute/cost/estimate.hpp>
+#include <cutroute/cost/machine_profile.hpp>
+#include <cutroute/cost/speed_table.hpp>
+#include <cutroute/nc/dialect.hpp>
+#include <cutroute/nc/gcode_reader.hpp>
 
 #include "commands.hpp"
 
 namespace cutroute::cli {
 
-void add_estimate(CLI::App& root, Commands& out) {
-  auto* app = root.add_subcommand("estimate", "(not yet implemented)");
-  out.push_back({app, [] {
-    std::cerr << "cutroute: error: 'estimate' is not implemented yet\n";
+namespace {
+
+std::string fixed(double v, int digits) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, digits);
+  return std::string(buf, r.ptr);
+}
+
+struct EstimateOptions {
+  std::string program;
+  std::string material;
+  double thickness_mm = 0.0;
+  std::string machine;
+  std::string dialect;
+  bool interpolate = false;
+  bool json = false;
+};
+
+// The profile's dialect (a built-in name, or explicit codes) as reader options.
+Result<nc::Dialect> dialect_of(const cost::MachineProfile& p, const std::string& override_name) {
+  if (!override_name.empty()) return nc::builtin_dialect(override_name);
+  const auto& d = p.dialect;
+  if (d.beam_on.empty()) {
+    auto b = nc::builtin_dialect(d.name);
+    if (!b) return make_error("field dialect: " + b.error().message, p.file);
+    if (!d.dwell_p_unit.empty())
+      b->dwell_p_unit = d.dwell_p_unit == "ms" ? nc::DwellUnit::milliseconds : nc::DwellUnit::seconds;
+    return b;
+  }
+  auto m = nc::make_dialect(d.name, d.beam_on, d.beam_off,
+                            d.dwell_p_unit == "ms" ? nc::DwellUnit::milliseconds : nc::DwellUnit::seconds, "dialect");
+  if (!m) return make_error("field " + m.error().message, p.file);
+  return m;
+}
+
+cost::ProgramTotals totals_of(const nc::ProgramStats& s) {
+  cost::ProgramTotals t;
+  t.cut_length_mm = s.cut_length_mm;
+  t.rapid_length_mm = s.rapid_length_mm;
+  t.feed_off_length_mm = s.feed_off_length_mm;
+  t.feed_off_time_s = s.feed_off_time_s;
+  t.feed_off_length_no_feed_mm = s.feed_off_length_no_feed_mm;
+  t.dwell_s = s.dwell_s;
+  t.pierces = s.pierces;
+  t.frames = s.frames;
+  return t;
+}
+
+int run_estimate(const EstimateOptions& o) {
+  if (o.material.empty() != (o.thickness_mm <= 0.0)) {
+    std::cerr << "cutroute: error: --material and --thickness go together\n";
     return kUsageError;
-  }});
+  }
+  auto profile = cost::load_machine_profile(o.machine.empty() ? cost::default_machine_profile_path() : o.machine);
+  if (!profile) return fail(profile.error());
+  auto table = cost::load_speed_table(profile->speed_table);
+  if (!table) return fail(table.error());
+  std::string material = o.material;
+  double thickness = o.thickness_mm;
+  if (material.empty()) {
+    if (!profile->default_material || !profile->default_thickness_mm) {
+      return fail(make_error("no material given: use --material M --thickness T (the profile has no default_job)",
+                             profile->file));
+    }
+    material = *profile->default_material;
+    thickness = *profile->default_thickness_mm;
+  }
+  auto conditions = cost::make_conditions(*profile, *table, material, thickness, o.interpolate);
+  if (!conditions) return fail(conditions.error());
+  auto dialect = dialect_of(*profile, o.dialect);
+  if (!dialect) return fail(dialect.error());
+  nc::ReadOptions ro;
+  ro.dialect = *dialect;
+  auto stats = nc::read_gcode_file(o.program, ro);
+  if (!stats) return fail(stats.error());
+  for (const auto& w : stats->warnings) std::cerr << "cutroute: " << format(w) << '\n';
+  if (stats->suppressed_warnings > 0)
+    std::cerr << "cutroute: " << o.program << ": " << stats->suppressed_warnings << " more warning(s) not shown\n";
+  const auto e = cost::estimate_time(totals_of(*stats), *conditions);
+  const bool measured = conditions->speed.measured;
+
+  if (o.json) {
+    nlohmann::json j;
+    j["program"] = o.program;
+    j["machine"] = profile->name;
+    j["material"] = conditions->material;
+    j["thickness_mm"] = thickness;
+    j["dialect"] = dialect->name;
+    j["pierces"] = stats->pierces;
+    j["cut_length_mm"] = stats->cut_length_mm;
+    j["rapid_length_mm"] = stats->rapid_length_mm;
+    j["feed_off_length_mm"] = stats->feed_off_length_mm;
+    j["frames"] = stats->frames;
+    j["v_on_set_m_s"] = e.v_on_set_m_s;
+    j["v_on_m_s"] = e.v_on_m_s;
+    j["regime"] = cost::to_string(e.regime);
+    j["measured"] = measured;
+    j["t_cut_const_speed_s"] = e.t_cut_const_speed_s;
+    j["t_cut_s"] = e.t_cut_s;
+    j["cost"] = e.cost;
+    j["cost_unit"] = e.cost_unit;
+    j["breakdown"] = {{"cutting_s", e.cutting_s}, {"rapid_s", e.rapid_s},   {"pierce_s", e.pierce_s},
+                      {"dwell_s", e.dwell_s},     {"feed_off_s", e.feed_off_s}, {"head_s", e.head_s},
+                      {"total_s", e.total_s}};
+    j["dwells"] = stats->dwells;
+    j["warnings"] = nlohmann::json::array();
+    for (const auto& w : conditions->warnings) j["warnings"].push_back(w);
+    for (const auto& w : stats->warnings) j["warnings"].push_back(format(w));
+    std::cout << j.dump(2) << '\n';
+    return kOk;
+  }
+  std::cout << o.program << ": " << conditions->material << ' ' << fixed(thickness, 2) << " mm on " << profile->name
+            << "\n"
+            << "  frames n            " << stats->frames << "\n"
+            << "  pierces N_pt        " << stats->pierces << "\n"
+            << "  cut length L_on     " << fixed(stats->cut_length_mm, 3) << " mm\n"
+            << "  rapid length L_off  " << fixed(stats->rapid_length_mm, 3) << " mm\n";
+  if (stats->feed_off_length_mm > 0.0)
+    std::cout << "  feed moves, beam off " << fixed(stats->feed_off_length_mm, 3) << " mm\n";
+  std::cout << "  V_on set            " << fixed(e.v_on_set_m_s, 5) << " m/s ("
+            << fixed(units::m_per_s_to_mm_per_min(e.v_on_set_m_s), 1) << " mm/min)\n"
+            << "  V_on*(n)            " << fixed(e.v_on_m_s, 5) << " m/s ("
+            << fixed(units::m_per_s_to_mm_per_min(e.v_on_m_s), 1) << " mm/min), " << cost::to_string(e.regime)
+            << " regime" << (measured ? "" : ", extrapolated row") << "\n"
+            << "  T_cut, eq. 1 (set speed)   " << fixed(e.t_cut_const_speed_s, 2) << " s\n"
+            << "  T_cut, eq. 10 (V_on*(n))   " << fixed(e.t_cut_s, 2) << " s\n"
+            << "    cutting " << fixed(e.cutting_s, 2) << " s, rapid " << fixed(e.rapid_s, 2) << " s, pierce "
+            << fixed(e.pierce_s, 2) << " s\n"
+            << "  outside eq. 10: dwell " << fixed(e.dwell_s, 2) << " s, beam-off feed " << fixed(e.feed_off_s, 2)
+            << " s, head " << fixed(e.head_s, 2) << " s\n"
+            << "  total               " << fixed(e.total_s, 2) << " s\n"
+            << "  cost, eq. 3         " << fixed(e.cost, 2) << ' ' << e.cost_unit << "\n";
+  for (const auto& w : conditions->warnings) std::cout << "warning: " << w << '\n';
+  return kOk;
+}
+
+}  // namespace
+
+void add_estimate(CLI::App& root, Commands& out) {
+  auto opt = std::make_shared<EstimateOptions>();
+  auto* app = root.add_subcommand("estimate", "Cutting time (eq. 1, eq. 10) and cost (eq. 3) of a G-code program");
+  app->add_option("program", opt->program, "G-code program (.nc, .ngc)")->required();
+  app->add_option("--material", opt->material, "Material or alias (default: the profile's default_job)");
+  app->add_option("--thickness", opt->thickness_mm, "Sheet thickness [mm]")->check(CLI::PositiveNumber);
+  app->add_option("--machine", opt->machine, "Machine profile JSON (default: data/machines/bystar3015.json)");
+  app->add_option("--dialect", opt->dialect, "Built-in dialect overriding the profile's (rs274, rs274-m7m9, fanuc-ms)");
+  app->add_flag("--interpolate", opt->interpolate, "Blend the two neighbouring thicknesses linearly");
+  app->add_flag("--json", opt->json, "Print JSON");
+  out.push_back({app, [opt] { return run_estimate(*opt); }});
 }
 
 }  // namespace cutroute::cli

@@ -1,10 +1,1 @@
-set(CUTROUTE_IO_SOURCES
-  inspect_report.cpp
-  instance.cpp
-  instance_distance.cpp
-  nest_loader.cpp
-  nest_svg.cpp
-  output_file.cpp
-  route_picture.cpp
-  svg.cpp
-)
+set(CUTROUTE_IO_SOURCES output_file.cpp instance.cpp instance_distance.cpp)

@@ -1,6 +1,1 @@
-set(CUTROUTE_MODEL_SOURCES
-  cut_job.cpp
-  demo_nest.cpp
-  nest.cpp
-  path_ops.cpp
-)
+set(CUTROUTE_MODEL_SOURCES nest.cpp)

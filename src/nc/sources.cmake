@@ -1,1 +1,1 @@
-set(CUTROUTE_NC_SOURCES gcode_writer.cpp post_dialect.cpp build_toolpath.cpp)
+set(CUTROUTE_NC_SOURCES dialect.cpp frames.cpp gcode_reader.cpp)

@@ -41,3 +41,21 @@ inline constexpr double kSheetRectangleMm = 1e-3;
 inline constexpr double kSheetSizeMm = 0.5;
 
 }  // namespace cutroute::tol
+
+namespace cutroute::tol {
+
+// A requested sheet thickness equals a table thickness when closer than this [mm].
+// Tables list thicknesses to 0.1 mm; 1e-6 only absorbs decimal-to-binary conversion.
+inline constexpr double kThicknessMm = 1e-6;
+
+}  // namespace cutroute::tol
+
+namespace cutroute::tol {
+
+// Radius mismatch of a G-code arc in an inch (G20) program before it is an error [inch].
+// Inch programs are usually written to 0.001 in (0.0254 mm); rounding start, end and centre
+// moves the end radius by up to about 1.5 of that (0.036 mm seen in dxf2gcode output), which
+// kGcodeArcRadiusMm would reject.
+inline constexpr double kGcodeArcRadiusInch = 0.002;
+
+}  // namespace cutroute::tol

@@ -1,0 +1,67 @@
+// read_gcode(): one pass over an RS274/ISO cutting program -> lengths, pierces, frames, dwells.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <cutroute/core/diagnostic.hpp>
+#include <cutroute/core/result.hpp>
+#include <cutroute/core/tolerances.hpp>
+#include <cutroute/nc/dialect.hpp>
+
+namespace cutroute::nc {
+
+// What the reader accepts, in brief (docs/FRAMES.md has the frame rule):
+//   G0 G1 G2 G3 (modal), I/J incremental (default, G91.1) or absolute (G90.1), R with sign
+//   (R < 0: the arc longer than 180°), I/J full circles; G4 P dwell; G17 only (G18/G19 are an
+//   error); G20/G21; G90/G91; G40/G41/G42 (noted: lengths are of the programmed path, no
+//   compensation); G49, G54..G59, G61, G61.1, G64, G80, G94 accepted without effect; F S T N
+//   words; M3/M4/M5/M7/M8/M9 with the beam codes taken from the dialect; M0 M1 M6; M2/M30 end
+//   the program; comments ( ) and ;; '%' lines; block delete '/'; any letter case; LF, CRLF, CR.
+// Unknown words or codes: a warning with the line number (a block with an unknown G code is not
+// moved). Malformed numbers, arcs whose end is not on the circle, missing program end: an error.
+struct ReadOptions {
+  Dialect dialect = Dialect{"rs274", {3, 4}, {5}, DwellUnit::seconds};
+  // |start radius - end radius| above this is an error: in G21 programs [mm], in G20 programs
+  // [inch] (their coordinates are rounded to a coarser grid).
+  double arc_radius_tol_mm = tol::kGcodeArcRadiusMm;
+  double arc_radius_tol_inch = tol::kGcodeArcRadiusInch;
+  // At most this many warnings are kept; the rest are only counted.
+  std::size_t max_warnings = 50;
+};
+
+// Totals of one program. Lengths are XY path lengths in mm (arcs exact: radius × sweep; Z and
+// helical components are not counted); inch programs are converted.
+struct ProgramStats {
+  std::size_t lines = 0;        // physical lines read, up to the program end
+  std::size_t frames = 0;       // blocks by the frames.hpp definition (Table 1's n)
+  std::size_t pierces = 0;      // beam-on events: off -> on by a dialect code, plus a re-start of
+                                // cutting after a rapid made with the beam still on
+  double cut_length_mm = 0.0;   // L_on: G1/G2/G3 moves with the beam on [mm]
+  double rapid_length_mm = 0.0; // L_off: G0 moves, beam on or off [mm]
+  double feed_off_length_mm = 0.0;  // G1/G2/G3 moves with the beam off (not L_on, not L_off) [mm]
+  double feed_off_time_s = 0.0;     // those moves at their programmed F (moves with a known F) [s]
+  double feed_off_length_no_feed_mm = 0.0;  // those moves made before any F was programmed [mm]
+  double cut_time_at_feed_s = 0.0;  // L_on at the programmed F, for information [s]
+  double cut_length_no_feed_mm = 0.0;  // cutting length before any F was programmed [mm]
+  double dwell_s = 0.0;         // sum of G4 dwells [s]
+  std::size_t dwells = 0;
+  std::size_t rapid_moves = 0;  // G0 blocks with XY motion
+  std::size_t cut_moves = 0;    // G1/G2/G3 blocks with XY motion and the beam on
+  std::size_t arc_moves = 0;    // G2/G3 blocks (beam on or off)
+  std::size_t beam_on_rapids = 0;  // G0 moves made while the beam was switched on
+  bool inch = false;            // G20 was used somewhere
+  Diagnostics warnings;         // at most ReadOptions::max_warnings
+  std::size_t suppressed_warnings = 0;
+};
+
+// Reads a program held in memory. `file` names the source in diagnostics. The error (first
+// problem found) carries file and 1-based line.
+Result<ProgramStats> read_gcode(std::string_view program, const std::string& file, const ReadOptions& options);
+
+// Reads the file into one buffer, then read_gcode().
+Result<ProgramStats> read_gcode_file(const std::string& path, const ReadOptions& options);
+
+}  // namespace cutroute::nc

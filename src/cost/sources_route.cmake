@@ -1,0 +1,1 @@
+list(APPEND CUTROUTE_COST_SOURCES route_problem.cpp)

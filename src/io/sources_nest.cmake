@@ -1,0 +1,1 @@
+list(APPEND CUTROUTE_IO_SOURCES inspect_report.cpp nest_loader.cpp nest_svg.cpp route_picture.cpp svg.cpp)

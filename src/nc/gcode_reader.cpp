@@ -1,0 +1,405 @@
+#include <cutroute/nc/gcode_reader.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include <cutroute/core/units.hpp>
+#include <cutroute/nc/frames.hpp>
+
+#include "nc/block_scanner.hpp"
+
+namespace cutroute::nc {
+
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+constexpr std::size_t kMaxCodesPerBlock = 16;
+
+// One block's words; G codes in tenths (G90.1 -> 901) so that the dotted codes compare exactly.
+struct Block {
+  std::array<int, kMaxCodesPerBlock> g{};
+  std::size_t ng = 0;
+  std::array<int, kMaxCodesPerBlock> m{};
+  std::size_t nm = 0;
+  std::array<bool, 26> has{};
+  std::array<double, 26> val{};
+  bool frame = false;
+
+  bool has_word(char c) const { return has[static_cast<std::size_t>(c - 'A')]; }
+  double word(char c) const { return val[static_cast<std::size_t>(c - 'A')]; }
+};
+
+enum class Motion { none, rapid, line, cw, ccw };
+
+std::string num(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string g_name(int tenths) {
+  char buf[32];
+  if (tenths % 10 != 0) std::snprintf(buf, sizeof buf, "G%d.%d", tenths / 10, tenths % 10);
+  else std::snprintf(buf, sizeof buf, "G%d", tenths / 10);
+  return buf;
+}
+
+// Letters the reader understands; the others are warned about once per line.
+bool known_letter(char c) {
+  switch (c) {
+    case 'G': case 'M': case 'N': case 'O': case 'X': case 'Y': case 'Z': case 'I': case 'J': case 'K':
+    case 'R': case 'F': case 'S': case 'T': case 'P': case 'D': case 'H': case 'Q':
+      return true;
+    default:
+      return false;
+  }
+}
+
+// G codes accepted without an effect on lengths or time (see gcode_reader.hpp).
+bool inert_g(int t) {
+  switch (t) {
+    case 170: case 400: case 410: case 420: case 490: case 540: case 550: case 560: case 570: case 580:
+    case 590: case 610: case 611: case 640: case 800: case 940:
+      return true;
+    default:
+      return false;
+  }
+}
+
+class Reader {
+ public:
+  Reader(std::string_view text, const std::string& file, const ReadOptions& opt)
+      : text_(text), file_(file), opt_(opt) {}
+
+  Result<ProgramStats> run() {
+    std::size_t pos = 0;
+    while (pos < text_.size()) {
+      const auto line = detail::next_line(text_, pos);
+      pos = line.next;
+      ++line_no_;
+      if (ended_) {
+        if (is_frame(line.text)) ++frames_after_end_;
+        continue;
+      }
+      if (auto err = read_line(line.text); !err.message.empty()) return err;
+    }
+    if (!ended_) {
+      return make_error("no program end: the program has no M2 or M30 block", file_,
+                        static_cast<long>(line_no_ == 0 ? 1 : line_no_));
+    }
+    st_.lines = end_line_;
+    if (frames_after_end_ > 0) {
+      warn(end_line_, std::to_string(frames_after_end_) +
+                          " block(s) after the program end (M2/M30) are ignored and not counted as frames");
+    }
+    return std::move(st_);
+  }
+
+ private:
+  Diagnostic error(std::string msg) const { return make_error(std::move(msg), file_, static_cast<long>(line_no_)); }
+
+  void warn(std::size_t line, std::string msg) {
+    if (st_.warnings.size() < opt_.max_warnings) {
+      st_.warnings.push_back(make_warning(std::move(msg), file_, static_cast<long>(line)));
+    } else {
+      ++st_.suppressed_warnings;
+    }
+  }
+
+  // Returns an empty diagnostic when the line is fine.
+  Diagnostic read_line(std::string_view line) {
+    Block b;
+    Diagnostic dup;
+    const auto scan = detail::scan_block(line, [&](const detail::Word& w) {
+      if (w.letter != 'N' && w.letter != 'O') b.frame = true;
+      if (w.letter == 'G') {
+        const double t = w.value * 10.0;
+        const long r = std::lround(t);
+        if (std::abs(t - static_cast<double>(r)) > 1e-6 || r < 0 || r > 99999) {
+          warn(line_no_, "unknown word G" + num(w.value) + " ignored");
+          skip_motion_ = true;
+          return;
+        }
+        if (b.ng == kMaxCodesPerBlock) {
+          if (dup.message.empty()) dup = error("more than 16 G words in one block");
+          return;
+        }
+        b.g[b.ng++] = static_cast<int>(r);
+      } else if (w.letter == 'M') {
+        const long r = std::lround(w.value);
+        if (std::abs(w.value - static_cast<double>(r)) > 1e-9 || r < 0 || r > 99999) {
+          warn(line_no_, "unknown word M" + num(w.value) + " ignored");
+          return;
+        }
+        if (b.nm == kMaxCodesPerBlock) {
+          if (dup.message.empty()) dup = error("more than 16 M words in one block");
+          return;
+        }
+        b.m[b.nm++] = static_cast<int>(r);
+      } else if (w.letter == 'N') {
+        // sequence numbers carry no meaning for lengths or time
+      } else {
+        const auto i = static_cast<std::size_t>(w.letter - 'A');
+        if (b.has[i] && dup.message.empty()) {
+          dup = error(std::string("word ") + w.letter + " appears twice in one block (column " +
+                      std::to_string(w.column) + ")");
+        }
+        b.has[i] = true;
+        b.val[i] = w.value;
+        if (!known_letter(w.letter)) warn(line_no_, std::string("unknown word ") + w.letter + num(w.value) + " ignored");
+      }
+    });
+    if (scan.error != detail::ScanError::none) return scan_error(scan);
+    if (!dup.message.empty()) return dup;
+    if (scan.tape_mark || !b.frame) {
+      skip_motion_ = false;
+      return {};
+    }
+    ++st_.frames;
+    Diagnostic d = execute(b);
+    skip_motion_ = false;
+    return d;
+  }
+
+  Diagnostic scan_error(const detail::ScanResult& s) const {
+    const std::string col = " (column " + std::to_string(s.column) + ")";
+    switch (s.error) {
+      case detail::ScanError::unclosed_comment: return error("comment '(' is not closed on its line" + col);
+      case detail::ScanError::missing_number: return error(std::string("word ") + s.letter + " has no number" + col);
+      case detail::ScanError::malformed_number: return error(std::string("malformed number after ") + s.letter + col);
+      case detail::ScanError::unsupported_character: {
+        std::string c = (s.character >= 32 && s.character < 127) ? std::string(1, s.character)
+                                                                 : "\\x" + std::to_string(static_cast<unsigned char>(s.character));
+        return error("unsupported character '" + c + "'" + col +
+                     ": parameters, expressions and other extensions are not read");
+      }
+      case detail::ScanError::none: break;
+    }
+    return {};
+  }
+
+  // Executes one block in RS274/NGC order: F, beam M codes, dwell, units, plane, distance
+  // modes, motion, then program end.
+  Diagnostic execute(const Block& b) {
+    bool dwell = false;
+    bool end = false;
+    for (std::size_t k = 0; k < b.ng; ++k) {
+      const int g = b.g[k];
+      switch (g) {
+        case 0: motion_ = Motion::rapid; break;
+        case 10: motion_ = Motion::line; break;
+        case 20: motion_ = Motion::cw; break;
+        case 30: motion_ = Motion::ccw; break;
+        case 40: dwell = true; break;
+        case 180: case 190:
+          return error(g_name(g) + ": only the XY plane (G17) is supported");
+        case 200: scale_ = units::kMmPerInch; st_.inch = true; break;
+        case 210: scale_ = 1.0; break;
+        case 900: absolute_ = true; break;
+        case 910: absolute_ = false; break;
+        case 901: arc_absolute_ = true; break;
+        case 911: arc_absolute_ = false; break;
+        default:
+          if (!inert_g(g)) {
+            warn(line_no_, "unknown word " + g_name(g) + " ignored; the block's axis words are not executed");
+            skip_motion_ = true;
+          }
+      }
+    }
+    if (b.has_word('F')) {
+      const double f = b.word('F');
+      if (f < 0.0) return error("negative feed F" + num(f));
+      feed_mm_min_ = f * scale_;
+    }
+    for (std::size_t k = 0; k < b.nm; ++k) {
+      const int m = b.m[k];
+      if (opt_.dialect.switches_on(m)) {
+        if (!beam_on_) {
+          beam_on_ = true;
+          ++st_.pierces;
+          repierce_ = false;
+        }
+      } else if (opt_.dialect.switches_off(m)) {
+        beam_on_ = false;
+        repierce_ = false;
+      } else if (m == 2 || m == 30) {
+        end = true;
+      } else if (!(m == 0 || m == 1 || m == 3 || m == 4 || m == 5 || m == 6 || m == 7 || m == 8 || m == 9)) {
+        warn(line_no_, "unknown word M" + std::to_string(m) + " ignored");
+      }
+    }
+    if (dwell) {
+      if (!b.has_word('P')) return error("G4 dwell without P");
+      const double p = b.word('P');
+      if (p < 0.0) return error("negative dwell G4 P" + num(p));
+      st_.dwell_s += opt_.dialect.dwell_p_unit == DwellUnit::milliseconds ? p / 1000.0 : p;
+      ++st_.dwells;
+    }
+    const bool axes = b.has_word('X') || b.has_word('Y') || b.has_word('Z');
+    const bool centre = b.has_word('I') || b.has_word('J') || b.has_word('R');
+    if (dwell && axes) {
+      warn(line_no_, "axis words in a G4 dwell block are not executed");
+    } else if (!skip_motion_ && (axes || (centre && (motion_ == Motion::cw || motion_ == Motion::ccw)))) {
+      if (auto d = move(b); !d.message.empty()) return d;
+    }
+    if (end) {
+      beam_on_ = false;
+      ended_ = true;
+      end_line_ = line_no_;
+    }
+    return {};
+  }
+
+  Diagnostic check_range(const char* what, double v_mm) const {
+    if (!(std::abs(v_mm) <= units::kMaxCoordinateMm))
+      return error(std::string(what) + " " + num(v_mm) + " mm is beyond the accepted range of ±" +
+                   num(units::kMaxCoordinateMm) + " mm");
+    return {};
+  }
+
+  Diagnostic move(const Block& b) {
+    if (motion_ == Motion::none) return error("axis words without a motion mode (G0, G1, G2 or G3)");
+    double nx = x_;
+    double ny = y_;
+    if (b.has_word('X')) nx = absolute_ ? b.word('X') * scale_ : x_ + b.word('X') * scale_;
+    if (b.has_word('Y')) ny = absolute_ ? b.word('Y') * scale_ : y_ + b.word('Y') * scale_;
+    if (auto d = check_range("X", nx); !d.message.empty()) return d;
+    if (auto d = check_range("Y", ny); !d.message.empty()) return d;
+    double length = 0.0;
+    if (motion_ == Motion::rapid || motion_ == Motion::line) {
+      length = std::hypot(nx - x_, ny - y_);
+    } else {
+      auto arc = arc_length(b, nx, ny);
+      if (!arc.ok()) return arc.error();
+      length = *arc;
+      ++st_.arc_moves;
+    }
+    if (motion_ == Motion::rapid) {
+      if (length > 0.0) {
+        st_.rapid_length_mm += length;
+        ++st_.rapid_moves;
+        if (beam_on_) {
+          if (st_.beam_on_rapids == 0)
+            warn(line_no_, "rapid move (G0) with the beam on: counted as travel; the next cut counts as a new pierce");
+          ++st_.beam_on_rapids;
+          repierce_ = true;
+        }
+      }
+    } else if (beam_on_) {
+      if (length > 0.0) {
+        if (repierce_) {
+          ++st_.pierces;
+          repierce_ = false;
+        }
+        st_.cut_length_mm += length;
+        ++st_.cut_moves;
+        if (feed_mm_min_ > 0.0) st_.cut_time_at_feed_s += length / units::mm_per_min_to_m_per_s(feed_mm_min_) / units::kMmPerM;
+        else st_.cut_length_no_feed_mm += length;
+      }
+    } else {
+      st_.feed_off_length_mm += length;
+      if (feed_mm_min_ > 0.0) st_.feed_off_time_s += length / units::mm_per_min_to_m_per_s(feed_mm_min_) / units::kMmPerM;
+      else st_.feed_off_length_no_feed_mm += length;
+    }
+    x_ = nx;
+    y_ = ny;
+    return {};
+  }
+
+  double radius_tol_mm() const {
+    return scale_ == 1.0 ? opt_.arc_radius_tol_mm : opt_.arc_radius_tol_inch * units::kMmPerInch;
+  }
+
+  // Exact XY length of a G2/G3 move from (x_, y_) to (nx, ny).
+  Result<double> arc_length(const Block& b, double nx, double ny) const {
+    const bool cw = motion_ == Motion::cw;
+    const double chord = std::hypot(nx - x_, ny - y_);
+    const bool has_ij = b.has_word('I') || b.has_word('J');
+    if (b.has_word('R')) {
+      if (has_ij) return error("arc with both R and I/J");
+      const double r = b.word('R') * scale_;
+      const double ar = std::abs(r);
+      if (chord <= tol::kSamePointMm) return error("R-form arc whose end equals its start (a full circle needs I/J)");
+      if (ar <= tol::kSamePointMm) return error("arc radius R" + num(b.word('R')) + " is zero");
+      if (ar < chord / 2.0 - radius_tol_mm()) {
+        return error("arc radius R" + num(b.word('R')) + " is shorter than half the chord (" + num(chord / 2.0) +
+                     " mm)");
+      }
+      const double half = std::asin(std::min(1.0, chord / (2.0 * ar)));
+      const double sweep = r >= 0.0 ? 2.0 * half : kTwoPi - 2.0 * half;
+      return std::max(ar, chord / 2.0) * sweep;
+    }
+    if (!has_ij) return error("arc (G2/G3) without I/J or R");
+    double cx = 0.0;
+    double cy = 0.0;
+    if (arc_absolute_) {
+      if (!(b.has_word('I') && b.has_word('J'))) return error("arc centre under G90.1 needs both I and J");
+      cx = b.word('I') * scale_;
+      cy = b.word('J') * scale_;
+    } else {
+      cx = x_ + (b.has_word('I') ? b.word('I') * scale_ : 0.0);
+      cy = y_ + (b.has_word('J') ? b.word('J') * scale_ : 0.0);
+    }
+    if (auto d = check_range("arc centre", std::max(std::abs(cx), std::abs(cy))); !d.message.empty()) return d;
+    const double r0 = std::hypot(x_ - cx, y_ - cy);
+    const double r1 = std::hypot(nx - cx, ny - cy);
+    if (r0 <= tol::kSamePointMm) return error("arc centre equals its start point (zero radius)");
+    if (std::abs(r0 - r1) > radius_tol_mm()) {
+      return error("arc end is not on its circle: start radius " + num(r0) + " mm, end radius " + num(r1) +
+                   " mm (tolerance " + num(radius_tol_mm()) + " mm)");
+    }
+    double sweep = 0.0;
+    if (chord <= tol::kSamePointMm) {
+      sweep = kTwoPi;  // I/J arc ending where it starts: a full circle
+    } else {
+      const double a0 = std::atan2(y_ - cy, x_ - cx);
+      const double a1 = std::atan2(ny - cy, nx - cx);
+      sweep = cw ? a0 - a1 : a1 - a0;
+      sweep = std::fmod(sweep, kTwoPi);
+      if (sweep < 0.0) sweep += kTwoPi;
+    }
+    return 0.5 * (r0 + r1) * sweep;
+  }
+
+  std::string_view text_;
+  const std::string& file_;
+  const ReadOptions& opt_;
+  ProgramStats st_;
+  std::size_t line_no_ = 0;
+  std::size_t end_line_ = 0;
+  std::size_t frames_after_end_ = 0;
+  bool ended_ = false;
+  Motion motion_ = Motion::none;
+  double scale_ = 1.0;         // mm per program unit
+  bool absolute_ = true;       // G90
+  bool arc_absolute_ = false;  // G90.1
+  bool beam_on_ = false;
+  bool repierce_ = false;      // a rapid was made with the beam on: the next cut pierces again
+  bool skip_motion_ = false;   // the current block holds an unknown G code
+  double feed_mm_min_ = 0.0;   // 0 = not programmed yet
+  double x_ = 0.0;             // [mm] current position; programs start at the origin
+  double y_ = 0.0;             // [mm]
+};
+
+}  // namespace
+
+Result<ProgramStats> read_gcode(std::string_view program, const std::string& file, const ReadOptions& options) {
+  return Reader(program, file, options).run();
+}
+
+Result<ProgramStats> read_gcode_file(const std::string& path, const ReadOptions& options) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return make_error("cannot open G-code program", path);
+  std::string buf;
+  char chunk[1 << 16];
+  std::size_t n = 0;
+  while ((n = std::fread(chunk, 1, sizeof chunk, f)) > 0) buf.append(chunk, n);
+  const bool failed = std::ferror(f) != 0;
+  std::fclose(f);
+  if (failed) return make_error("read error", path);
+  return read_gcode(buf, path, options);
+}
+
+}  // namespace cutroute::nc

@@ -1,0 +1,13 @@
+%
+O1000 (rectangle 100 x 50, absolute mm, N numbers, tape marks)
+N10 G21 G90 G17
+N20 G0 X10 Y10
+N30 M3
+N40 G1 X110 Y10 F6000
+N50 Y60
+N60 X10
+N70 Y10
+N80 M5
+N90 G0 X0 Y0
+N100 M30
+%

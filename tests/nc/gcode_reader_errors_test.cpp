@@ -1,0 +1,95 @@
+// Broken programs: one defect per file in tests/data/nc/bad/, each with its exact line and message.
+#include <gtest/gtest.h>
+
+#include <ostream>
+#include <string>
+
+#include <cutroute/nc/gcode_reader.hpp>
+
+#include "support/paths.hpp"
+
+namespace cutroute::nc {
+namespace {
+
+struct BadCase {
+  const char* file;
+  long line;
+  const char* message_part;
+};
+
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.file; }
+
+class BrokenProgram : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BrokenProgram, ErrorNamesFileLineAndDefect) {
+  const auto& c = GetParam();
+  const std::string path = test::test_data(std::string("nc/bad/") + c.file);
+  auto r = read_gcode_file(path, ReadOptions{});
+  ASSERT_FALSE(r.ok()) << c.file;
+  EXPECT_EQ(r.error().severity, Severity::error);
+  EXPECT_EQ(r.error().file, path);
+  ASSERT_TRUE(r.error().line.has_value());
+  EXPECT_EQ(*r.error().line, c.line) << format(r.error());
+  EXPECT_NE(r.error().message.find(c.message_part), std::string::npos) << format(r.error());
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Files, BrokenProgram,
+    ::testing::Values(BadCase{"malformed_number_two_dots.nc", 4, "malformed number after X"},
+                      BadCase{"malformed_number_sign_only.nc", 4, "malformed number after Y"},
+                      BadCase{"missing_number.nc", 4, "word Y has no number"},
+                      BadCase{"decimal_comma.nc", 4, "malformed number after X"},
+                      BadCase{"exponent_number.nc", 3, "malformed number after X"},
+                      BadCase{"arc_radius_mismatch.nc", 4, "arc end is not on its circle"},
+                      BadCase{"arc_radius_too_small.nc", 4, "shorter than half the chord"},
+                      BadCase{"arc_without_centre.nc", 4, "without I/J or R"},
+                      BadCase{"no_program_end.nc", 6, "no program end"},
+                      BadCase{"unclosed_comment.nc", 2, "not closed"},
+                      BadCase{"plane_g18.nc", 1, "only the XY plane"},
+                      BadCase{"axis_without_motion_mode.nc", 2, "without a motion mode"},
+                      BadCase{"duplicate_word.nc", 3, "appears twice"},
+                      BadCase{"parameter_expression.nc", 2, "unsupported character '#'"},
+                      BadCase{"dwell_without_p.nc", 4, "G4 dwell without P"}),
+    [](const ::testing::TestParamInfo<BadCase>& p) {
+      std::string n = p.param.file;
+      n = n.substr(0, n.find('.'));
+      return n;
+    });
+
+TEST(BrokenProgramInline, ArcRadiusToleranceIsNamedAndInchAware) {
+  // 0.005 mm off the circle: accepted (tol::kGcodeArcRadiusMm = 0.01 mm) ...
+  EXPECT_TRUE(read_gcode("G21\nG0 X10\nM3\nG2 X-10.005 Y0 I-10 J0\nM30\n", "a.nc", ReadOptions{}).ok());
+  // ... 0.02 mm is not.
+  EXPECT_FALSE(read_gcode("G21\nG0 X10\nM3\nG2 X-10.02 Y0 I-10 J0\nM30\n", "a.nc", ReadOptions{}).ok());
+  // Inch programs: 0.0015 in (0.038 mm) is rounding of 0.001 in output, accepted; 0.003 in is not.
+  EXPECT_TRUE(read_gcode("G20\nG0 X1\nM3\nG2 X-1.0015 Y0 I-1 J0\nM30\n", "a.nc", ReadOptions{}).ok());
+  EXPECT_FALSE(read_gcode("G20\nG0 X1\nM3\nG2 X-1.003 Y0 I-1 J0\nM30\n", "a.nc", ReadOptions{}).ok());
+}
+
+TEST(BrokenProgramInline, AbsurdCoordinatesAndEmptyInput) {
+  EXPECT_FALSE(read_gcode("G0 X1e3\nM30\n", "a.nc", ReadOptions{}).ok());
+  auto far = read_gcode("G0 X2000000\nM30\n", "a.nc", ReadOptions{});
+  ASSERT_FALSE(far.ok());
+  EXPECT_EQ(*far.error().line, 1);
+  auto empty = read_gcode("", "empty.nc", ReadOptions{});
+  ASSERT_FALSE(empty.ok());
+  EXPECT_NE(empty.error().message.find("no program end"), std::string::npos);
+  EXPECT_FALSE(read_gcode("G1 X1 F-5\nM30\n", "a.nc", ReadOptions{}).ok());
+  EXPECT_FALSE(read_gcode("G0 X0\nG2 X0 Y0 R5\nM30\n", "a.nc", ReadOptions{}).ok());  // R full circle
+  EXPECT_FALSE(read_gcode("G0 X0\nG2 X5 I0 J0\nM30\n", "a.nc", ReadOptions{}).ok());   // zero radius
+  EXPECT_FALSE(read_gcode("G90.1\nG0 X5\nG2 X-5 I0\nM30\n", "a.nc", ReadOptions{}).ok());
+  EXPECT_FALSE(read_gcode("G0 X5\nG2 X-5 R5 I-5\nM30\n", "a.nc", ReadOptions{}).ok());
+  const std::string binary("G0 X1\n\x01\x02\xff\nM30\n", 15);
+  auto bin = read_gcode(binary, "bin.nc", ReadOptions{});
+  ASSERT_FALSE(bin.ok());
+  EXPECT_EQ(*bin.error().line, 2);
+}
+
+TEST(BrokenProgramInline, MissingFile) {
+  auto r = read_gcode_file(test::test_data("nc/does_not_exist.nc"), ReadOptions{});
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("cannot open"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace cutroute::nc

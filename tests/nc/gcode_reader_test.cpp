@@ -1,0 +1,223 @@
+// G-code reader on hand-written programs whose lengths, pierces and frames were worked out by
+// hand (the expected values are written next to each program in tests/data/nc/).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include <cutroute/nc/frames.hpp>
+#include <cutroute/nc/gcode_reader.hpp>
+
+#include "support/paths.hpp"
+
+namespace cutroute::nc {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kLenTol = 1e-9;  // [mm] hand values are exact up to rounding of the arithmetic
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+ProgramStats read_ok(const std::string& rel, const ReadOptions& opt = {}) {
+  auto r = read_gcode_file(test::test_data("nc/" + rel), opt);
+  EXPECT_TRUE(r.ok()) << (r.ok() ? "" : format(r.error()));
+  return r.ok() ? *r : ProgramStats{};
+}
+
+TEST(GcodeReader, AbsoluteMillimetreRectangle) {
+  const auto s = read_ok("square_abs_mm.nc");
+  EXPECT_NEAR(s.cut_length_mm, 300.0, kLenTol);
+  EXPECT_NEAR(s.rapid_length_mm, 2.0 * std::sqrt(200.0), kLenTol);
+  EXPECT_EQ(s.pierces, 1u);
+  EXPECT_EQ(s.frames, 10u);  // N10..N100; '%', the O line and comments are not frames
+  EXPECT_EQ(s.cut_moves, 4u);
+  EXPECT_NEAR(s.cut_time_at_feed_s, 300.0 / 6000.0 * 60.0, 1e-12);
+  EXPECT_TRUE(s.warnings.empty());
+}
+
+TEST(GcodeReader, IncrementalInchRectangle) {
+  const auto s = read_ok("square_inc_inch.nc");
+  EXPECT_NEAR(s.cut_length_mm, 12.0 * 25.4, kLenTol);
+  EXPECT_NEAR(s.rapid_length_mm, 2.0 * std::sqrt(2.0) * 25.4, kLenTol);
+  EXPECT_EQ(s.pierces, 1u);
+  EXPECT_EQ(s.frames, 10u);
+  EXPECT_TRUE(s.inch);
+  EXPECT_NEAR(s.cut_time_at_feed_s, 12.0 / 240.0 * 60.0, 1e-12);  // F240 in/min
+}
+
+TEST(GcodeReader, IncrementalCentreArcsAreExact) {
+  const auto s = read_ok("arcs_ij.nc");
+  // full circle r 10 + half circle r 10 + quarter circle r 10
+  EXPECT_NEAR(s.cut_length_mm, 20.0 * kPi + 10.0 * kPi + 5.0 * kPi, kLenTol);
+  EXPECT_NEAR(s.rapid_length_mm, 10.0 + 40.0 + std::sqrt(500.0), kLenTol);
+  EXPECT_EQ(s.pierces, 2u);  // M3 ... M5, M4 ... M5
+  EXPECT_EQ(s.frames, 12u);
+  EXPECT_EQ(s.arc_moves, 3u);
+}
+
+TEST(GcodeReader, AbsoluteCentreArcsMatchIncremental) {
+  const auto a = read_ok("arcs_absolute_centre.nc");
+  const auto b = read_ok("arcs_ij.nc");
+  EXPECT_NEAR(a.cut_length_mm, b.cut_length_mm, kLenTol);
+  EXPECT_NEAR(a.rapid_length_mm, b.rapid_length_mm, kLenTol);
+  EXPECT_EQ(a.pierces, b.pierces);
+  EXPECT_EQ(a.frames, 13u);  // one block more: G91.1
+}
+
+TEST(GcodeReader, RadiusArcsTakeTheSignIntoAccount) {
+  const auto s = read_ok("arcs_r.nc");
+  EXPECT_NEAR(s.cut_length_mm, 5.0 * kPi + 15.0 * kPi, kLenTol);  // quarter (R+) + three quarters (R-)
+  EXPECT_NEAR(s.rapid_length_mm, 20.0, kLenTol);
+  EXPECT_EQ(s.frames, 8u);
+}
+
+TEST(GcodeReader, DwellCommentsLowerCaseCrlf) {
+  const auto s = read_ok("dwell_comments_crlf.nc");
+  EXPECT_NEAR(s.cut_length_mm, 35.0, kLenTol);
+  EXPECT_NEAR(s.rapid_length_mm, 0.0, kLenTol);
+  EXPECT_EQ(s.pierces, 1u);
+  EXPECT_EQ(s.dwells, 2u);
+  EXPECT_NEAR(s.dwell_s, 1.75, 1e-12);
+  EXPECT_EQ(s.frames, 9u);  // the N5-only line is not a frame
+}
+
+TEST(GcodeReader, DwellInMillisecondsDialect) {
+  ReadOptions opt;
+  opt.dialect = *builtin_dialect("fanuc-ms");
+  auto r = read_gcode("G4 P500\nG4 P1250\nM30\n", "ms.nc", opt);
+  ASSERT_TRUE(r.ok());
+  EXPECT_NEAR(r->dwell_s, 1.75, 1e-12);
+}
+
+TEST(GcodeReader, BeamOffFeedAndRapidWithBeamOn) {
+  const auto s = read_ok("beam_off_feed.nc");
+  EXPECT_NEAR(s.cut_length_mm, 60.0, kLenTol);
+  EXPECT_NEAR(s.rapid_length_mm, 40.0 + std::hypot(90.0, 80.0), kLenTol);
+  EXPECT_NEAR(s.feed_off_length_mm, 50.0, kLenTol);
+  EXPECT_NEAR(s.feed_off_time_s, 5.0, 1e-12);  // 50 mm at F600
+  EXPECT_EQ(s.pierces, 2u);                     // M3, then a re-pierce after the G0 with the beam on
+  EXPECT_EQ(s.beam_on_rapids, 1u);
+  EXPECT_EQ(s.frames, 10u);
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_EQ(s.warnings[0].line, 7);
+}
+
+TEST(GcodeReader, CutterCompensationAndUnknownWordsAreWarnings) {
+  const auto s = read_ok("cutter_comp_misc.nc");
+  EXPECT_NEAR(s.cut_length_mm, 400.0, kLenTol);  // programmed path, no compensation applied
+  EXPECT_NEAR(s.rapid_length_mm, 0.0, kLenTol);  // the G12 block did not move
+  EXPECT_EQ(s.pierces, 1u);
+  EXPECT_EQ(s.frames, 15u);
+  ASSERT_EQ(s.warnings.size(), 2u);
+  EXPECT_EQ(s.warnings[0].line, 8);
+  EXPECT_NE(s.warnings[0].message.find("A15"), std::string::npos);
+  EXPECT_EQ(s.warnings[1].line, 14);
+  EXPECT_NE(s.warnings[1].message.find("G12"), std::string::npos);
+}
+
+TEST(GcodeReader, BeamCodesComeFromTheDialect) {
+  ReadOptions m7;
+  m7.dialect = *builtin_dialect("rs274-m7m9");
+  const auto a = read_ok("m7m9_beam.nc", m7);
+  EXPECT_NEAR(a.cut_length_mm, 50.0, kLenTol);
+  EXPECT_NEAR(a.rapid_length_mm, 20.0, kLenTol);
+  EXPECT_EQ(a.pierces, 2u);
+  EXPECT_EQ(a.beam_on_rapids, 0u);
+  EXPECT_EQ(a.frames, 13u);
+  // The default dialect reads M3 as beam on and M7/M9 as assist gas: the beam stays on through
+  // both rapids, so the second cut is a re-pierce and the rapids are beam-on rapids.
+  const auto b = read_ok("m7m9_beam.nc");
+  EXPECT_NEAR(b.cut_length_mm, 50.0, kLenTol);
+  EXPECT_EQ(b.pierces, 2u);
+  EXPECT_EQ(b.beam_on_rapids, 2u);
+}
+
+TEST(GcodeReader, CustomDialectRejectsContradictions) {
+  EXPECT_FALSE(make_dialect("x", {3}, {3}, DwellUnit::seconds, "dialect").ok());
+  EXPECT_FALSE(make_dialect("x", {30}, {5}, DwellUnit::seconds, "dialect").ok());
+  EXPECT_FALSE(make_dialect("x", {}, {5}, DwellUnit::seconds, "dialect").ok());
+  EXPECT_TRUE(make_dialect("x", {10}, {11}, DwellUnit::seconds, "dialect").ok());
+  EXPECT_FALSE(builtin_dialect("heidenhain").ok());
+}
+
+TEST(GcodeReader, LineEndingsGiveIdenticalResults) {
+  const std::string lf = slurp(test::test_data("nc/arcs_ij.nc"));
+  std::string crlf;
+  std::string cr;
+  for (char c : lf) {
+    crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+    cr += c == '\n' ? '\r' : c;
+  }
+  const ReadOptions opt;
+  for (const auto& text : {lf, crlf, cr}) {
+    auto r = read_gcode(text, "x.nc", opt);
+    ASSERT_TRUE(r.ok());
+    EXPECT_NEAR(r->cut_length_mm, 35.0 * kPi, kLenTol);
+    EXPECT_EQ(r->frames, 12u);
+    EXPECT_EQ(r->pierces, 2u);
+  }
+}
+
+TEST(GcodeReader, ModalMotionAndNumberForms) {
+  const ReadOptions opt;
+  auto r = read_gcode("G21 G90 M3\nG1 X+10. Y.0 F1000\nX-10\nY10.\nM5\nG0 X0 Y0\nM30\n", "forms.nc", opt);
+  ASSERT_TRUE(r.ok()) << format(r.error());
+  EXPECT_NEAR(r->cut_length_mm, 10.0 + 20.0 + 10.0, kLenTol);
+  EXPECT_NEAR(r->rapid_length_mm, std::hypot(10.0, 10.0), kLenTol);
+}
+
+TEST(GcodeReader, FullCircleWithoutEndWordsAndHalfCircleByR) {
+  const ReadOptions opt;
+  auto r = read_gcode("G21 G90\nG0 X5 Y0\nM3\nG2 I-5\nG3 X-5 Y0 R5\nM5\nM30\n", "c.nc", opt);
+  ASSERT_TRUE(r.ok()) << format(r.error());
+  EXPECT_NEAR(r->cut_length_mm, 10.0 * kPi + 5.0 * kPi, kLenTol);
+}
+
+TEST(GcodeReader, FramesAgreeWithTheSharedDefinition) {
+  for (const auto& entry : std::filesystem::directory_iterator(test::test_data("nc"))) {
+    if (entry.path().extension() != ".nc") continue;
+    const std::string text = slurp(entry.path().string());
+    ReadOptions opt;
+    auto r = read_gcode(text, entry.path().string(), opt);
+    ASSERT_TRUE(r.ok()) << entry.path();
+    EXPECT_EQ(r->frames, count_frames(text)) << entry.path();
+  }
+  for (const auto& entry : std::filesystem::directory_iterator(test::test_data("nc/dxf2gcode"))) {
+    const std::string text = slurp(entry.path().string());
+    auto r = read_gcode(text, entry.path().string(), ReadOptions{});
+    ASSERT_TRUE(r.ok()) << entry.path();
+    EXPECT_EQ(r->frames, count_frames(text)) << entry.path();
+  }
+}
+
+TEST(GcodeReader, BlocksAfterTheEndAreIgnoredWithAWarning) {
+  auto r = read_gcode("M3\nG1 X10 F100\nM30\nG1 X20\n", "after.nc", ReadOptions{});
+  ASSERT_TRUE(r.ok());
+  EXPECT_NEAR(r->cut_length_mm, 10.0, kLenTol);
+  EXPECT_EQ(r->frames, 3u);
+  ASSERT_EQ(r->warnings.size(), 1u);
+  EXPECT_EQ(r->warnings[0].line, 3);
+}
+
+TEST(GcodeReader, WarningsAreCapped) {
+  std::string text;
+  for (int i = 0; i < 80; ++i) text += "G1 A1\n";
+  text += "M30\n";
+  ReadOptions opt;
+  opt.max_warnings = 10;
+  auto r = read_gcode(text, "many.nc", opt);
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r->warnings.size(), 10u);
+  EXPECT_EQ(r->suppressed_warnings, 70u);
+}
+
+}  // namespace
+}  // namespace cutroute::nc

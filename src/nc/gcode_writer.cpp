@@ -19,14 +19,6 @@ Vec2 arc_center(Vec2 a, Vec2 b, double bulge) {
   return (a + b) / 2 + geometry::perp(d) * ((1 - bulge * bulge) / (4 * bulge));
 }
 
-double arc_length(Vec2 a, Vec2 b, double bulge) {
-  const double c = geometry::distance(a, b);
-  if (std::abs(bulge) < tol::kStraightBulge) return c;
-  const double sweep = 4 * std::atan(std::abs(bulge));
-  const double r = c * (1 + bulge * bulge) / (4 * std::abs(bulge));
-  return r * sweep;
-}
-
 class Emitter {
  public:
   Emitter(const PostDialect& d, WrittenProgram& out)
@@ -121,7 +113,9 @@ class Emitter {
       const bool first = arc(mid, half, feed_word);
       return arc(to, half, first ? std::string() : feed_word) || first;
     }
-    const Vec2 c = arc_center(pos_, q, bulge);
+    // The centre as written (I J rounded to the resolution): what the controller will cut.
+    Vec2 c = arc_center(pos_, q, bulge);
+    if (d_.arc_format == ArcFormat::ij) c = pos_ + quantise_delta(c - pos_);
     std::string s = bulge < 0 ? "G2 X" : "G3 X";
     coord(s, q.x);
     s += " Y";
@@ -132,15 +126,39 @@ class Emitter {
       s += " J";
       coord(s, c.y - pos_.y);
     } else {
-      const double r = geometry::distance(c, pos_);
+      // The controller puts the centre on the chord's bisector at the written radius.
+      const double r = quantise_delta({geometry::distance(c, pos_), 0}).x;
       s += " R";
       coord(s, r);
+      const Vec2 d = q - pos_;
+      const double chord = geometry::norm(d);
+      const double h = std::sqrt(std::max(0.0, r * r - chord * chord / 4));
+      c = (pos_ + q) / 2 + geometry::perp(d) / chord * (bulge > 0 ? h : -h);
     }
     s += feed_word;
     block(s);
-    out_.cut_length_mm += arc_length(pos_, q, bulge);
+    out_.cut_length_mm += written_arc_length(c, q, bulge > 0);
     pos_ = q;
     return true;
+  }
+
+  // Length of the arc from the current position to q around centre c, as the controller runs it
+  // (mean of the start and end radii, sweep from the two angles).
+  double written_arc_length(Vec2 c, Vec2 q, bool ccw) const {
+    const double r0 = geometry::distance(c, pos_), r1 = geometry::distance(c, q);
+    double sweep = std::atan2(q.y - c.y, q.x - c.x) - std::atan2(pos_.y - c.y, pos_.x - c.x);
+    const double two_pi = 2 * std::numbers::pi;
+    if (ccw) {
+      while (sweep <= 0) sweep += two_pi;
+    } else {
+      while (sweep >= 0) sweep -= two_pi;
+    }
+    return std::abs(sweep) * (r0 + r1) / 2;
+  }
+
+  Vec2 quantise_delta(Vec2 d) const {
+    const double f = std::pow(10.0, d_.decimals);
+    return {std::round(d.x * scale_ * f) / f / scale_, std::round(d.y * scale_ * f) / f / scale_};
   }
 
   std::string feed_word(double feed_mm_min) const {
@@ -198,15 +216,17 @@ WrittenProgram write_gcode(const Toolpath& path, const PostDialect& d, const Gco
     e.codes(d.beam_on, path.pierce_time_s, seg.feed_mm_min);
     e.codes(d.pierce, path.pierce_time_s, seg.feed_mm_min);
     ++out.pierces;
-    if (seg.kerf != KerfSide::none) e.block(seg.kerf == KerfSide::left ? d.kerf_left : d.kerf_right);
+    const bool comp = seg.kerf != KerfSide::none;
+    if (comp) e.codes(d.thc_on, path.pierce_time_s, seg.feed_mm_min);  // no outputs under G41/G42
+    if (comp) e.block(seg.kerf == KerfSide::left ? d.kerf_left : d.kerf_right);
     std::string feed = e.feed_word(seg.feed_mm_min);
-    bool thc = false;
+    bool thc = comp;
     for (const auto& piece : seg.pieces) {
       const bool is_lead = piece.role == PieceRole::lead_in || piece.role == PieceRole::lead_out;
-      if (!is_lead && !thc) {
+      if (!comp && !is_lead && !thc) {
         e.codes(d.thc_on, path.pierce_time_s, seg.feed_mm_min);
         thc = true;
-      } else if (piece.role == PieceRole::lead_out && thc) {
+      } else if (!comp && piece.role == PieceRole::lead_out && thc) {
         e.codes(d.thc_off, path.pierce_time_s, seg.feed_mm_min);
         thc = false;
       }
@@ -217,8 +237,8 @@ WrittenProgram write_gcode(const Toolpath& path, const PostDialect& d, const Gco
         if (written) feed.clear();  // F is modal: written once per segment, on its first cutting move
       }
     }
+    if (comp) e.block(d.kerf_off);
     if (thc) e.codes(d.thc_off, path.pierce_time_s, seg.feed_mm_min);
-    if (seg.kerf != KerfSide::none) e.block(d.kerf_off);
     e.codes(d.beam_off, path.pierce_time_s, seg.feed_mm_min);
   }
   e.rapid(path.end);

@@ -33,13 +33,17 @@ ProbeResult probe_gcode(const std::string& program) {
     std::vector<int> gs, ms;
     for (std::size_t i = 0; i < s.size();) {
       const char letter = s[i++];
-      char* end = nullptr;
-      const double v = std::strtod(s.c_str() + i, &end);
-      if (end == s.c_str() + i) {
+      // Plain decimal only (strtod would read "0X1" as hexadecimal once blanks are removed).
+      std::size_t j = i;
+      if (j < s.size() && (s[j] == '-' || s[j] == '+')) ++j;
+      const std::size_t digits_from = j;
+      while (j < s.size() && (std::isdigit(static_cast<unsigned char>(s[j])) || s[j] == '.')) ++j;
+      if (j == digits_from) {
         r.errors.push_back("line " + std::to_string(lineno) + ": bad word");
         break;
       }
-      i = static_cast<std::size_t>(end - s.c_str());
+      const double v = std::stod(s.substr(i, j - i));
+      i = j;
       if (letter == 'G') gs.push_back(static_cast<int>(std::lround(v * 10)));
       else if (letter == 'M') ms.push_back(static_cast<int>(std::lround(v)));
       else w[letter] = v;

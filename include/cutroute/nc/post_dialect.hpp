@@ -25,14 +25,17 @@ struct PostDialect {
   int line_number_start = 10;
   int line_number_step = 10;
   CommentStyle comments = CommentStyle::paren;
-  std::vector<std::string> header = {"G17 G21 G90 G40 G49 G94"};  // after the units word is checked
+  std::vector<std::string> header = {"G17 G90 G40 G94"};  // after the units word (G20/G21) the writer emits
   std::vector<std::string> footer = {};
   std::string program_end = "M30";
   std::vector<std::string> beam_on = {"M3 S1"};
   std::vector<std::string> pierce = {"G4 P{pierce_s}"};
   std::vector<std::string> beam_off = {"M5"};
-  std::vector<std::string> thc_on = {};      // torch height control on (plasma), after the lead-in
-  std::vector<std::string> thc_off = {};     // before the lead-out
+  // Torch height control (plasma): on after the lead-in, off before the lead-out. With controller
+  // kerf compensation they are written outside G41/G42 .. G40 instead (right after the pierce and
+  // after the tool-off), because LinuxCNC refuses digital outputs while compensation is on.
+  std::vector<std::string> thc_on = {};
+  std::vector<std::string> thc_off = {};
   std::string kerf_left = "G41";
   std::string kerf_right = "G42";
   std::string kerf_off = "G40";

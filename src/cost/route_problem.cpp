@@ -20,7 +20,8 @@ namespace {
 
 solve::Cost to_ticks(double v) {
   const double t = v * static_cast<double>(units::kTicksPerSecond);
-  return static_cast<solve::Cost>(std::llround(std::min(t, static_cast<double>(solve::kMaxCost))));
+  // Values are never negative here; + 0.5 and truncation rounds like llround, several times faster.
+  return static_cast<solve::Cost>(std::min(t, static_cast<double>(solve::kMaxCost)) + 0.5);
 }
 
 }  // namespace
@@ -66,10 +67,12 @@ Result<RouteProblem> build_route_problem(const model::CutJob& job, const RoutePr
   // Shared, immutable point tables: the cost callback may be called from several solver threads.
   auto off = std::make_shared<const std::vector<geometry::Vec2>>(rp.tool_off);
   auto in = std::make_shared<const std::vector<geometry::Vec2>>(rp.pierce);
-  const RoutePrices p = prices;
-  auto arc = [off, in, p](solve::NodeId from, solve::NodeId to) -> solve::Cost {
-    const double mm = geometry::distance((*off)[from.index()], (*in)[to.index()]);
-    return to_ticks(p.rapid_price(mm));
+  // A rapid's price is affine in its length: a + b·mm (computed once, not per call: the solver
+  // asks for millions of arcs on large nests).
+  const double a = prices.rapid_price(0.0), slope = prices.rapid_price(1.0) - a;
+  auto arc = [off, in, a, slope](solve::NodeId from, solve::NodeId to) -> solve::Cost {
+    const geometry::Vec2 d = (*in)[to.index()] - (*off)[from.index()];
+    return to_ticks(a + slope * std::sqrt(d.x * d.x + d.y * d.y));
   };
   if (n <= options.matrix_max_nodes) {
     std::vector<solve::Cost> m(static_cast<std::size_t>(n) * static_cast<std::size_t>(n), 0);

@@ -62,21 +62,34 @@ struct EntryPlanner::Impl {
   geometry::StaticSpatialIndex index;  // over every contour's box, sheet included
   mutable std::vector<std::uint32_t> scratch;
 
+  // Per contour, computed once: orientation, length, and the contour reversed.
+  std::vector<char> stored_cw;
+  std::vector<double> length;
+  std::vector<Contour> reversed;
+
   Impl(const Nest& n, const EntryOptions& o) : nest(n), opt(o) {
     clearance = o.clearance_mm >= 0 ? o.clearance_mm : o.kerf_mm + 1.0;
     std::vector<Box> boxes;
     boxes.reserve(n.contours.size());
-    for (const auto& c : n.contours) boxes.push_back(c.box);
+    for (const auto& c : n.contours) {
+      boxes.push_back(c.box);
+      stored_cw.push_back(geometry::orientation(c.source.contour) == geometry::Orientation::cw);
+      length.push_back(geometry::length(c.source.contour));
+      reversed.push_back(geometry::reversed(c.source.contour));
+    }
     index = geometry::StaticSpatialIndex(boxes);
   }
 
   const NestContour& nc(ContourId id) const { return nest.contours[id]; }
 
   // The contour as cut: oriented in the cut direction.
-  Contour oriented(ContourId id, bool clockwise) const {
-    const Contour& c = nc(id).source.contour;
-    const bool is_cw = geometry::orientation(c) == geometry::Orientation::cw;
-    return is_cw == clockwise ? c : geometry::reversed(c);
+  const Contour& oriented(ContourId id, bool clockwise) const {
+    return (stored_cw[id.index()] != 0) == clockwise ? nc(id).source.contour : reversed[id.index()];
+  }
+  // Arc length along the oriented path of the point at arc length s of the stored contour.
+  double to_path_s(ContourId id, double s, bool clockwise) const {
+    const double total = length[id.index()];
+    return (stored_cw[id.index()] != 0) == clockwise ? s : std::fmod(total - s + total, total);
   }
 
   // Is p in scrap: inside the sheet (when there is one) and inside an even number of part contours.
@@ -118,6 +131,13 @@ struct EntryPlanner::Impl {
     return !geometry::intersects(own_part, nc(own).source.contour, tol::kSamePointMm);
   }
 
+  // A lead-out starts on its contour, so not crossing any boundary is not enough: it must also
+  // end in scrap (a path that crosses no boundary stays in the region where it ends).
+  bool lead_out_ok(const Contour& lead, ContourId own) const {
+    if (lead.vertices.size() < 2) return true;
+    return in_scrap(lead.vertices.back().p) && path_clear(lead, own, false);
+  }
+
   bool pierce_ok(Vec2 p, ContourId own, double own_min) const {
     if (!in_scrap(p)) return false;
     const Box box = Box{p.x, p.y, p.x, p.y}.inflated(clearance);
@@ -156,11 +176,18 @@ struct EntryPlanner::Impl {
     return lead;
   }
 
-  Contour lead_out(Vec2 p, Vec2 t, Vec2 n, bool left, double scale) const {
+  // `variant` 0: the normal shape; 1: straight along the scrap normal; 2: along `alt` (the
+  // bisector at a corner). Tried in this order when the first one is not admissible.
+  Contour lead_out(Vec2 p, Vec2 t, Vec2 n, bool left, double scale, int variant = 0, Vec2 alt = {}) const {
     const auto& L = opt.lead;
     const double len = L.out_length_mm * scale;
     Contour lead;
     if (len <= 0) return lead;
+    if (variant > 0) {
+      const Vec2 dir = variant == 1 ? n : alt;
+      lead.vertices = {Vertex{p, 0}, Vertex{p + dir * len, 0}};
+      return lead;
+    }
     switch (L.out_kind) {
       case LeadKind::none:
         return lead;
@@ -214,11 +241,11 @@ struct EntryPlanner::Impl {
     return out;
   }
 
-  // Builds the entry at arc length s of the oriented path; nullopt when not admissible.
-  std::optional<EntryCandidate> build(ContourId id, const Contour& path, double s_path, bool clockwise, bool corner,
-                                      double scale, double total_len) const {
-    const auto role = nc(id).role;
-    const bool left = scrap_on_left(role, clockwise);
+  // The entry's point and leads at arc length s of the oriented path, unchecked and without the
+  // cut path (cheap: a few points and tangents).
+  EntryCandidate shape(ContourId id, const Contour& path, double s_path, bool clockwise, bool corner, double scale,
+                       double total_len) const {
+    const bool left = scrap_on_left(nc(id).role, clockwise);
     const auto at = detail::at_length(path, s_path);
     Vec2 n = left ? geometry::perp(at.tangent) : -geometry::perp(at.tangent);
     if (corner) {
@@ -235,19 +262,42 @@ struct EntryPlanner::Impl {
     e.corner = corner;
     e.lead_in = lead_in(at.point, at.tangent, n, left, corner, scale);
     e.pierce = e.lead_in.vertices.empty() ? at.point : e.lead_in.vertices.front().p;
+    const auto end = opt.lead.overcut_mm > 0 ? detail::at_length(path, s_path + opt.lead.overcut_mm) : at;
+    const Vec2 n_end = left ? geometry::perp(end.tangent) : -geometry::perp(end.tangent);
+    e.lead_out = lead_out(end.point, end.tangent, n_end, left, scale);
+    return e;
+  }
+
+  // Builds the entry at arc length s of the oriented path; nullopt when not admissible.
+  std::optional<EntryCandidate> build(ContourId id, const Contour& path, double s_path, bool clockwise, bool corner,
+                                      double scale, double total_len) const {
+    EntryCandidate e = shape(id, path, s_path, clockwise, corner, scale, total_len);
     const double lead_len = geometry::length(e.lead_in);
     if (!pierce_ok(e.pierce, id, std::min(clearance, 0.5 * lead_len))) return std::nullopt;
     if (!path_clear(e.lead_in, id, true)) return std::nullopt;
     e.path = detail::sub_path(path, s_path, total_len + opt.lead.overcut_mm);
-    const auto end = detail::at_length(path, s_path + opt.lead.overcut_mm);
-    const Vec2 n_end = left ? geometry::perp(end.tangent) : -geometry::perp(end.tangent);
-    e.lead_out = lead_out(end.point, end.tangent, n_end, left, scale);
-    if (!e.lead_out.vertices.empty() && !path_clear(e.lead_out, id, false)) e.lead_out = Contour{};
-    // s along the stored contour: the oriented path runs backwards when it was reversed.
-    const Contour& stored = nc(id).source.contour;
-    e.s_mm = (geometry::orientation(stored) == geometry::Orientation::cw) == clockwise
-                 ? s_path
-                 : std::fmod(total_len - s_path + total_len, total_len);
+    if (!lead_out_ok(e.lead_out, id)) {
+      // The lead-out starts on the contour: at a sharp concave corner the normal shape can point
+      // into the part. Try straight along the normal, then along the corner bisector, else none.
+      const bool left = scrap_on_left(nc(id).role, clockwise);
+      const double back = 1e-6 * std::max(1.0, total_len);
+      const auto end = detail::at_length(path, s_path + opt.lead.overcut_mm);
+      const auto before = detail::at_length(path, s_path + opt.lead.overcut_mm - back);
+      const Vec2 n1 = left ? geometry::perp(end.tangent) : -geometry::perp(end.tangent);
+      const Vec2 n0 = left ? geometry::perp(before.tangent) : -geometry::perp(before.tangent);
+      const Vec2 bis = geometry::norm(n0 + n1) > 1e-9 ? geometry::normalized(n0 + n1) : n1;
+      e.lead_out = Contour{};
+      for (int variant : {1, 2}) {
+        Contour alt = lead_out(end.point, end.tangent, n1, left, scale, variant, bis);
+        if (lead_out_ok(alt, id)) {
+          e.lead_out = std::move(alt);
+          break;
+        }
+      }
+    }
+    // s along the stored contour: the oriented path runs backwards when it was reversed (the map
+    // s -> total - s is its own inverse).
+    e.s_mm = to_path_s(id, s_path, clockwise);
     return e;
   }
 
@@ -264,10 +314,8 @@ struct EntryPlanner::Impl {
     if (!in_scrap(centre) || !path_clear(e.lead_in, id, true)) return std::nullopt;
     e.path = detail::sub_path(path, cp.length_along, total + opt.lead.overcut_mm);
     e.fallback = Fallback::centre_pierce;
-    const Contour& stored = nc(id).source.contour;
-    e.s_mm = (geometry::orientation(stored) == geometry::Orientation::cw) == clockwise
-                 ? cp.length_along
-                 : std::fmod(total - cp.length_along + total, total);
+    (void)total;
+    e.s_mm = to_path_s(id, cp.length_along, clockwise);
     return e;
   }
 };
@@ -275,15 +323,21 @@ struct EntryPlanner::Impl {
 EntryPlanner::EntryPlanner(const Nest& nest, const EntryOptions& options) : impl_(std::make_unique<Impl>(nest, options)) {}
 EntryPlanner::~EntryPlanner() = default;
 double EntryPlanner::clearance_mm() const { return impl_->clearance; }
-double EntryPlanner::contour_length(ContourId id) const { return geometry::length(impl_->nc(id).source.contour); }
+double EntryPlanner::contour_length(ContourId id) const { return impl_->length[id.index()]; }
 
 std::optional<EntryCandidate> EntryPlanner::entry_at(ContourId id, double s_mm, bool clockwise) const {
-  const Contour path = impl_->oriented(id, clockwise);
-  const double total = geometry::length(path);
-  const Contour& stored = impl_->nc(id).source.contour;
-  const bool same = (geometry::orientation(stored) == geometry::Orientation::cw) == clockwise;
-  const double s_path = same ? s_mm : std::fmod(total - s_mm + total, total);
-  return impl_->build(id, path, s_path, clockwise, false, 1.0, total);
+  return impl_->build(id, impl_->oriented(id, clockwise), impl_->to_path_s(id, s_mm, clockwise), clockwise, false, 1.0,
+                      impl_->length[id.index()]);
+}
+
+EntryPlanner::Sketch EntryPlanner::sketch_at(ContourId id, double s_mm, bool clockwise) const {
+  const EntryCandidate e = impl_->shape(id, impl_->oriented(id, clockwise), impl_->to_path_s(id, s_mm, clockwise),
+                                        clockwise, false, 1.0, impl_->length[id.index()]);
+  Sketch k;
+  k.pierce = e.pierce;
+  k.tool_off = e.lead_out.vertices.empty() ? e.point : e.lead_out.vertices.back().p;
+  k.lead_mm = geometry::length(e.lead_in) + geometry::length(e.lead_out);
+  return k;
 }
 
 std::vector<EntryCandidate> EntryPlanner::candidates(ContourId id, Diagnostics& diagnostics) const {
@@ -301,8 +355,8 @@ std::vector<EntryCandidate> EntryPlanner::candidates(ContourId id, Diagnostics& 
   };
   for (double scale : {1.0, 0.5, 0.25}) {
     for (bool cw : directions) {
-      const Contour path = impl_->oriented(id, cw);
-      const double total = geometry::length(path);
+      const Contour& path = impl_->oriented(id, cw);
+      const double total = impl_->length[id.index()];
       for (const auto& site : impl_->sites(path)) {
         if (auto e = impl_->build(id, path, site.s, cw, site.corner, scale, total)) {
           if (scale < 1.0) e->fallback = Fallback::short_lead;
@@ -317,8 +371,8 @@ std::vector<EntryCandidate> EntryPlanner::candidates(ContourId id, Diagnostics& 
       return out;
     }
   }
-  const Contour path = impl_->oriented(id, conv_cw);
-  const double total = geometry::length(path);
+  const Contour& path = impl_->oriented(id, conv_cw);
+  const double total = impl_->length[id.index()];
   if (c.role == ContourRole::hole) {
     if (auto e = impl_->centre_pierce(id, path, conv_cw, total)) {
       diag("hole " + std::to_string(id.value() + 1) + ": too small for a lead-in; pierced at its centre");

@@ -1,5 +1,6 @@
 #include <cutroute/pipeline/optimize.hpp>
 
+#include <chrono>
 #include <cmath>
 
 #include <cutroute/core/number_format.hpp>
@@ -135,6 +136,14 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     if (d.severity == Severity::error) return d;  // never cut a nest whose contours cross
   }
   const model::Nest& nest = loaded.nest;
+  using Clock = std::chrono::steady_clock;
+  auto t_mark = Clock::now();
+  nlohmann::json timing;
+  auto lap = [&](const char* phase) {
+    const auto now = Clock::now();
+    timing[phase] = std::chrono::duration<double>(now - t_mark).count();
+    t_mark = now;
+  };
   if (nest.parts.empty()) return make_error("the nest has no closed contour to cut", loaded.file);
 
   // 1. Conditions.
@@ -148,12 +157,14 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   // 2. Cut job.
   const model::CutJob job = model::make_cut_job(nest, s.entries);
   for (const auto& d : job.diagnostics) result.diagnostics.push_back(d);
+  lap("entries");
 
   // 3. Sequencing.
   cost::RouteProblemOptions rpo;
   rpo.start = s.start;
   auto rp = cost::build_route_problem(job, s.prices, rpo);
   if (!rp) return rp.error();
+  lap("problem");
   solve::SolveParams params;
   params.solver = o.solver;
   params.seed = o.seed;
@@ -161,6 +172,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   params.time_limit_s = o.time_limit_s;
   const solve::Solution sol = solve::solve(rp->problem, params, stop, progress);
   if (sol.route.empty()) return make_error("the route solver stopped before it found any route", loaded.file);
+  lap("solve");
   std::vector<model::EntryCandidate> seq;
   for (const auto* e : cost::route_entries(job, *rp, sol.route)) seq.push_back(*e);
 
@@ -171,6 +183,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     if (progress) progress({"refine", -1, {}});
     moved = refine_entries(planner, s.prices, s.start, s.start, seq, 2, stop);
   }
+  lap("refine");
 
   // 5-6. Program, frames, V_on*(n); lead types compared by the corrected objective.
   Evaluated best = evaluate(nest, seq, s, o);
@@ -199,6 +212,8 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
       }
     }
   }
+
+  lap("program");
 
   // 7. Report.
   nlohmann::json r;
@@ -232,6 +247,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   solver["threads"] = sol.stats.threads;
   solver["seed"] = o.seed;
   r["solver"] = solver;
+  r["timing_s"] = timing;  // wall times: with solver.time_s the only fields that vary run to run
   r["sequence"] = sequence_json(nest, seq);
   auto diags = nlohmann::json::array();
   for (const auto& d : loaded.diagnostics) diags.push_back(io::to_json(d));

@@ -1,5 +1,6 @@
 #include "refine.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <cutroute/geometry/contour.hpp>
@@ -14,14 +15,10 @@ geometry::Vec2 tool_off(const model::EntryCandidate& e) {
 
 namespace {
 
-double lead_price(const cost::RoutePrices& prices, const model::EntryCandidate& e) {
-  return prices.cut_price(geometry::length(e.lead_in) + geometry::length(e.lead_out));
-}
-
 double local_price(const cost::RoutePrices& prices, geometry::Vec2 prev, const std::optional<geometry::Vec2>& next,
-                   const model::EntryCandidate& e) {
-  double v = prices.rapid_price(geometry::distance(prev, e.pierce)) + lead_price(prices, e);
-  if (next) v += prices.rapid_price(geometry::distance(tool_off(e), *next));
+                   geometry::Vec2 pierce, geometry::Vec2 off, double lead_mm) {
+  double v = prices.rapid_price(geometry::distance(prev, pierce)) + prices.cut_price(lead_mm);
+  if (next) v += prices.rapid_price(geometry::distance(off, *next));
   return v;
 }
 
@@ -33,7 +30,9 @@ int refine_entries(const model::EntryPlanner& planner, const cost::RoutePrices& 
   int moved = 0;
   constexpr int kSamples = 24;
   constexpr int kGoldenSteps = 14;
+  constexpr std::size_t kValidated = 4;  // admissibility checks per contour, best sketches first
   const double phi = (std::sqrt(5.0) - 1) / 2;
+  std::vector<std::pair<double, double>> tried;  // (price, s)
   for (int pass = 0; pass < passes; ++pass) {
     bool improved = false;
     for (std::size_t k = 0; k < seq.size(); ++k) {
@@ -42,47 +41,56 @@ int refine_entries(const model::EntryPlanner& planner, const cost::RoutePrices& 
       if (cur.fallback != model::Fallback::none) continue;  // fallbacks stay where they were put
       const geometry::Vec2 prev = k == 0 ? start : tool_off(seq[k - 1]);
       const std::optional<geometry::Vec2> next = k + 1 < seq.size() ? std::optional(seq[k + 1].pierce) : park;
-      double best = local_price(prices, prev, next, cur);
-      std::optional<model::EntryCandidate> best_e;
-      double best_s = cur.s_mm;
       const double len = planner.contour_length(cur.contour);
       if (len <= 0) continue;
-      auto eval = [&](double s, std::optional<model::EntryCandidate>& out) -> double {
-        out = planner.entry_at(cur.contour, std::fmod(s + len, len), cur.clockwise);
-        return out ? local_price(prices, prev, next, *out) : 1e300;
+      const double current = local_price(prices, prev, next, cur.pierce, tool_off(cur),
+                                         geometry::length(cur.lead_in) + geometry::length(cur.lead_out));
+      tried.clear();
+      auto eval = [&](double s) {
+        s = std::fmod(std::fmod(s, len) + len, len);
+        const auto sk = planner.sketch_at(cur.contour, s, cur.clockwise);
+        const double v = local_price(prices, prev, next, sk.pierce, sk.tool_off, sk.lead_mm);
+        tried.emplace_back(v, s);
+        return v;
       };
+      double best_s = cur.s_mm, best_v = current;
       for (int i = 0; i < kSamples; ++i) {
         const double s = len * i / kSamples;
-        std::optional<model::EntryCandidate> e;
-        const double v = eval(s, e);
-        if (v < best - 1e-12) {
-          best = v;
-          best_e = std::move(e);
+        const double v = eval(s);
+        if (v < best_v) {
+          best_v = v;
           best_s = s;
         }
       }
       // Golden-section search in the bracket around the best point (sampled or current).
       double a = best_s - len / kSamples, b = best_s + len / kSamples;
       double x1 = b - phi * (b - a), x2 = a + phi * (b - a);
-      std::optional<model::EntryCandidate> e1, e2;
-      double f1 = eval(x1, e1), f2 = eval(x2, e2);
+      double f1 = eval(x1), f2 = eval(x2);
       for (int it = 0; it < kGoldenSteps; ++it) {
         if (f1 < f2) {
-          b = x2; x2 = x1; f2 = f1; e2 = std::move(e1);
+          b = x2; x2 = x1; f2 = f1;
           x1 = b - phi * (b - a);
-          f1 = eval(x1, e1);
+          f1 = eval(x1);
         } else {
-          a = x1; x1 = x2; f1 = f2; e1 = std::move(e2);
+          a = x1; x1 = x2; f1 = f2;
           x2 = a + phi * (b - a);
-          f2 = eval(x2, e2);
+          f2 = eval(x2);
         }
       }
-      if (f1 < best - 1e-12 && e1) { best = f1; best_e = std::move(e1); }
-      if (f2 < best - 1e-12 && e2) { best = f2; best_e = std::move(e2); }
-      if (best_e) {
-        cur = std::move(*best_e);
-        ++moved;
-        improved = true;
+      // Check the cheapest sketches for admissibility; keep the first one that passes.
+      std::sort(tried.begin(), tried.end());
+      for (std::size_t i = 0; i < std::min(kValidated, tried.size()); ++i) {
+        if (tried[i].first >= current - 1e-9) break;
+        if (auto e = planner.entry_at(cur.contour, tried[i].second, cur.clockwise)) {
+          const double v = local_price(prices, prev, next, e->pierce, tool_off(*e),
+                                       geometry::length(e->lead_in) + geometry::length(e->lead_out));
+          if (v < current - 1e-9) {
+            cur = std::move(*e);
+            ++moved;
+            improved = true;
+            break;
+          }
+        }
       }
     }
     if (!improved) break;

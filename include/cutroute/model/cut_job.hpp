@@ -92,6 +92,14 @@ class EntryPlanner {
   std::vector<EntryCandidate> candidates(ContourId contour, Diagnostics& diagnostics) const;
   // The entry at arc length s (of the stored contour) with the normal leads, when admissible.
   std::optional<EntryCandidate> entry_at(ContourId contour, double s_mm, bool clockwise) const;
+  // Only where that entry would pierce and end (no admissibility check, no cut path): cheap, for
+  // searches that check the winner with entry_at() afterwards.
+  struct Sketch {
+    geometry::Vec2 pierce;     // [mm]
+    geometry::Vec2 tool_off;   // end of the lead-out, else the entry point [mm]
+    double lead_mm = 0.0;      // lead-in + lead-out length [mm]
+  };
+  Sketch sketch_at(ContourId contour, double s_mm, bool clockwise) const;
   double clearance_mm() const;
   double contour_length(ContourId contour) const;  // of the stored contour [mm]
 

@@ -1,0 +1,199 @@
+#include "support/program_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include <cutroute/core/number_format.hpp>
+#include <cutroute/geometry/spatial_index.hpp>
+
+namespace cutroute::test {
+namespace {
+
+using geometry::Vec2;
+
+std::string at(const ProbeMove& m) { return "line " + std::to_string(m.line); }
+
+}  // namespace
+
+ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, const ProgramCheckOptions& opt) {
+  ProgramCheck out;
+  out.probe = probe_gcode(gcode);
+  const ProbeResult& p = out.probe;
+  for (const auto& e : p.errors) out.failures.push_back("parse: " + e);
+  if (p.cut_with_beam_off) out.failures.push_back("a feed move with the beam off");
+  if (!p.ended) out.failures.push_back("no program end (M2/M30)");
+  out.cut_length = p.cut_length;
+  out.rapid_length = p.rapid_length;
+
+  // Cut contours and an index over their boxes.
+  std::vector<const model::NestContour*> cut;
+  std::vector<int> cut_of(nest.contours.size(), -1);
+  std::vector<geometry::Box> boxes;
+  for (std::size_t i = 0; i < nest.contours.size(); ++i) {
+    const auto& c = nest.contours[model::ContourId(static_cast<std::int32_t>(i))];
+    if (c.role == model::ContourRole::sheet) continue;
+    cut_of[i] = static_cast<int>(cut.size());
+    cut.push_back(&c);
+    boxes.push_back(c.box);
+  }
+  const geometry::StaticSpatialIndex index(boxes);
+  std::vector<std::uint32_t> hits;
+
+  auto dist_to = [&](int k, Vec2 q) { return geometry::distance(cut[static_cast<std::size_t>(k)]->source.contour, q); };
+
+  // Which contour does a move lie on? (-1: none, i.e. a lead or a bridge)
+  auto contour_of = [&](const ProbeMove& m) -> int {
+    Vec2 mid;
+    probe_point(m, 0.5, mid.x, mid.y);
+    index.query(geometry::Box{mid.x, mid.y, mid.x, mid.y}.inflated(opt.on_contour_mm), hits);
+    int best = -1;
+    double best_d = 1e300;
+    for (auto h : hits) {
+      const int k = static_cast<int>(h);
+      double worst = 0;
+      for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+        Vec2 q;
+        probe_point(m, t, q.x, q.y);
+        worst = std::max(worst, dist_to(k, q));
+        if (worst > opt.on_contour_mm) break;
+      }
+      if (worst <= opt.on_contour_mm && worst < best_d) {
+        best_d = worst;
+        best = k;
+      }
+    }
+    return best;
+  };
+
+  // Scrap test for pierce points: inside an even number of cut contours.
+  auto in_material = [&](Vec2 q) {
+    index.query(geometry::Box{q.x, q.y, q.x, q.y}, hits);
+    int inside = 0;
+    for (auto h : hits) {
+      inside += geometry::locate(cut[h]->source.contour, q, 1e-9) == geometry::Location::inside;
+    }
+    return inside % 2 == 1;
+  };
+
+  std::vector<double> covered(cut.size(), 0.0);
+  std::vector<std::set<int>> runs_of(cut.size());
+  int run = -1;
+  bool beam = false;
+  // Per run: the moves in order with their contour (or -1).
+  std::vector<std::vector<std::pair<const ProbeMove*, int>>> run_moves;
+  for (const auto& m : p.moves) {
+    if (m.rapid) {
+      beam = false;
+      continue;
+    }
+    if (!m.beam_on) continue;
+    if (!beam) {
+      beam = true;
+      ++run;
+      run_moves.emplace_back();
+      const Vec2 pierce{m.x0, m.y0};
+      if (in_material(pierce)) {
+        out.failures.push_back(at(m) + ": pierce at (" + format_fixed(m.x0, 3) + ", " + format_fixed(m.y0, 3) +
+                               ") inside a part");
+      }
+    }
+    const int k = contour_of(m);
+    run_moves.back().push_back({&m, k});
+    if (k >= 0) {
+      covered[static_cast<std::size_t>(k)] += m.length;
+      runs_of[static_cast<std::size_t>(k)].insert(run);
+    }
+  }
+  // A pierce starts a run even where the probe saw the beam switched on without a move.
+  out.runs = static_cast<int>(run_moves.size());
+
+  // Every contour once, whole, in one run.
+  std::vector<int> run_of(cut.size(), -1);
+  for (std::size_t k = 0; k < cut.size(); ++k) {
+    const double len = geometry::length(cut[k]->source.contour);
+    const std::string name = "contour " + std::to_string(k + 1) + " (" + model::to_string(cut[k]->role) + ", length " +
+                             format_fixed(len, 3) + ")";
+    if (runs_of[k].empty()) {
+      out.failures.push_back(name + " is never cut");
+      continue;
+    }
+    if (runs_of[k].size() > 1) out.failures.push_back(name + " is cut in " + std::to_string(runs_of[k].size()) + " runs");
+    run_of[k] = *runs_of[k].begin();
+    // Every vertex is rounded to the dialect's resolution (1 µm), so a contour's cut length may
+    // differ from the drawing's by a few µm; a real gap would be a tenth of a kerf or more.
+    if (covered[k] < len - 0.01 - len * 1e-5) out.failures.push_back(name + " is cut only over " + format_fixed(covered[k], 3) + " mm");
+    if (covered[k] > len + opt.max_overcut_mm + 1e-3) out.failures.push_back(name + " is cut over " + format_fixed(covered[k], 3) + " mm: twice?");
+    ++out.contours_cut;
+  }
+
+  // Precedence: everything inside a contour is cut before it.
+  for (std::size_t k = 0; k < cut.size(); ++k) {
+    const auto& parent = cut[k]->parent;
+    if (!parent.valid() || run_of[k] < 0) continue;
+    const int pk = cut_of[parent.index()];
+    if (pk < 0 || run_of[static_cast<std::size_t>(pk)] < 0) continue;
+    if (run_of[k] > run_of[static_cast<std::size_t>(pk)])
+      out.failures.push_back("contour " + std::to_string(k + 1) + " is cut after the contour around it (" +
+                             std::to_string(pk + 1) + ")");
+  }
+
+  // Leads: only at the ends of a run, short, clear of other contours, not touching their own early.
+  for (const auto& moves : run_moves) {
+    std::size_t first = moves.size(), last = 0;
+    for (std::size_t i = 0; i < moves.size(); ++i) {
+      if (moves[i].second >= 0) {
+        first = std::min(first, i);
+        last = i;
+      }
+    }
+    if (first == moves.size()) {
+      out.failures.push_back(at(*moves.front().first) + ": a beam-on run that cuts no contour");
+      continue;
+    }
+    const int own = moves[first].second;
+    double lead_len = 0;
+    for (std::size_t i = 0; i < moves.size(); ++i) {
+      const auto& [m, k] = moves[i];
+      if (k >= 0) continue;
+      if (i > first && i < last) {
+        out.failures.push_back(at(*m) + ": a move off the contours in the middle of a cut");
+        continue;
+      }
+      lead_len += m->length;
+      const bool lead_in = i < first;
+      for (int s = 0; s <= 20; ++s) {
+        const double t = s / 20.0;
+        // The lead meets its contour at its end (lead-in) or its start (lead-out).
+        (void)lead_in;
+        Vec2 q;
+        probe_point(*m, t, q.x, q.y);
+        // Its own contour: a tangential lead arc grazes it near the join (within the output
+        // resolution); what it must never do is enter the part's material.
+        if (dist_to(own, q) > 0.002 && in_material(q)) {
+          out.failures.push_back(at(*m) + ": lead enters material at t=" + format_fixed(t, 2) + " (" +
+                                 format_fixed(q.x, 4) + ", " + format_fixed(q.y, 4) + ")");
+          break;
+        }
+        index.query(geometry::Box{q.x, q.y, q.x, q.y}.inflated(opt.clearance_mm), hits);
+        for (auto h : hits) {
+          const int kk = static_cast<int>(h);
+          if (kk == own) continue;
+          const double d = dist_to(kk, q);
+          if (d < opt.clearance_mm * 0.999) {
+            out.failures.push_back(at(*m) + ": lead comes " + format_fixed(d, 4) + " mm close to contour " +
+                                   std::to_string(kk + 1) + (kk == own ? " (its own)" : "") + " at t=" +
+                                   format_fixed(t, 2) + " (" + format_fixed(q.x, 4) + ", " + format_fixed(q.y, 4) + ")");
+            s = 21;
+            break;
+          }
+        }
+      }
+    }
+    if (lead_len > opt.max_lead_mm) out.failures.push_back(at(*moves.front().first) + ": leads of " + format_fixed(lead_len, 3) + " mm");
+  }
+  return out;
+}
+
+}  // namespace cutroute::test

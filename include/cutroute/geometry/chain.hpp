@@ -53,5 +53,6 @@ struct ChainResult {
 // reached by walking backwards from its lowest-index piece.
 // Cost: O(n log n) for n pieces (plus k² for k ends crowded within one snap distance).
 // snap_mm below tol::kSamePointMm (or NaN) is raised to it.
+ChainResult chain_contours(const std::vector<ChainPiece>& pieces, double snap_mm);
 
 }  // namespace cutroute::geometry

@@ -257,6 +257,20 @@ Tree build_tree(const Nest& nest, const Prepared& prep, std::optional<std::size_
   return tree;
 }
 
+// --- step 4: accept a border found by geometry alone ---
+
+// Inside a sheet there are several parts and at least one of them has a hole; inside a
+// rectangular plate there are holes, which rarely hold anything. Without the rectangle, the
+// tree `tree` must therefore have >= 2 top-level contours and some contour with a parent.
+bool looks_like_sheet(const Tree& tree) {
+  std::size_t roots = 0;
+  bool nested = false;
+  for (std::int32_t p : tree.parent) {
+    if (p >= 0) nested = true; else ++roots;
+  }
+  return nested && roots >= 3;  // the rectangle itself is a root of `tree` too (excluded, parent -1)
+}
+
 // --- step 5: depth, roles, parts ---
 
 void assign_tree(Nest& nest, const Tree& tree, std::optional<std::size_t> sheet) {
@@ -329,9 +343,8 @@ Nest build_nest(std::vector<SourceContour> contours, const NestOptions& options)
   std::optional<std::size_t> excluded;
   if (sheet) excluded = sheet->index;
   Tree tree = build_tree(nest, prep, excluded, tol_mm);
-  if (sheet && sheet->reason == SheetReason::geometry) {
-    const bool has_part_with_hole = std::any_of(tree.parent.begin(), tree.parent.end(), [](std::int32_t p) { return p >= 0; });
-    if (!has_part_with_hole) {
+  if (sheet && sheet->reason == SheetReason::geometry && !looks_like_sheet(tree)) {
+    {
       sheet.reset();
       tree = build_tree(nest, prep, std::nullopt, tol_mm);
     }

@@ -89,9 +89,12 @@ struct Nest {
 //     exact boundary test (touching within touch_tol_mm counts: error diagnostic naming both,
 //     and neither becomes the other's parent) and, when one box holds the other, one exact
 //     point-in-contour test of a vertex of the smaller. parent = the smallest container.
-//  4. a candidate found by geometry alone (no size, no layer) is accepted only when some
-//     contour inside it has a contour inside it in turn (a part with a hole): a lone
-//     rectangular plate with holes is thus a part, not a sheet. Rejected: rebuild with it.
+//  4. a candidate found by geometry alone (no size, no layer) is accepted only when it holds
+//     at least 2 top-level contours and some contour inside it has a contour inside it in turn
+//     (a part with a hole): a rectangular plate with holes, or a rectangular part with one
+//     cut-out holding a nested part, thus stays a part. Rejected: rebuild with it. (A plate
+//     with several cut-outs each holding a nested part is still taken for a sheet: give the
+//     border a layer name or set detect_sheet = false.)
 //  5. depth (sheet not counted), role by parity (even = outer, odd = hole), parts: each outer
 //     with its holes; an outer at depth >= 2 lies in a hole: inside_hole, parent_part.
 // The sheet border itself has role sheet, depth 0, no parent and no part. A contour touching

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include <cutroute/core/tolerances.hpp>
+#include <cutroute/geometry/segment_set.hpp>
 #include <cutroute/geometry/spatial_index.hpp>
 
 namespace cutroute::model {
@@ -99,7 +100,8 @@ std::uint64_t hash_cycle(const std::vector<Vertex>& cycle) {
 }
 
 struct Prepared {
-  std::vector<std::size_t> input_index;  // ContourId -> index in the caller's vector
+  std::vector<std::size_t> input_index;        // ContourId -> index in the caller's vector
+  std::vector<geometry::SegmentSet> segments;  // ContourId -> indexed segments
 };
 
 Prepared prepare(std::vector<SourceContour> contours, Nest& nest) {
@@ -141,6 +143,7 @@ Prepared prepare(std::vector<SourceContour> contours, Nest& nest) {
     kept_by_hash.emplace(h, nest.contours.size());
     cycles.push_back(std::move(cycle));
     prep.input_index.push_back(i);
+    prep.segments.push_back(geometry::make_segment_set(nc.source.contour));
     nest.contours.push_back(std::move(nc));
   }
   return prep;
@@ -232,7 +235,7 @@ Tree build_tree(const Nest& nest, const Prepared& prep, std::optional<std::size_
       if (j <= i) continue;
       const NestContour& ci = nest.contours[cid(i)];
       const NestContour& cj = nest.contours[cid(j)];
-      if (geometry::intersects(ci.source.contour, cj.source.contour, tol_mm)) {
+      if (geometry::count_close_segment_pairs(prep.segments[i], prep.segments[j], tol_mm, 1) > 0) {
         tree.crossings.push_back(diagnostic_for(Severity::error,
                                                 describe(ci.source, prep.input_index[i]) + " and " +
                                                     describe(cj.source, prep.input_index[j]) +
@@ -246,7 +249,7 @@ Tree build_tree(const Nest& nest, const Prepared& prep, std::optional<std::size_
       const NestContour& cs = nest.contours[cid(small)];
       if (!cb.box.inflated(tol_mm).contains(cs.box)) continue;
       // Boundaries are farther apart than tol, so any vertex of the smaller one decides.
-      if (geometry::locate(cb.source.contour, cs.source.contour.vertices.front().p, tol_mm) !=
+      if (geometry::locate(prep.segments[big], cs.source.contour.vertices.front().p, tol_mm) !=
           geometry::Location::inside) {
         continue;
       }

@@ -7,6 +7,8 @@
 
 #include <cutroute/core/random.hpp>
 #include <cutroute/geometry/contour.hpp>
+#include <cutroute/geometry/intersect.hpp>
+#include <cutroute/geometry/segment_set.hpp>
 #include <cutroute/geometry/shapes.hpp>
 
 namespace cutroute::geometry {
@@ -114,6 +116,31 @@ TEST(Winding, AgreesWithFinePolygonOnRandomPoints) {
     }
   }
   EXPECT_GT(checked, 10000);
+}
+
+TEST(Winding, SegmentSetAgreesWithContourVersions) {
+  std::vector<Vec2> pts;
+  Rng rng(11);
+  for (int i = 0; i < 500; ++i) {
+    const double a = 2 * kPi * i / 500, r = 8 + 2 * rng.uniform01();
+    pts.push_back({r * std::cos(a), r * std::sin(a)});
+  }
+  Contour gear = polygon(pts);
+  for (std::size_t i = 0; i < gear.vertices.size(); i += 3) gear.vertices[i].bulge = rng.uniform01() - 0.5;
+  const Contour shapes[] = {gear, circle({1, 2}, 3), Contour{{{{0, 0}, 0}, {{4, 0}, 0}, {{4, 4}, -1}, {{0, 4}, 0}}, true}};
+  for (const Contour& c : shapes) {
+    const SegmentSet set = make_segment_set(c);
+    const Box box = bounding_box(c).inflated(1);
+    for (int i = 0; i < 3000; ++i) {
+      const Vec2 p{box.xmin + rng.uniform01() * box.width(), box.ymin + rng.uniform01() * box.height()};
+      ASSERT_EQ(winding_number(set, p), winding_number(c, p));
+      ASSERT_EQ(locate(set, p, 0.01), locate(c, p, 0.01));
+    }
+    for (const Vertex& v : c.vertices) ASSERT_EQ(locate(set, v.p, 1e-9), Location::on_boundary);
+    const Contour other = circle({0.5, 0.5}, 9);
+    EXPECT_EQ(count_close_segment_pairs(set, make_segment_set(other), 1e-6, 1000),
+              count_close_segment_pairs(c, other, 1e-6, 1000));
+  }
 }
 
 TEST(Winding, OpenContourHasNoInside) {

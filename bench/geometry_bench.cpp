@@ -88,6 +88,30 @@ void BM_BuildNest2000(benchmark::State& state) {
 }
 BENCHMARK(BM_BuildNest2000)->Unit(benchmark::kMillisecond);
 
+// DRAAK-like: one outline of 6000 arc segments holding 1200 small contours (holes).
+void BM_BuildNestBigOutline(benchmark::State& state) {
+  std::vector<model::SourceContour> in;
+  geometry::Contour outline;
+  outline.closed = true;
+  const int n = 6000;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * std::numbers::pi * i / n, r = 1000 + 20 * std::sin(40 * a);
+    outline.vertices.push_back({{r * std::cos(a), r * std::sin(a)}, 0.01});
+  }
+  in.push_back({outline, "0", {}, {}, {}});
+  for (int i = 0; i < 1200; ++i) {
+    const Vec2 c{-600.0 + 35.0 * (i % 35), -600.0 + 35.0 * (i / 35)};
+    in.push_back({geometry::circle(c, 10), "0", {}, {}, {}});
+  }
+  for (auto _ : state) {
+    model::Nest nest = model::build_nest(in, model::NestOptions{});
+    if (nest.parts.size() != 1 || nest.max_depth != 1) state.SkipWithError("unexpected nest");
+    benchmark::DoNotOptimize(nest.max_depth);
+  }
+  state.counters["contours"] = static_cast<double>(in.size());
+}
+BENCHMARK(BM_BuildNestBigOutline)->Unit(benchmark::kMillisecond);
+
 void BM_SpatialIndexBuildQuery(benchmark::State& state) {
   Rng rng(3);
   std::vector<geometry::Box> boxes;

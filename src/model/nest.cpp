@@ -188,7 +188,7 @@ std::optional<SheetCandidate> find_sheet_candidate(const Nest& nest, const NestO
   }
   const NestContour& c = nest.contours[cid(largest)];
   if (!is_axis_aligned_rectangle(c)) return std::nullopt;
-  const Box outer = c.box.inflated(options.touch_tol_mm);
+  const Box outer = c.box.inflated(std::max(options.touch_tol_mm, tol::kSheetOverhangMm));
   for (std::size_t i = 0; i < nest.contours.size(); ++i) {
     if (i != largest && !outer.contains(nest.contours[cid(i)].box)) return std::nullopt;
   }
@@ -330,7 +330,8 @@ void warn_touching_sheet(Nest& nest, const Prepared& prep, std::size_t sheet, do
                          b.xmax >= inner.xmax - tol_mm || b.ymax >= inner.ymax - tol_mm;
     if (touches) {
       nest.diagnostics.push_back(diagnostic_for(
-          Severity::warning, describe(nest.contours[cid(i)].source, prep.input_index[i]) + " touches the sheet border",
+          Severity::warning,
+          describe(nest.contours[cid(i)].source, prep.input_index[i]) + " touches or crosses the sheet border",
           nest.contours[cid(i)].source));
     }
   }

@@ -165,6 +165,26 @@ TEST(Nest, SheetByLayerName) {
   }
 }
 
+TEST(Nest, PartsFlushWithOrJustOverTheBorderKeepTheSheet) {
+  // As nesting tools write them: parts flush with the border, one 0.01 mm over it.
+  std::vector<SourceContour> in{src(geometry::rectangle({0, 0, 600, 200}), "Plate H200 W600", "S"),
+                                src(geometry::rectangle({-0.01, -0.01, 150, 150}), "Elements", "A"),
+                                src(geometry::circle({300, 100}, 40), "Elements", "B"),
+                                src(geometry::rectangle({500, 100, 600, 200}), "Elements", "C")};
+  const Nest nest = build_nest(in, NestOptions{});
+  ASSERT_TRUE(nest.sheet);
+  EXPECT_EQ(nest.parts.size(), 3u);
+  EXPECT_FALSE(has_errors(nest.diagnostics));
+  ASSERT_EQ(nest.diagnostics.size(), 2u);  // A and C
+  EXPECT_EQ(nest.diagnostics[0].handle, "A");
+  EXPECT_EQ(nest.diagnostics[1].handle, "C");
+  // 1 mm over the border is not a sheet layout any more: no sheet, and the crossing is an error.
+  in[1] = src(geometry::rectangle({-1, -1, 150, 150}), "Elements", "A");
+  const Nest over = build_nest(in, NestOptions{});
+  EXPECT_FALSE(over.sheet);
+  EXPECT_TRUE(has_errors(over.diagnostics));
+}
+
 TEST(Nest, SheetByGeometryNeedsAPartWithAHole) {
   // Parts with a hole inside an enclosing rectangle on layer "0": a sheet.
   Nest nest = build_nest(parts_on_sheet("0", true), NestOptions{});

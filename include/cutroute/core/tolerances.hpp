@@ -40,4 +40,9 @@ inline constexpr double kSheetRectangleMm = 1e-3;
 // this [mm]: users type nominal sizes, drawings carry them to a few decimals.
 inline constexpr double kSheetSizeMm = 0.5;
 
+// Contours may stick out of a drawn sheet border by this much and it still counts as enclosing
+// them [mm]: nesting tools place parts flush with the border, and their 2-decimal output puts
+// some a hair outside (DeepNest: -0.01 mm).
+inline constexpr double kSheetOverhangMm = 0.1;
+
 }  // namespace cutroute::tol

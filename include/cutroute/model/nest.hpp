@@ -82,7 +82,7 @@ struct Nest {
 //     area or non-finite coordinates, and exact duplicates (the same vertex cycle, bit-exact,
 //     from any start vertex and in either direction; the first in input order stays).
 //  2. find the sheet candidate: the largest contour that is an axis-aligned rectangle whose box
-//     encloses every other contour's box and that either matches options.sheet_size or lies
+//     encloses every other contour's box (overhang up to tol::kSheetOverhangMm allowed) and that either matches options.sheet_size or lies
 //     on a layer named like sheet/plate/border/blech or is detected by geometry alone.
 //     Rotated rectangles are not recognised as borders.
 //  3. containment tree over the other contours: for every pair of overlapping boxes, one
@@ -97,8 +97,9 @@ struct Nest {
 //     border a layer name or set detect_sheet = false.)
 //  5. depth (sheet not counted), role by parity (even = outer, odd = hole), parts: each outer
 //     with its holes; an outer at depth >= 2 lies in a hole: inside_hole, parent_part.
-// The sheet border itself has role sheet, depth 0, no parent and no part. A contour touching
-// the sheet border gets a warning.
+// The sheet border itself has role sheet, depth 0, no parent and no part; it takes no part in
+// the boundary tests. A contour whose box comes within touch_tol_mm of the border (or sticks
+// out of it) gets a warning instead.
 Nest build_nest(std::vector<SourceContour> contours, const NestOptions& options);
 
 }  // namespace cutroute::model

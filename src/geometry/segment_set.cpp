@@ -72,4 +72,38 @@ std::size_t count_close_segment_pairs(const SegmentSet& a, const SegmentSet& b, 
   return found;
 }
 
+BoundaryContact boundary_contact(const SegmentSet& a, const SegmentSet& b, double tol_mm) {
+  BoundaryContact contact;
+  if (!(tol_mm >= 0.0)) tol_mm = 0.0;
+  if (!a.box.inflated(tol_mm).intersects(b.box)) return contact;
+  const bool a_small = a.segments.size() <= b.segments.size();
+  const SegmentSet& small = a_small ? a : b;
+  const SegmentSet& large = a_small ? b : a;
+  const Box large_box = large.box.inflated(tol_mm);
+  for (std::size_t i = 0; i < small.segments.size(); ++i) {
+    if (!small.boxes[i].intersects(large_box)) continue;
+    large.index.visit(small.boxes[i].inflated(tol_mm), [&](std::uint32_t j) {
+      const SegmentIntersection x = intersect(small.segments[i], large.segments[j], tol_mm);
+      if (x.kind == SegmentIntersection::Kind::points) ++contact.points;
+      if (x.kind == SegmentIntersection::Kind::overlap) ++contact.overlaps;
+      return true;
+    });
+  }
+  return contact;
+}
+
+BoundarySides boundary_sides(const SegmentSet& a, const SegmentSet& b, double tol_mm) {
+  BoundarySides sides;
+  for (const Segment& s : a.segments) {
+    // Quarter points too: an inscribed circle touches its square exactly at its vertices and
+    // half-way points.
+    for (const Vec2 p : {s.a, s.point_at(0.25), s.point_at(0.5), s.point_at(0.75)}) {
+      const Location where = locate(b, p, tol_mm);
+      if (where == Location::inside) ++sides.inside;
+      if (where == Location::outside) ++sides.outside;
+    }
+  }
+  return sides;
+}
+
 }  // namespace cutroute::geometry

@@ -235,23 +235,38 @@ Tree build_tree(const Nest& nest, const Prepared& prep, std::optional<std::size_
       if (j <= i) continue;
       const NestContour& ci = nest.contours[cid(i)];
       const NestContour& cj = nest.contours[cid(j)];
-      if (geometry::count_close_segment_pairs(prep.segments[i], prep.segments[j], tol_mm, 1) > 0) {
-        tree.crossings.push_back(diagnostic_for(Severity::error,
-                                                describe(ci.source, prep.input_index[i]) + " and " +
-                                                    describe(cj.source, prep.input_index[j]) +
-                                                    " cross, overlap or touch",
-                                                ci.source));
-        continue;
-      }
       const std::size_t big = bigger(i, j) ? i : j;
       const std::size_t small = big == i ? j : i;
       const NestContour& cb = nest.contours[cid(big)];
       const NestContour& cs = nest.contours[cid(small)];
-      if (!cb.box.inflated(tol_mm).contains(cs.box)) continue;
-      // Boundaries are farther apart than tol, so any vertex of the smaller one decides.
-      if (geometry::locate(prep.segments[big], cs.source.contour.vertices.front().p, tol_mm) !=
-          geometry::Location::inside) {
-        continue;
+      const bool box_inside = cb.box.inflated(tol_mm).contains(cs.box);
+      const geometry::BoundaryContact contact = geometry::boundary_contact(prep.segments[i], prep.segments[j], tol_mm);
+      if (contact.any()) {
+        // Boundaries meet: sample both boundaries against the other region to tell touching
+        // (each boundary on one side of the other) from crossing.
+        const geometry::BoundarySides s_in_b = geometry::boundary_sides(prep.segments[small], prep.segments[big], tol_mm);
+        const geometry::BoundarySides b_in_s = geometry::boundary_sides(prep.segments[big], prep.segments[small], tol_mm);
+        const bool crossing = (s_in_b.inside > 0 && s_in_b.outside > 0) || (b_in_s.inside > 0 && b_in_s.outside > 0);
+        const bool undecided = s_in_b.inside + s_in_b.outside == 0 || b_in_s.inside + b_in_s.outside == 0;
+        const std::string pair = describe(ci.source, prep.input_index[i]) + " and " + describe(cj.source, prep.input_index[j]);
+        if (crossing || undecided) {
+          tree.crossings.push_back(diagnostic_for(Severity::error, pair + " cross or overlap", ci.source));
+          continue;
+        }
+        if (contact.overlaps > 0) {
+          tree.crossings.push_back(diagnostic_for(Severity::error, pair + " share a boundary stretch (common edge)", ci.source));
+        } else {
+          tree.crossings.push_back(diagnostic_for(Severity::warning, pair + " touch", ci.source));
+        }
+        // Touching from inside still nests: every decisive sample of the smaller is inside.
+        if (!box_inside || s_in_b.inside == 0) continue;
+      } else {
+        if (!box_inside) continue;
+        // Boundaries are farther apart than tol, so any vertex of the smaller one decides.
+        if (geometry::locate(prep.segments[big], cs.source.contour.vertices.front().p, tol_mm) !=
+            geometry::Location::inside) {
+          continue;
+        }
       }
       const std::int32_t current = tree.parent[small];
       if (current < 0 || bigger(static_cast<std::size_t>(current), big)) tree.parent[small] = static_cast<std::int32_t>(big);

@@ -178,8 +178,8 @@ TEST(Nest, PartsFlushWithOrJustOverTheBorderKeepTheSheet) {
   ASSERT_EQ(nest.diagnostics.size(), 2u);  // A and C
   EXPECT_EQ(nest.diagnostics[0].handle, "A");
   EXPECT_EQ(nest.diagnostics[1].handle, "C");
-  // 1 mm over the border is not a sheet layout any more: no sheet, and the crossing is an error.
-  in[1] = src(geometry::rectangle({-1, -1, 150, 150}), "Elements", "A");
+  // 2 mm over the border is not a sheet layout any more: no sheet, and the crossing is an error.
+  in[1] = src(geometry::rectangle({-2, -2, 150, 150}), "Elements", "A");
   const Nest over = build_nest(in, NestOptions{});
   EXPECT_FALSE(over.sheet);
   EXPECT_TRUE(has_errors(over.diagnostics));
@@ -239,10 +239,31 @@ TEST(Nest, CrossingContoursDiagnosedNamingBoth) {
   EXPECT_EQ(d.line, 120);
   EXPECT_FALSE(nest.contours[find(nest, "2B")].parent.valid());
   EXPECT_EQ(nest.contours[find(nest, "3C")].parent, find(nest, "1A"));
-  // Overlapping edges (common-line cut) and touching boundaries count too.
-  const Nest shared = build_nest({src(geometry::rectangle({0, 0, 1, 1})), src(geometry::rectangle({1, 0, 2, 1}))}, NestOptions{});
-  EXPECT_EQ(shared.diagnostics.size(), 1u);
-  EXPECT_TRUE(has_errors(shared.diagnostics));
+  // A common edge (common-line cut) is an error too, naming both.
+  const Nest shared = build_nest({src(geometry::rectangle({0, 0, 1, 1}), "0", "L"), src(geometry::rectangle({1, 0.5, 2, 3}), "0", "R")},
+                                 NestOptions{});
+  ASSERT_EQ(shared.diagnostics.size(), 1u);
+  EXPECT_EQ(shared.diagnostics[0].severity, Severity::error);
+  EXPECT_NE(shared.diagnostics[0].message.find("share a boundary stretch"), std::string::npos);
+  EXPECT_NE(shared.diagnostics[0].message.find("entity R"), std::string::npos);
+}
+
+TEST(Nest, PointTouchIsAWarningAndStillNests) {
+  // Two tangent circles side by side: a warning, both stay top-level parts.
+  const Nest side = build_nest({src(geometry::circle({0, 0}, 1), "0", "A"), src(geometry::circle({2, 0}, 1), "0", "B")}, NestOptions{});
+  ASSERT_EQ(side.diagnostics.size(), 1u);
+  EXPECT_EQ(side.diagnostics[0].severity, Severity::warning);
+  EXPECT_EQ(side.parts.size(), 2u);
+  // A circle inscribed in a square touches it in 4 points and is its hole.
+  const Nest inscribed = build_nest({src(square(2), "0", "SQ"), src(geometry::circle({0, 0}, 2), "0", "IN")}, NestOptions{});
+  EXPECT_FALSE(has_errors(inscribed.diagnostics));
+  EXPECT_EQ(inscribed.contours[find(inscribed, "IN")].parent, find(inscribed, "SQ"));
+  EXPECT_EQ(inscribed.contours[find(inscribed, "IN")].role, ContourRole::hole);
+  // A circle crossing the square's corner region: error, no parent.
+  const Nest crossing = build_nest({src(square(2), "0", "SQ"), src(geometry::circle({2, 2}, 1), "0", "X")}, NestOptions{});
+  ASSERT_EQ(crossing.diagnostics.size(), 1u);
+  EXPECT_EQ(crossing.diagnostics[0].severity, Severity::error);
+  EXPECT_FALSE(crossing.contours[find(crossing, "X")].parent.valid());
 }
 
 TEST(Nest, DuplicatesAndInvalidDroppedWithErrors) {

@@ -86,9 +86,15 @@ struct Nest {
 //     on a layer named like sheet/plate/border/blech or is detected by geometry alone.
 //     Rotated rectangles are not recognised as borders.
 //  3. containment tree over the other contours: for every pair of overlapping boxes, one
-//     exact boundary test (touching within touch_tol_mm counts: error diagnostic naming both,
-//     and neither becomes the other's parent) and, when one box holds the other, one exact
+//     exact boundary test within touch_tol_mm and, when one box holds the other, one exact
 //     point-in-contour test of a vertex of the smaller. parent = the smallest container.
+//     Where the boundaries meet, both are sampled (vertices, segment quarter points) against the
+//     other region, and every diagnostic names both contours:
+//       crossing (samples on both sides), or all samples on the other boundary: error
+//       "cross or overlap", and neither becomes the other's parent;
+//       touching with a common stretch (shared edge): error "share a boundary stretch";
+//       touching in points only (tangent, corner on edge): warning "touch".
+//     Touching contours still nest when the smaller one's samples lie inside the bigger.
 //  4. a candidate found by geometry alone (no size, no layer) is accepted only when it holds
 //     at least 2 top-level contours and some contour inside it has a contour inside it in turn
 //     (a part with a hole): a rectangular plate with holes, or a rectangular part with one

@@ -157,6 +157,20 @@ TEST(Chain, NearestPartnerWinsAndGroupsStayApart) {
   EXPECT_EQ(chain_contours(grouped, 0.01).open.size(), 2u);
 }
 
+TEST(Chain, FanOfLinesFromOnePointStaysFastAndPairsUp) {
+  // 3000 spokes from the origin: 3000 ends within one snap circle. Each pair of spokes can join
+  // at the centre; every end finds a partner, nothing closes (spokes' outer ends are apart).
+  std::vector<ChainPiece> pieces;
+  for (int i = 0; i < 3000; ++i) {
+    const double a = 2 * kPi * i / 3000;
+    pieces.push_back(line({0, 0}, {100 * std::cos(a), 100 * std::sin(a)}, i));
+  }
+  const ChainResult r = chain_contours(pieces, 0.01);
+  EXPECT_TRUE(r.closed.empty());
+  EXPECT_EQ(r.open.size(), 1500u);
+  for (const ChainedContour& c : r.open) EXPECT_EQ(c.sources.size(), 2u);
+}
+
 TEST(Chain, NonFiniteAndNoPieces) {
   EXPECT_TRUE(chain_contours({}, 0.01).closed.empty());
   std::vector<ChainPiece> pieces{line({0, 0}, {std::nan(""), 0}), line({0, 0}, {1e300, 1e300})};

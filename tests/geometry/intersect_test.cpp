@@ -3,6 +3,9 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
+
+#include <cutroute/core/random.hpp>
 
 #include <cutroute/geometry/arc.hpp>
 #include <cutroute/geometry/intersect.hpp>
@@ -108,6 +111,42 @@ TEST(SegmentDistance, InteriorMinimaOfLineArcAndArcArc) {
   EXPECT_NEAR(distance(Segment{{1, 0}, {-1, 0}, -1}, Segment{{3, 0}, {5, 0}, -1}), 2.0, 1e-12);
   // Concave sides facing: arcs about the same centre.
   EXPECT_NEAR(distance(top, Segment{{2, 0}, {-2, 0}, 1}), 1.0, 1e-12);
+}
+
+// Brute-force truth for distance(): the closest pair among dense samples of both segments is at
+// least the true distance and at most the true distance plus the sample spacing.
+TEST(SegmentDistance, AgreesWithDenseSamplingOnRandomPairs) {
+  Rng rng(77);
+  auto random_segment = [&]() {
+    const Vec2 a{rng.uniform01() * 10, rng.uniform01() * 10}, b{rng.uniform01() * 10, rng.uniform01() * 10};
+    const double kind = rng.uniform01();
+    const double bulge = kind < 0.3 ? 0.0 : (kind < 0.8 ? 2 * rng.uniform01() - 1 : (rng.chance(0.5) ? 1 : -1) * (1 + 3 * rng.uniform01()));
+    return Segment{a, b, bulge};
+  };
+  constexpr int kSamples = 400;
+  for (int trial = 0; trial < 300; ++trial) {
+    const Segment s = random_segment(), t = random_segment();
+    std::vector<Vec2> ps, pt;
+    for (int i = 0; i <= kSamples; ++i) {
+      ps.push_back(s.point_at(static_cast<double>(i) / kSamples));
+      pt.push_back(t.point_at(static_cast<double>(i) / kSamples));
+    }
+    double sampled = 1e300;
+    for (Vec2 p : ps) for (Vec2 q : pt) sampled = std::min(sampled, distance(p, q));
+    const double spacing = std::max(s.length(), t.length()) / kSamples;
+    const double exact = distance(s, t);
+    ASSERT_LE(exact, sampled + 1e-9) << trial;
+    ASSERT_GE(exact, sampled - spacing) << trial;
+    EXPECT_NEAR(distance(t, s), exact, 1e-9);
+    // Reported intersection points lie on both segments; symmetric in kind.
+    const SegmentIntersection x = intersect(s, t, kTol);
+    EXPECT_EQ(x.kind == Kind::none, intersect(t, s, kTol).kind == Kind::none) << trial;
+    EXPECT_EQ(x.kind != Kind::none, exact <= kTol) << trial;
+    for (int i = 0; i < x.count; ++i) {
+      EXPECT_LE(closest_point(s, x.points[i]).distance, 1e-6) << trial;
+      EXPECT_LE(closest_point(t, x.points[i]).distance, 1e-6) << trial;
+    }
+  }
 }
 
 TEST(ContourIntersects, TouchCrossNestAndShareEdge) {

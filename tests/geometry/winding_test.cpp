@@ -143,6 +143,25 @@ TEST(Winding, SegmentSetAgreesWithContourVersions) {
   }
 }
 
+TEST(Winding, TransformsMovePointsWithTheContour) {
+  const Contour c{{{{0, 0}, 0.4}, {{10, 0}, -0.3}, {{10, 8}, 1.8}, {{4, 6}, 0}, {{0, 8}, -0.7}}, true};
+  const Contour before = c;
+  const Vec2 shift{-313.25, 77.5};
+  const Contour moved = translated(c, shift), turned = rotated_about(c, {0, 0}, kPi), back = reversed(c);
+  Rng rng(3);
+  const Box box = bounding_box(c).inflated(1);
+  for (int i = 0; i < 3000; ++i) {
+    const Vec2 p{box.xmin + rng.uniform01() * box.width(), box.ymin + rng.uniform01() * box.height()};
+    if (distance(c, p) < 1e-6) continue;
+    const int w = winding_number(c, p);
+    ASSERT_EQ(winding_number(moved, p + shift), w);
+    ASSERT_EQ(winding_number(turned, -p), w);
+    ASSERT_EQ(winding_number(back, p), -w);
+    ASSERT_EQ(locate(moved, p + shift, 1e-9), locate(c, p, 1e-9));
+  }
+  EXPECT_EQ(c, before);
+}
+
 TEST(Winding, OpenContourHasNoInside) {
   const Contour open{{{{0, 0}, 0}, {{4, 0}, 0}, {{4, 4}, 0}}, false};
   EXPECT_EQ(winding_number(open, {3, 1}), 0);

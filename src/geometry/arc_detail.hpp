@@ -17,4 +17,8 @@ double sweep_to_angle(const Segment& s, double angle);
 // faster than the chord approximation does.
 bool nearly_straight(const Segment& s);
 
+// A box that surely holds the segment, without trigonometry: the chord's box grown by the
+// sagitta for minor arcs, the full circle's box for major arcs. For cheap rejections.
+Box coarse_box(const Segment& s);
+
 }  // namespace cutroute::geometry::detail

@@ -186,32 +186,68 @@ std::vector<std::int32_t> match_ends(const std::vector<ChainPiece>& pieces, cons
     std::uint32_t e, f;
   };
   std::vector<Candidate> cand;
-  cand.reserve(n_ends);
+  cand.reserve(2 * n_ends);
   auto may_close_alone = [&](std::size_t k) {
     const Contour& c = pieces[open[k]].path;
     return segment_count(c) >= 2 || segment(c, 0).is_arc();
   };
-  for (std::size_t e = 0; e < n_ends; ++e) {
-    const std::int64_t ix = cell_of(pos[e].x, snap), iy = cell_of(pos[e].y, snap);
-    const std::int32_t group = pieces[open[e / 2]].group;
+  // Each end offers only its kMaxPartners nearest ends: where hundreds of ends crowd into one
+  // snap circle (a fan of lines from one point) the pair list stays linear in memory; such an
+  // end can then only miss a partner that is farther than kMaxPartners others.
+  constexpr std::size_t kMaxPartners = 8;
+  const double snap2 = snap * snap;
+  // Equal distances (ends at one point) are broken by closeness in the sorted grid order, so
+  // that a crowd of coincident ends offers different partners to different ends and pairs up.
+  std::vector<std::uint32_t> rank(n_ends);
+  for (std::size_t r = 0; r < n_ends; ++r) rank[cells[r].end] = static_cast<std::uint32_t>(r);
+  struct Near {
+    Candidate c;
+    std::uint32_t rank_gap;
+  };
+  std::vector<Near> near;
+  std::vector<std::int32_t> group_of(n_ends);
+  for (std::size_t e = 0; e < n_ends; ++e) group_of[e] = pieces[open[e / 2]].group;
+  // Ends visited in grid order: the first cell of each of the 3 neighbouring columns' 3-cell
+  // windows then only moves forward, so three cursors replace binary searches (linear time,
+  // cache friendly).
+  std::size_t cursor[3] = {0, 0, 0};
+  for (std::size_t r = 0; r < n_ends; ++r) {
+    const std::size_t e = cells[r].end;
+    const std::int64_t ix = cells[r].ix, iy = cells[r].iy;
+    const std::int32_t group = group_of[e];
+    near.clear();
     for (std::int64_t dx = -1; dx <= 1; ++dx) {
-      const Cell lo{ix + dx, iy - 1, 0};
-      auto it = std::lower_bound(cells.begin(), cells.end(), lo, [](const Cell& a, const Cell& b) {
-        return std::tie(a.ix, a.iy) < std::tie(b.ix, b.iy);
-      });
-      for (; it != cells.end() && it->ix == ix + dx && it->iy <= iy + 1; ++it) {
-        const std::uint32_t f = it->end;
-        if (f <= e) continue;  // each pair once
-        if (pieces[open[f / 2]].group != group) continue;
+      std::size_t& k = cursor[dx + 1];
+      const std::int64_t want_x = ix + dx, want_y = iy - 1;
+      while (k < n_ends && (cells[k].ix < want_x || (cells[k].ix == want_x && cells[k].iy < want_y))) ++k;
+      for (std::size_t it = k; it < n_ends && cells[it].ix == ix + dx && cells[it].iy <= iy + 1; ++it) {
+        const std::uint32_t f = cells[it].end;
+        if (f == e) continue;
+        if (group_of[f] != group) continue;
         if (f / 2 == e / 2 && !may_close_alone(e / 2)) continue;
-        const double d = distance(pos[e], pos[f]);
-        if (d <= snap) cand.push_back({d, static_cast<std::uint32_t>(e), f});
+        const double d2 = norm2(pos[f] - pos[e]);
+        if (!(d2 <= snap2)) continue;
+        const double d = std::sqrt(d2);
+        const std::uint32_t gap = rank[f] > rank[e] ? rank[f] - rank[e] : rank[e] - rank[f];
+        near.push_back({{d, static_cast<std::uint32_t>(std::min<std::size_t>(e, f)),
+                         static_cast<std::uint32_t>(std::max<std::size_t>(e, f))},
+                        gap});
       }
     }
+    if (near.size() > kMaxPartners) {
+      std::partial_sort(near.begin(), near.begin() + kMaxPartners, near.end(), [](const Near& a, const Near& b) {
+        return std::tie(a.c.dist, a.rank_gap, a.c.e, a.c.f) < std::tie(b.c.dist, b.rank_gap, b.c.e, b.c.f);
+      });
+      near.resize(kMaxPartners);
+    }
+    for (const Near& n : near) cand.push_back(n.c);
   }
   std::sort(cand.begin(), cand.end(), [](const Candidate& a, const Candidate& b) {
     return std::tie(a.dist, a.e, a.f) < std::tie(b.dist, b.e, b.f);
   });
+  // Both ends of a pair usually offer it.
+  cand.erase(std::unique(cand.begin(), cand.end(), [](const Candidate& a, const Candidate& b) { return a.e == b.e && a.f == b.f; }),
+             cand.end());
   std::vector<std::int32_t> partner(n_ends, kNone);
   for (const Candidate& c : cand) {
     if (partner[c.e] != kNone || partner[c.f] != kNone) continue;

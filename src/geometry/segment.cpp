@@ -80,6 +80,19 @@ bool nearly_straight(const Segment& s) {
   return !s.is_arc() || norm(s.b - s.a) * std::abs(sanitize_bulge(s.bulge)) / 2.0 <= tol::kCollinearMm;
 }
 
+Box coarse_box(const Segment& s) {
+  Box box;
+  box.add(s.a);
+  box.add(s.b);
+  if (!s.is_arc()) return box;
+  const double beta = std::abs(sanitize_bulge(s.bulge));
+  if (beta <= 1.0) return box.inflated(norm(s.b - s.a) * beta / 2.0);
+  const Vec2 c = s.center();
+  const double r = s.radius();
+  box.add(Box{c.x - r, c.y - r, c.x + r, c.y + r});
+  return box;
+}
+
 }  // namespace detail
 
 Box Segment::bounding_box() const {

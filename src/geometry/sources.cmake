@@ -3,6 +3,7 @@ set(CUTROUTE_GEOMETRY_SOURCES
   contour.cpp
   intersect.cpp
   segment.cpp
+  segment_set.cpp
   shapes.cpp
   spatial_index.cpp
   winding.cpp

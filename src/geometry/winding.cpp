@@ -14,6 +14,9 @@
 #include <cutroute/geometry/arc.hpp>
 #include <cutroute/geometry/intersect.hpp>
 
+#include "geometry/arc_detail.hpp"
+#include "geometry/winding_detail.hpp"
+
 namespace cutroute::geometry {
 
 namespace {
@@ -33,28 +36,36 @@ int perturbed_side(Vec2 a, Vec2 b, Vec2 p) {
 
 }  // namespace
 
+namespace detail {
+
+int winding_contribution(Vec2 a, Vec2 b, double bulge, Vec2 p) {
+  int w = 0;
+  // Chord: half-open crossing rule in y (≡ p.y + δ) and "strictly left / right" in x;
+  // a point exactly on the chord counts as right of it (≡ p.x + ε).
+  if (a.y <= p.y) {
+    if (b.y > p.y && perturbed_side(a, b, p) > 0) ++w;
+  } else if (b.y <= p.y && perturbed_side(a, b, p) < 0) {
+    --w;
+  }
+  const Segment s{a, b, bulge};
+  if (!s.is_arc()) return w;
+  const double beta = sanitize_bulge(bulge);
+  // Arc side: a counter-clockwise arc bulges to the right of its chord.
+  const int side = perturbed_side(a, b, p);
+  const bool arc_side = beta > 0 ? side < 0 : side > 0;
+  if (arc_side && arc_disk_side(a, b, beta, p) < 0) w += beta > 0 ? 1 : -1;
+  return w;
+}
+
+}  // namespace detail
+
 int winding_number(const Contour& c, Vec2 p) {
   if (!c.closed) return 0;
   const std::size_t n = c.vertices.size();
   int w = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const Vertex& va = c.vertices[i];
-    const Vec2 a = va.p;
-    const Vec2 b = c.vertices[(i + 1) % n].p;
-    // Chord: half-open crossing rule in y (≡ p.y + δ) and "strictly left / right" in x;
-    // a point exactly on the chord counts as right of it (≡ p.x + ε).
-    if (a.y <= p.y) {
-      if (b.y > p.y && perturbed_side(a, b, p) > 0) ++w;
-    } else if (b.y <= p.y && perturbed_side(a, b, p) < 0) {
-      --w;
-    }
-    const Segment s{a, b, va.bulge};
-    if (!s.is_arc()) continue;
-    const double beta = sanitize_bulge(va.bulge);
-    // Arc side: a counter-clockwise arc bulges to the right of its chord.
-    const int side = perturbed_side(a, b, p);
-    const bool arc_side = beta > 0 ? side < 0 : side > 0;
-    if (arc_side && arc_disk_side(a, b, beta, p) < 0) w += beta > 0 ? 1 : -1;
+    w += detail::winding_contribution(va.p, c.vertices[(i + 1) % n].p, va.bulge, p);
   }
   return w;
 }
@@ -65,7 +76,7 @@ Location locate(const Contour& c, Vec2 p, double on_tol_mm) {
   const std::size_t n = segment_count(c);
   for (std::size_t i = 0; i < n; ++i) {
     const Segment s = segment(c, i);
-    if (!s.bounding_box().inflated(on_tol_mm).contains(p)) continue;
+    if (!detail::coarse_box(s).inflated(on_tol_mm).contains(p)) continue;
     if (closest_point(s, p).distance <= on_tol_mm) {
       return Location::on_boundary;
     }

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include <cutroute/core/tolerances.hpp>
+#include <cutroute/geometry/segment_set.hpp>
 #include <cutroute/geometry/spatial_index.hpp>
 
 namespace cutroute::model {
@@ -99,7 +100,8 @@ std::uint64_t hash_cycle(const std::vector<Vertex>& cycle) {
 }
 
 struct Prepared {
-  std::vector<std::size_t> input_index;  // ContourId -> index in the caller's vector
+  std::vector<std::size_t> input_index;        // ContourId -> index in the caller's vector
+  std::vector<geometry::SegmentSet> segments;  // ContourId -> indexed segments
 };
 
 Prepared prepare(std::vector<SourceContour> contours, Nest& nest) {
@@ -141,6 +143,7 @@ Prepared prepare(std::vector<SourceContour> contours, Nest& nest) {
     kept_by_hash.emplace(h, nest.contours.size());
     cycles.push_back(std::move(cycle));
     prep.input_index.push_back(i);
+    prep.segments.push_back(geometry::make_segment_set(nc.source.contour));
     nest.contours.push_back(std::move(nc));
   }
   return prep;
@@ -185,7 +188,7 @@ std::optional<SheetCandidate> find_sheet_candidate(const Nest& nest, const NestO
   }
   const NestContour& c = nest.contours[cid(largest)];
   if (!is_axis_aligned_rectangle(c)) return std::nullopt;
-  const Box outer = c.box.inflated(options.touch_tol_mm);
+  const Box outer = c.box.inflated(std::max(options.touch_tol_mm, tol::kSheetOverhangMm));
   for (std::size_t i = 0; i < nest.contours.size(); ++i) {
     if (i != largest && !outer.contains(nest.contours[cid(i)].box)) return std::nullopt;
   }
@@ -232,29 +235,58 @@ Tree build_tree(const Nest& nest, const Prepared& prep, std::optional<std::size_
       if (j <= i) continue;
       const NestContour& ci = nest.contours[cid(i)];
       const NestContour& cj = nest.contours[cid(j)];
-      if (geometry::intersects(ci.source.contour, cj.source.contour, tol_mm)) {
-        tree.crossings.push_back(diagnostic_for(Severity::error,
-                                                describe(ci.source, prep.input_index[i]) + " and " +
-                                                    describe(cj.source, prep.input_index[j]) +
-                                                    " cross, overlap or touch",
-                                                ci.source));
-        continue;
-      }
       const std::size_t big = bigger(i, j) ? i : j;
       const std::size_t small = big == i ? j : i;
       const NestContour& cb = nest.contours[cid(big)];
       const NestContour& cs = nest.contours[cid(small)];
-      if (!cb.box.inflated(tol_mm).contains(cs.box)) continue;
-      // Boundaries are farther apart than tol, so any vertex of the smaller one decides.
-      if (geometry::locate(cb.source.contour, cs.source.contour.vertices.front().p, tol_mm) !=
-          geometry::Location::inside) {
-        continue;
+      const bool box_inside = cb.box.inflated(tol_mm).contains(cs.box);
+      const geometry::BoundaryContact contact = geometry::boundary_contact(prep.segments[i], prep.segments[j], tol_mm);
+      if (contact.any()) {
+        // Boundaries meet: sample both boundaries against the other region to tell touching
+        // (each boundary on one side of the other) from crossing.
+        const geometry::BoundarySides s_in_b = geometry::boundary_sides(prep.segments[small], prep.segments[big], tol_mm);
+        const geometry::BoundarySides b_in_s = geometry::boundary_sides(prep.segments[big], prep.segments[small], tol_mm);
+        const bool crossing = (s_in_b.inside > 0 && s_in_b.outside > 0) || (b_in_s.inside > 0 && b_in_s.outside > 0);
+        const bool undecided = s_in_b.inside + s_in_b.outside == 0 || b_in_s.inside + b_in_s.outside == 0;
+        const std::string pair = describe(ci.source, prep.input_index[i]) + " and " + describe(cj.source, prep.input_index[j]);
+        if (crossing || undecided) {
+          tree.crossings.push_back(diagnostic_for(Severity::error, pair + " cross or overlap", ci.source));
+          continue;
+        }
+        if (contact.overlaps > 0) {
+          tree.crossings.push_back(diagnostic_for(Severity::error, pair + " share a boundary stretch (common edge)", ci.source));
+        } else {
+          tree.crossings.push_back(diagnostic_for(Severity::warning, pair + " touch", ci.source));
+        }
+        // Touching from inside still nests: every decisive sample of the smaller is inside.
+        if (!box_inside || s_in_b.inside == 0) continue;
+      } else {
+        if (!box_inside) continue;
+        // Boundaries are farther apart than tol, so any vertex of the smaller one decides.
+        if (geometry::locate(prep.segments[big], cs.source.contour.vertices.front().p, tol_mm) !=
+            geometry::Location::inside) {
+          continue;
+        }
       }
       const std::int32_t current = tree.parent[small];
       if (current < 0 || bigger(static_cast<std::size_t>(current), big)) tree.parent[small] = static_cast<std::int32_t>(big);
     }
   }
   return tree;
+}
+
+// --- step 4: accept a border found by geometry alone ---
+
+// Inside a sheet there are several parts and at least one of them has a hole; inside a
+// rectangular plate there are holes, which rarely hold anything. Without the rectangle, the
+// tree `tree` must therefore have >= 2 top-level contours and some contour with a parent.
+bool looks_like_sheet(const Tree& tree) {
+  std::size_t roots = 0;
+  bool nested = false;
+  for (std::int32_t p : tree.parent) {
+    if (p >= 0) nested = true; else ++roots;
+  }
+  return nested && roots >= 3;  // the rectangle itself is a root of `tree` too (excluded, parent -1)
 }
 
 // --- step 5: depth, roles, parts ---
@@ -313,7 +345,8 @@ void warn_touching_sheet(Nest& nest, const Prepared& prep, std::size_t sheet, do
                          b.xmax >= inner.xmax - tol_mm || b.ymax >= inner.ymax - tol_mm;
     if (touches) {
       nest.diagnostics.push_back(diagnostic_for(
-          Severity::warning, describe(nest.contours[cid(i)].source, prep.input_index[i]) + " touches the sheet border",
+          Severity::warning,
+          describe(nest.contours[cid(i)].source, prep.input_index[i]) + " touches or crosses the sheet border",
           nest.contours[cid(i)].source));
     }
   }
@@ -329,9 +362,8 @@ Nest build_nest(std::vector<SourceContour> contours, const NestOptions& options)
   std::optional<std::size_t> excluded;
   if (sheet) excluded = sheet->index;
   Tree tree = build_tree(nest, prep, excluded, tol_mm);
-  if (sheet && sheet->reason == SheetReason::geometry) {
-    const bool has_part_with_hole = std::any_of(tree.parent.begin(), tree.parent.end(), [](std::int32_t p) { return p >= 0; });
-    if (!has_part_with_hole) {
+  if (sheet && sheet->reason == SheetReason::geometry && !looks_like_sheet(tree)) {
+    {
       sheet.reset();
       tree = build_tree(nest, prep, std::nullopt, tol_mm);
     }

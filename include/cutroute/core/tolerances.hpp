@@ -40,6 +40,12 @@ inline constexpr double kSheetRectangleMm = 1e-3;
 // this [mm]: users type nominal sizes, drawings carry them to a few decimals.
 inline constexpr double kSheetSizeMm = 0.5;
 
+// Contours may stick out of a drawn sheet border by this much and it still counts as enclosing
+// them [mm]: nesting tools place parts flush with the border and some end up a hair outside
+// (DeepNest's ReadMeExampleSmall: one part 0.12 mm over its plate). Each such contour gets a
+// warning; well below any real clearance between parts and sheet edge (~5 mm).
+inline constexpr double kSheetOverhangMm = 0.5;
+
 }  // namespace cutroute::tol
 
 namespace cutroute::tol {

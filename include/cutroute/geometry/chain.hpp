@@ -51,7 +51,8 @@ struct ChainResult {
 // Output is deterministic: contours in input order of their first piece; a cycle starts at its
 // lowest-index piece, travelled in that piece's direction; an open chain starts at its free end
 // reached by walking backwards from its lowest-index piece.
-// Cost: O(n log n) for n pieces (plus k² for k ends crowded within one snap distance).
+// Cost: O(n log n) for n pieces (plus k² distance checks, not memory, for k ends crowded
+// within one snap distance: each end offers only its 8 nearest partners).
 // snap_mm below tol::kSamePointMm (or NaN) is raised to it.
 ChainResult chain_contours(const std::vector<ChainPiece>& pieces, double snap_mm);
 

@@ -12,6 +12,11 @@ namespace cutroute::geometry {
 // One vertex and the segment that leaves it. bulge = tan(sweep / 4) of the arc from this
 // vertex to the next (DXF convention): 0 = straight line, > 0 counter-clockwise arc,
 // < 0 clockwise arc, ±1 = half circle. |bulge| <= 1e9 (a full circle is two half arcs).
+// Seen along the chord from this vertex to the next, a counter-clockwise arc bulges to the
+// right and a clockwise one to the left; |bulge| < 1 is the minor arc, > 1 the major one.
+// Radius, centre and length in terms of chord and bulge: geometry/arc.hpp. Below
+// tol::kStraightBulge a bulge is a straight line; NaN reads as 0 and larger magnitudes (or ±inf)
+// as ±1e9, so no function here returns NaN for finite coordinates.
 struct Vertex {
   Vec2 p;               // [mm]
   double bulge = 0.0;   // [1]
@@ -56,7 +61,8 @@ Box bounding_box(const Contour& c);             // exact, arc extremes included
 
 Contour reversed(const Contour& c);             // same geometry, opposite direction
 
-// Arc-length parametrisation. s is clamped to [0, length]; on a closed contour s wraps.
+// Arc-length parametrisation. s is clamped to [0, length]; on a closed contour s wraps
+// (negative s counts back from the end). closest_point() takes the first segment on ties.
 Vec2 point_at_length(const Contour& c, double s);
 struct ClosestPoint {
   Vec2 point;                 // closest point on the contour [mm]
@@ -68,16 +74,25 @@ ClosestPoint closest_point(const Contour& c, Vec2 p);
 inline double length_at_point(const Contour& c, Vec2 p) { return closest_point(c, p).length_along; }
 inline double distance(const Contour& c, Vec2 p) { return closest_point(c, p).distance; }
 
-// Exact point-in-contour with arcs (winding number), for closed contours.
+// Exact point-in-contour with arcs (winding number), for closed contours; no flattening
+// (winding.cpp explains the chord-polygon-plus-circular-segments method). winding_number() is
+// +1 inside a counter-clockwise contour, -1 inside a clockwise one, 0 for open contours; its
+// value for a point exactly on the boundary is unspecified. locate() first asks whether p is
+// within on_tol_mm of the boundary, then uses the non-zero rule. Cost O(segments); for many
+// queries against one contour see geometry/segment_set.hpp.
 enum class Location { outside, inside, on_boundary };
 Location locate(const Contour& c, Vec2 p, double on_tol_mm);
 int winding_number(const Contour& c, Vec2 p);
 
-// Do the boundaries of a and b touch or cross (within tol_mm)? Exact with arcs.
+// Do the boundaries of a and b touch or cross (within tol_mm)? Exact with arcs (segment
+// intersections in geometry/intersect.hpp). One contour inside the other without touching is
+// NOT an intersection: combine with locate() for containment.
 bool intersects(const Contour& a, const Contour& b, double tol_mm);
 
-// A polygon approximating the contour within chord_tol_mm (arcs split into chords).
-// For closed contours the first point is not repeated.
+// A polygon approximating the contour within chord_tol_mm (arcs split into equal chords whose
+// sagitta is at most the tolerance; at most 65536 chords per arc). Every vertex of the contour
+// is kept. For closed contours the first point is not repeated. A tolerance <= 0 or NaN means
+// tol::kArcChordMm.
 std::vector<Vec2> flatten(const Contour& c, double chord_tol_mm);
 
 }  // namespace cutroute::geometry

@@ -82,20 +82,30 @@ struct Nest {
 //     area or non-finite coordinates, and exact duplicates (the same vertex cycle, bit-exact,
 //     from any start vertex and in either direction; the first in input order stays).
 //  2. find the sheet candidate: the largest contour that is an axis-aligned rectangle whose box
-//     encloses every other contour's box and that either matches options.sheet_size or lies
+//     encloses every other contour's box (overhang up to tol::kSheetOverhangMm allowed) and that either matches options.sheet_size or lies
 //     on a layer named like sheet/plate/border/blech or is detected by geometry alone.
 //     Rotated rectangles are not recognised as borders.
 //  3. containment tree over the other contours: for every pair of overlapping boxes, one
-//     exact boundary test (touching within touch_tol_mm counts: error diagnostic naming both,
-//     and neither becomes the other's parent) and, when one box holds the other, one exact
+//     exact boundary test within touch_tol_mm and, when one box holds the other, one exact
 //     point-in-contour test of a vertex of the smaller. parent = the smallest container.
-//  4. a candidate found by geometry alone (no size, no layer) is accepted only when some
-//     contour inside it has a contour inside it in turn (a part with a hole): a lone
-//     rectangular plate with holes is thus a part, not a sheet. Rejected: rebuild with it.
+//     Where the boundaries meet, both are sampled (vertices, segment quarter points) against the
+//     other region, and every diagnostic names both contours:
+//       crossing (samples on both sides), or all samples on the other boundary: error
+//       "cross or overlap", and neither becomes the other's parent;
+//       touching with a common stretch (shared edge): error "share a boundary stretch";
+//       touching in points only (tangent, corner on edge): warning "touch".
+//     Touching contours still nest when the smaller one's samples lie inside the bigger.
+//  4. a candidate found by geometry alone (no size, no layer) is accepted only when it holds
+//     at least 2 top-level contours and some contour inside it has a contour inside it in turn
+//     (a part with a hole): a rectangular plate with holes, or a rectangular part with one
+//     cut-out holding a nested part, thus stays a part. Rejected: rebuild with it. (A plate
+//     with several cut-outs each holding a nested part is still taken for a sheet: give the
+//     border a layer name or set detect_sheet = false.)
 //  5. depth (sheet not counted), role by parity (even = outer, odd = hole), parts: each outer
 //     with its holes; an outer at depth >= 2 lies in a hole: inside_hole, parent_part.
-// The sheet border itself has role sheet, depth 0, no parent and no part. A contour touching
-// the sheet border gets a warning.
+// The sheet border itself has role sheet, depth 0, no parent and no part; it takes no part in
+// the boundary tests. A contour whose box comes within touch_tol_mm of the border (or sticks
+// out of it) gets a warning instead.
 Nest build_nest(std::vector<SourceContour> contours, const NestOptions& options);
 
 }  // namespace cutroute::model

@@ -1,0 +1,109 @@
+// SegmentSet: indexed segments of one contour; winding, location and boundary tests through the index.
+#include <cutroute/geometry/segment_set.hpp>
+
+#include <limits>
+
+#include <cutroute/geometry/intersect.hpp>
+
+#include "geometry/winding_detail.hpp"
+
+namespace cutroute::geometry {
+
+SegmentSet make_segment_set(const Contour& c) {
+  SegmentSet s;
+  s.closed = c.closed;
+  const std::size_t n = segment_count(c);
+  s.segments.reserve(n);
+  s.boxes.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    s.segments.push_back(segment(c, i));
+    s.boxes.push_back(s.segments.back().bounding_box());
+    s.box.add(s.boxes.back());
+  }
+  s.index = StaticSpatialIndex(s.boxes);
+  return s;
+}
+
+int winding_number(const SegmentSet& s, Vec2 p) {
+  if (!s.closed) return 0;
+  // Only segments reaching the ray from p towards +x can contribute: a chord crossing it, or an
+  // arc whose circular segment holds p (and so whose box holds p).
+  const Box ray{p.x, p.y, std::numeric_limits<double>::infinity(), p.y};
+  int w = 0;
+  s.index.visit(ray, [&](std::uint32_t i) {
+    const Segment& seg = s.segments[i];
+    w += detail::winding_contribution(seg.a, seg.b, seg.bulge, p);
+    return true;
+  });
+  return w;
+}
+
+Location locate(const SegmentSet& s, Vec2 p, double on_tol_mm) {
+  if (!(on_tol_mm >= 0.0)) on_tol_mm = 0.0;
+  bool on = false;
+  s.index.visit(Box{p.x, p.y, p.x, p.y}.inflated(on_tol_mm), [&](std::uint32_t i) {
+    on = closest_point(s.segments[i], p).distance <= on_tol_mm;
+    return !on;
+  });
+  if (on) return Location::on_boundary;
+  return winding_number(s, p) != 0 ? Location::inside : Location::outside;
+}
+
+std::size_t count_close_segment_pairs(const SegmentSet& a, const SegmentSet& b, double tol_mm, std::size_t limit) {
+  if (limit == 0) return 0;
+  if (!(tol_mm >= 0.0)) tol_mm = 0.0;
+  if (!a.box.inflated(tol_mm).intersects(b.box)) return 0;
+  // Walk the smaller set, query the larger one's index.
+  const bool a_small = a.segments.size() <= b.segments.size();
+  const SegmentSet& small = a_small ? a : b;
+  const SegmentSet& large = a_small ? b : a;
+  const Box large_box = large.box.inflated(tol_mm);
+  std::size_t found = 0;
+  for (std::size_t i = 0; i < small.segments.size(); ++i) {
+    if (!small.boxes[i].intersects(large_box)) continue;
+    large.index.visit(small.boxes[i].inflated(tol_mm), [&](std::uint32_t j) {
+      const Segment& sa = a_small ? small.segments[i] : large.segments[j];
+      const Segment& sb = a_small ? large.segments[j] : small.segments[i];
+      if (intersect(sa, sb, tol_mm).kind != SegmentIntersection::Kind::none) ++found;
+      return found < limit;
+    });
+    if (found >= limit) break;
+  }
+  return found;
+}
+
+BoundaryContact boundary_contact(const SegmentSet& a, const SegmentSet& b, double tol_mm) {
+  BoundaryContact contact;
+  if (!(tol_mm >= 0.0)) tol_mm = 0.0;
+  if (!a.box.inflated(tol_mm).intersects(b.box)) return contact;
+  const bool a_small = a.segments.size() <= b.segments.size();
+  const SegmentSet& small = a_small ? a : b;
+  const SegmentSet& large = a_small ? b : a;
+  const Box large_box = large.box.inflated(tol_mm);
+  for (std::size_t i = 0; i < small.segments.size(); ++i) {
+    if (!small.boxes[i].intersects(large_box)) continue;
+    large.index.visit(small.boxes[i].inflated(tol_mm), [&](std::uint32_t j) {
+      const SegmentIntersection x = intersect(small.segments[i], large.segments[j], tol_mm);
+      if (x.kind == SegmentIntersection::Kind::points) ++contact.points;
+      if (x.kind == SegmentIntersection::Kind::overlap) ++contact.overlaps;
+      return true;
+    });
+  }
+  return contact;
+}
+
+BoundarySides boundary_sides(const SegmentSet& a, const SegmentSet& b, double tol_mm) {
+  BoundarySides sides;
+  for (const Segment& s : a.segments) {
+    // Quarter points too: an inscribed circle touches its square exactly at its vertices and
+    // half-way points.
+    for (const Vec2 p : {s.a, s.point_at(0.25), s.point_at(0.5), s.point_at(0.75)}) {
+      const Location where = locate(b, p, tol_mm);
+      if (where == Location::inside) ++sides.inside;
+      if (where == Location::outside) ++sides.outside;
+    }
+  }
+  return sides;
+}
+
+}  // namespace cutroute::geometry

@@ -1,0 +1,183 @@
+// chain_contours(): shuffled and reversed pieces reproduce the polygons; drops and leftovers.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include <cutroute/core/random.hpp>
+#include <cutroute/geometry/chain.hpp>
+#include <cutroute/geometry/shapes.hpp>
+
+namespace cutroute::geometry {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+ChainPiece line(Vec2 a, Vec2 b, std::int32_t source = -1) { return {Contour{{{a, 0}, {b, 0}}, false}, source, 0}; }
+
+// A star-shaped polygon of n edges around c (radius varies, so every polygon is different).
+std::vector<Vec2> star(Rng& rng, Vec2 c, int n) {
+  std::vector<Vec2> pts;
+  for (int i = 0; i < n; ++i) {
+    const double ang = 2 * kPi * i / n, r = 3 + 2 * rng.uniform01();
+    pts.push_back(c + Vec2{std::cos(ang), std::sin(ang)} * r);
+  }
+  return pts;
+}
+
+TEST(Chain, ShuffledReversedLinesReproducePolygons) {
+  Rng rng(2024);
+  const int polys = 60, edges = 25;
+  std::vector<std::vector<Vec2>> originals;
+  std::vector<ChainPiece> pieces;
+  for (int p = 0; p < polys; ++p) {
+    originals.push_back(star(rng, {12.0 * (p % 10), 12.0 * (p / 10)}, edges));
+    const auto& pts = originals.back();
+    for (int i = 0; i < edges; ++i) {
+      ChainPiece piece = line(pts[i], pts[(i + 1) % edges], p * edges + i);
+      if (rng.chance(0.5)) piece.path = reversed(piece.path);
+      pieces.push_back(piece);
+    }
+  }
+  rng.shuffle(pieces.begin(), pieces.end());
+  const std::vector<ChainPiece> before = pieces;
+  const ChainResult r = chain_contours(pieces, 0.01);
+  ASSERT_EQ(r.closed.size(), static_cast<std::size_t>(polys));
+  EXPECT_TRUE(r.open.empty());
+  EXPECT_EQ(r.dropped_duplicates, 0u);
+  EXPECT_EQ(r.dropped_zero_length, 0u);
+  for (std::size_t i = 0; i < pieces.size(); ++i) ASSERT_EQ(pieces[i].path, before[i].path) << "input modified";
+  std::vector<int> seen(polys, 0);
+  for (const ChainedContour& c : r.closed) {
+    ASSERT_EQ(c.sources.size(), static_cast<std::size_t>(edges));
+    const int p = c.sources.front() / edges;
+    ++seen[p];
+    for (std::int32_t s : c.sources) EXPECT_EQ(s / edges, p) << "pieces of two polygons mixed";
+    const Contour truth = polygon(originals[p]);
+    EXPECT_NEAR(std::abs(signed_area(c.contour)), signed_area(truth), 1e-9);
+    EXPECT_NEAR(length(c.contour), length(truth), 1e-9);
+    ASSERT_EQ(c.contour.vertices.size(), static_cast<std::size_t>(edges));
+    for (const Vertex& v : c.contour.vertices) {
+      EXPECT_NE(std::find(originals[p].begin(), originals[p].end(), v.p), originals[p].end());
+    }
+  }
+  for (int p = 0; p < polys; ++p) EXPECT_EQ(seen[p], 1);
+  // Same input, same output (determinism).
+  const ChainResult again = chain_contours(pieces, 0.01);
+  ASSERT_EQ(again.closed.size(), r.closed.size());
+  for (std::size_t i = 0; i < r.closed.size(); ++i) EXPECT_EQ(again.closed[i].contour, r.closed[i].contour);
+}
+
+TEST(Chain, CircleAsTwoHalfArcsInAnyDirection) {
+  const double r = 5;
+  ChainPiece top{Contour{{{{r, 0}, 1}, {{-r, 0}, 0}}, false}, 1, 0};
+  ChainPiece bottom{Contour{{{{-r, 0}, 1}, {{r, 0}, 0}}, false}, 2, 0};
+  for (bool flip : {false, true}) {
+    std::vector<ChainPiece> pieces{bottom, top};
+    if (flip) pieces[0].path = reversed(pieces[0].path);
+    const ChainResult res = chain_contours(pieces, 0.01);
+    ASSERT_EQ(res.closed.size(), 1u);
+    const Contour& c = res.closed[0].contour;
+    EXPECT_TRUE(c.closed);
+    EXPECT_EQ(c.vertices.size(), 2u);
+    EXPECT_NEAR(std::abs(signed_area(c)), kPi * r * r, 1e-9);
+    EXPECT_NEAR(length(c), 2 * kPi * r, 1e-9);
+  }
+}
+
+TEST(Chain, GapsWithinSnapCloseExactlyAtMidpoints) {
+  const double g = 0.004;  // each corner misses by g in x: inside the 0.01 snap
+  std::vector<ChainPiece> pieces{line({0, 0}, {10, 0}), line({10 + g, 0}, {10, 10}), line({10, 10}, {0, 10}),
+                                 line({0, 10}, {g, 0})};
+  const ChainResult r = chain_contours(pieces, 0.01);
+  ASSERT_EQ(r.closed.size(), 1u);
+  const Contour& c = r.closed[0].contour;
+  ASSERT_EQ(c.vertices.size(), 4u);
+  // Joints moved to the midpoints; the contour closes exactly (no gap left anywhere).
+  EXPECT_EQ(c.vertices[0].p, (Vec2{0, 0} + Vec2{g, 0}) * 0.5);
+  EXPECT_EQ(c.vertices[1].p, (Vec2{10, 0} + Vec2{10 + g, 0}) * 0.5);
+  EXPECT_EQ(c.vertices[2].p, (Vec2{10, 10}));
+  // With a snap below the gap, nothing closes: one open chain through the two exact corners.
+  const ChainResult tight = chain_contours(pieces, 0.001);
+  EXPECT_TRUE(tight.closed.empty());
+  ASSERT_EQ(tight.open.size(), 2u);
+}
+
+TEST(Chain, DuplicatesAndZeroLengthDroppedAndCounted) {
+  std::vector<ChainPiece> pieces{line({0, 0}, {1, 0}, 0), line({1, 0}, {1, 1}, 1), line({1, 1}, {0, 0}, 2),
+                                 line({1, 0}, {0, 0}, 3),  // reversed copy of 0
+                                 line({1, 0}, {1, 1}, 4),  // exact copy of 1
+                                 line({5, 5}, {5, 5}, 5),  // zero length
+                                 line({5, 5}, {5 + 1e-9, 5}, 6)};
+  ChainPiece arc_copy{Contour{{{{3, 0}, 0.5}, {{4, 0}, 0}}, false}, 7, 0};
+  ChainPiece arc_back{reversed(arc_copy.path), 8, 0};
+  ChainPiece arc_other_side{Contour{{{{3, 0}, -0.5}, {{4, 0}, 0}}, false}, 9, 0};  // not a duplicate
+  pieces.push_back(arc_copy);
+  pieces.push_back(arc_back);
+  pieces.push_back(arc_other_side);
+  const ChainResult r = chain_contours(pieces, 0.01);
+  EXPECT_EQ(r.dropped_duplicates, 3u);
+  EXPECT_EQ(r.dropped_zero_length, 2u);
+  ASSERT_EQ(r.closed.size(), 2u);  // the triangle, and the lens of the two different arcs
+  EXPECT_EQ(r.closed[0].sources, (std::vector<std::int32_t>{0, 1, 2}));
+  EXPECT_EQ(r.closed[1].sources, (std::vector<std::int32_t>{7, 9}));
+  EXPECT_TRUE(r.open.empty());
+}
+
+TEST(Chain, OpenChainsStayOpenAndClosedInputsPassThrough) {
+  std::vector<ChainPiece> pieces{line({2, 0}, {2, 3}, 0), line({0, 0}, {2, 0}, 1), line({9, 9}, {8, 8}, 2)};
+  ChainPiece closed{circle({20, 20}, 1), 3, 0};
+  pieces.push_back(closed);
+  // An open polyline whose ends meet closes by itself.
+  pieces.push_back({polygon({{30, 0}, {31, 0}, {31, 1}, {30.001, 0.001}}, false), 4, 0});
+  const ChainResult r = chain_contours(pieces, 0.01);
+  ASSERT_EQ(r.open.size(), 2u);
+  EXPECT_EQ(r.open[0].contour.vertices.size(), 3u);
+  EXPECT_FALSE(r.open[0].contour.closed);
+  EXPECT_EQ(r.open[0].sources.size(), 2u);
+  EXPECT_EQ(r.open[1].sources, (std::vector<std::int32_t>{2}));
+  ASSERT_EQ(r.closed.size(), 2u);
+  EXPECT_EQ(r.closed[0].contour, closed.path);
+  EXPECT_EQ(r.closed[1].sources, (std::vector<std::int32_t>{4}));
+  EXPECT_EQ(r.closed[1].contour.vertices.size(), 3u);
+  EXPECT_TRUE(r.closed[1].contour.closed);
+}
+
+TEST(Chain, NearestPartnerWinsAndGroupsStayApart) {
+  // Three ends near (1,0): the two closest join, the third stays free.
+  std::vector<ChainPiece> pieces{line({0, 0}, {1, 0}, 0), line({1.003, 0}, {2, 0}, 1), line({1.001, 0}, {1, 5}, 2)};
+  const ChainResult r = chain_contours(pieces, 0.01);
+  ASSERT_EQ(r.open.size(), 2u);
+  EXPECT_EQ(r.open[0].sources, (std::vector<std::int32_t>{0, 2}));
+  // Different groups never join.
+  std::vector<ChainPiece> grouped{line({0, 0}, {1, 0}, 0), line({1, 0}, {1, 1}, 1)};
+  grouped[1].group = 7;
+  EXPECT_EQ(chain_contours(grouped, 0.01).open.size(), 2u);
+}
+
+TEST(Chain, FanOfLinesFromOnePointStaysFastAndPairsUp) {
+  // 3000 spokes from the origin: 3000 ends within one snap circle. Each pair of spokes can join
+  // at the centre; every end finds a partner, nothing closes (spokes' outer ends are apart).
+  std::vector<ChainPiece> pieces;
+  for (int i = 0; i < 3000; ++i) {
+    const double a = 2 * kPi * i / 3000;
+    pieces.push_back(line({0, 0}, {100 * std::cos(a), 100 * std::sin(a)}, i));
+  }
+  const ChainResult r = chain_contours(pieces, 0.01);
+  EXPECT_TRUE(r.closed.empty());
+  EXPECT_EQ(r.open.size(), 1500u);
+  for (const ChainedContour& c : r.open) EXPECT_EQ(c.sources.size(), 2u);
+}
+
+TEST(Chain, NonFiniteAndNoPieces) {
+  EXPECT_TRUE(chain_contours({}, 0.01).closed.empty());
+  std::vector<ChainPiece> pieces{line({0, 0}, {std::nan(""), 0}), line({0, 0}, {1e300, 1e300})};
+  const ChainResult r = chain_contours(pieces, std::nan(""));
+  EXPECT_EQ(r.dropped_invalid, 1u);
+  EXPECT_EQ(r.open.size(), 1u);
+}
+
+}  // namespace
+}  // namespace cutroute::geometry

@@ -182,8 +182,8 @@ std::vector<std::string> corpus() {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllFiles, CorpusOptimize, ::testing::ValuesIn(corpus()),
-                         [](const auto& info) {
-                           std::string n = info.param;
+                         [](const auto& param_info) {
+                           std::string n = param_info.param;
                            for (char& c : n) if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                            return n;
                          });

@@ -174,7 +174,7 @@ int run(const Opts& o) {
       if (st && !outs[i].report.empty()) st = io::write_file_atomic(outs[i].report, res->report.dump(2) + "\n");
       if (st && !outs[i].svg.empty()) st = io::write_file_atomic(outs[i].svg, io::route_to_svg(loaded->nest, res->toolpath, pic));
       if (st && !outs[i].html.empty())
-        st = io::write_file_atomic(outs[i].html, io::route_to_html(loaded->nest, res->toolpath, res->report, pic));
+        st = io::write_file_atomic(outs[i].html, io::route_to_html(loaded->nest, res->toolpath, io::report_summary(res->report), pic));
       if (st) st = io::write_file_atomic(outs[i].program, res->program.text);
       if (!st) {
         messages[i] = format(st.error());

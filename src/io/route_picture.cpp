@@ -1,7 +1,9 @@
 #include <cutroute/io/route_picture.hpp>
 
 #include <algorithm>
+#include <cmath>
 
+#include <cutroute/core/number_format.hpp>
 #include <cutroute/io/svg.hpp>
 
 namespace cutroute::io {
@@ -44,6 +46,7 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
   svg.end_group();
 
   geometry::Vec2 at = path.start;
+  std::vector<geometry::Vec2> placed;  // label positions so far
   for (std::size_t k = 0; k < path.segments.size(); ++k) {
     const auto& s = path.segments[k];
     svg.begin_group("class=\"seg\" data-k=\"" + std::to_string(k + 1) + "\"");
@@ -55,7 +58,19 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
                                       "\" stroke-width=\"" + (lead ? "1.5" : "1.6") + "\" " + kNs);
     }
     svg.add_circle(s.pierce, mark_mm, "fill=\"#f39c12\" stroke=\"#7a4a00\" stroke-width=\"0.6\" " + std::string(kNs));
-    svg.add_text(s.pierce + geometry::Vec2{mark_mm * 1.5, mark_mm * 1.5}, std::to_string(k + 1), label_mm,
+    // Numbers of pierces that stand close together are stacked upwards instead of overprinted.
+    geometry::Vec2 label_at = s.pierce + geometry::Vec2{mark_mm * 1.5, mark_mm * 1.5};
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (const auto& q : placed) {
+        if (std::abs(q.x - label_at.x) < label_mm * 1.6 && std::abs(q.y - label_at.y) < label_mm * 0.9) {
+          label_at.y = q.y + label_mm;
+          moved = true;
+        }
+      }
+    }
+    placed.push_back(label_at);
+    svg.add_text(label_at, std::to_string(k + 1), label_mm,
                  "fill=\"#5b1a12\" font-family=\"sans-serif\" font-weight=\"bold\"");
     svg.end_group();
     at = nc::tool_off_point(s);
@@ -69,13 +84,42 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
   return svg.str();
 }
 
-std::string route_to_html(const model::Nest& nest, const nc::Toolpath& path, const nlohmann::json& summary,
+std::vector<std::pair<std::string, std::string>> report_summary(const nlohmann::json& r) {
+  std::vector<std::pair<std::string, std::string>> rows;
+  auto num = [&](const char* key, int decimals) {
+    return r.contains(key) && r[key].is_number() ? format_fixed(r[key].get<double>(), decimals) : std::string("-");
+  };
+  auto str = [&](const char* key) { return r.contains(key) && r[key].is_string() ? r[key].get<std::string>() : std::string("-"); };
+  rows.emplace_back("material", str("material") + " " + num("thickness_mm", 2) + " mm" +
+                                    (r.value("measured_speed_row", true) ? "" : " (extrapolated speed row)"));
+  rows.emplace_back("pierces", num("pierces", 0));
+  rows.emplace_back("cut length L_on", num("cut_length_mm", 1) + " mm");
+  rows.emplace_back("rapid length L_off", num("rapid_length_mm", 1) + " mm");
+  rows.emplace_back("frames n", num("frames", 0));
+  rows.emplace_back("set speed V_on", num("v_on_set_m_s", 4) + " m/s");
+  rows.emplace_back("working speed V_on*(n)", num("v_on_m_s", 4) + " m/s (" + str("v_on_regime") + ")");
+  rows.emplace_back("T_cut, eq. 10", num("t_cut_s", 2) + " s");
+  rows.emplace_back("T_cut at the set speed, eq. 1", num("t_cut_const_speed_s", 2) + " s");
+  if (r.contains("breakdown_s")) {
+    const auto& b = r["breakdown_s"];
+    rows.emplace_back("cutting / rapid / pierce", format_fixed(b.value("cutting", 0.0), 1) + " / " +
+                                                      format_fixed(b.value("rapid", 0.0), 1) + " / " +
+                                                      format_fixed(b.value("pierce", 0.0), 1) + " s");
+  }
+  rows.emplace_back("lead-in", str("lead_in"));
+  if (r.contains("solver")) {
+    const auto& sv = r["solver"];
+    rows.emplace_back("solver", sv.value("name", std::string("-")) + ", " + sv.value("status", std::string("-")));
+  }
+  return rows;
+}
+
+std::string route_to_html(const model::Nest& nest, const nc::Toolpath& path,
+                          const std::vector<std::pair<std::string, std::string>>& summary,
                           const RoutePictureOptions& options) {
   std::string rows;
-  for (const auto& [key, value] : summary.items()) {
-    if (value.is_object() || value.is_array()) continue;
-    rows += "<tr><th>" + xml_escape(key) + "</th><td>" + xml_escape(value.is_string() ? value.get<std::string>() : value.dump()) +
-            "</td></tr>\n";
+  for (const auto& [label, value] : summary) {
+    rows += "<tr><th>" + xml_escape(label) + "</th><td>" + xml_escape(value) + "</td></tr>\n";
   }
   const std::size_t n = path.segments.size();
   std::string html;
@@ -106,6 +150,7 @@ std::string route_to_html(const model::Nest& nest, const nc::Toolpath& path, con
           " if(+step.value>=+step.max)step.value=0;play.textContent='Pause';\n"
           " timer=setInterval(()=>{step.value=+step.value+1;show(+step.value);\n"
           "  if(+step.value>=+step.max){clearInterval(timer);timer=null;play.textContent='Play';}},Math.max(60,6000/segs.length));});\n"
+          "const k0=parseInt(location.hash.slice(1),10);if(k0>=0&&k0<=+step.max)step.value=k0;\n"
           "show(+step.value);\n"
           "</script>\n</body></html>\n";
   return html;

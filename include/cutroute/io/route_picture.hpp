@@ -2,6 +2,8 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -20,9 +22,14 @@ struct RoutePictureOptions {
 // pierce; the start point is marked. Each segment is one <g class="seg" data-k="k"> (k from 1).
 std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, const RoutePictureOptions& options);
 
-// One self-contained HTML page: the picture, a summary table (the report's scalar fields) and a
-// slider with a play button that shows the cutting order step by step. No external resources.
-std::string route_to_html(const model::Nest& nest, const nc::Toolpath& path, const nlohmann::json& summary,
+// One self-contained HTML page: the picture, a summary table (label, value rows as given) and a
+// slider with a play button that shows the cutting order step by step; the address fragment #k
+// opens the page at step k. No external resources.
+std::string route_to_html(const model::Nest& nest, const nc::Toolpath& path,
+                          const std::vector<std::pair<std::string, std::string>>& summary,
                           const RoutePictureOptions& options);
+
+// The rows a person wants from an optimize report: pierces, lengths, frames, speeds, times.
+std::vector<std::pair<std::string, std::string>> report_summary(const nlohmann::json& report);
 
 }  // namespace cutroute::io

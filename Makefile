@@ -22,8 +22,10 @@ build: deps $(BUILD)/build.ninja
 run: build
 	@mkdir -p $(OUT)
 	$(CUTROUTE) demo $(OUT)/demo_nest.dxf
-	$(CUTROUTE) inspect $(OUT)/demo_nest.dxf --json --svg $(OUT)/demo_nest.svg > $(OUT)/demo_nest.inspect.json
-	@echo "outputs in $(OUT)/: demo_nest.dxf demo_nest.inspect.json demo_nest.svg"
+	$(CUTROUTE) inspect $(OUT)/demo_nest.dxf --json --svg $(OUT)/demo_nest.inspect.svg > $(OUT)/demo_nest.inspect.json
+	$(CUTROUTE) optimize $(OUT)/demo_nest.dxf -o $(OUT)/demo_nest.ngc --report $(OUT)/demo_nest.json \
+	  --svg $(OUT)/demo_nest.svg --html $(OUT)/demo_nest.html
+	@echo "outputs in $(OUT)/: demo_nest.dxf .ngc .json .svg .html (and the drawing's inspect .json/.svg)"
 
 test: test-release test-asan
 

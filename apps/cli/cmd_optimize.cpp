@@ -37,6 +37,7 @@ struct Opts {
   std::string dialect = "generic";
   double entry_step = 0;
   bool quiet = false;
+  bool allow_crossing = false;
   InputOptions input;
 };
 
@@ -118,6 +119,7 @@ int run(const Opts& o) {
   po.kerf_mode = o.kerf_mode == "none" ? nc::KerfMode::none : nc::KerfMode::controller;
   po.dialect = o.dialect;
   po.entry_step_mm = o.entry_step;
+  po.allow_crossing = o.allow_crossing;
 
   // Output paths: one nest -> -o is the program file; several -> -o is a folder for all outputs.
   const bool batch = o.nests.size() > 1;
@@ -234,6 +236,8 @@ void add_optimize(CLI::App& root, Commands& out) {
   app->add_option("--dialect", o->dialect, "Post-processor: generic, plasma-thc, or a dialect JSON file");
   app->add_option("--entry-step", o->entry_step, "Spacing of entry candidates along edges [mm] (0: adaptive)")
       ->check(CLI::Range(0.0, 1e6));
+  app->add_flag("--allow-crossing", o->allow_crossing,
+                "Cut a drawing whose contours cross each other (each contour once, with warnings)");
   app->add_flag("-q,--quiet", o->quiet, "No progress and no summary");
   add_input_options(app, o->input);
   out.push_back({app, [o] { return run(*o); }});

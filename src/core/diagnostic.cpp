@@ -36,11 +36,11 @@ std::string format(const Diagnostic& d) {
 }
 
 Diagnostic make_error(std::string message, std::string file, std::optional<long> line) {
-  return Diagnostic{Severity::error, std::move(message), std::move(file), line, {}, {}};
+  return Diagnostic{Severity::error, std::move(message), std::move(file), line, {}, {}, {}};
 }
 
 Diagnostic make_warning(std::string message, std::string file, std::optional<long> line) {
-  return Diagnostic{Severity::warning, std::move(message), std::move(file), line, {}, {}};
+  return Diagnostic{Severity::warning, std::move(message), std::move(file), line, {}, {}, {}};
 }
 
 bool has_errors(const Diagnostics& ds) {

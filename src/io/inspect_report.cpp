@@ -11,6 +11,7 @@ nlohmann::json to_json(const Diagnostic& d) {
   if (d.line) j["line"] = *d.line;
   if (!d.handle.empty()) j["handle"] = d.handle;
   if (!d.layer.empty()) j["layer"] = d.layer;
+  if (!d.code.empty()) j["code"] = d.code;
   return j;
 }
 

@@ -64,6 +64,7 @@ LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
                                   out.file, p.line);
       d.handle = p.handle;
       d.layer = p.layer;
+      d.code = "chain.open";
       out.diagnostics.push_back(std::move(d));
     }
     out.open_paths.push_back(std::move(p));

@@ -133,7 +133,11 @@ nlohmann::json sequence_json(const model::Nest& nest, const std::vector<model::E
 Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const OptimizeOptions& o, const StopToken& stop,
                                      const ProgressFn& progress) {
   for (const auto& d : loaded.diagnostics) {
-    if (d.severity == Severity::error) return d;  // never cut a nest whose contours cross
+    if (d.severity != Severity::error) continue;
+    if (d.code == "nest.crossing" && o.allow_crossing) continue;
+    Diagnostic e = d;
+    if (d.code == "nest.crossing") e.message += " (use --allow-crossing to cut such a drawing anyway)";
+    return e;  // never cut a nest whose parts are drawn over each other unless told to
   }
   const model::Nest& nest = loaded.nest;
   using Clock = std::chrono::steady_clock;

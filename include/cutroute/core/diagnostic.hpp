@@ -18,6 +18,9 @@ struct Diagnostic {
   std::optional<long> line;         // 1-based line in `file`
   std::string handle;               // DXF entity handle (hex string), empty when unknown
   std::string layer;                // DXF layer, empty when unknown
+  // Stable machine-readable kind for integrators and policies, e.g. "nest.crossing",
+  // "nest.common_edge", "nest.touch", "nest.no_area", "chain.open"; empty when none applies.
+  std::string code;
 };
 
 // "file:line: error: message (entity 1A, layer 0)" — one line, for stderr.

@@ -38,6 +38,10 @@ struct OptimizeOptions {
   bool refine_entries = true;                // continuous entry refinement after sequencing
   bool compare_leads = true;                 // evaluate lead types by the frame-corrected objective
   std::string title;                         // first comment of the program
+  // Contours whose boundaries cross (code "nest.crossing") are an input error by default: parts
+  // drawn over each other would be ruined. With this set they are cut anyway, each once, with a
+  // warning; crossing contours get no order between them.
+  bool allow_crossing = false;
 };
 
 struct OptimizeResult {

@@ -112,8 +112,8 @@ Prepared prepare(std::vector<SourceContour> contours, Nest& nest) {
     SourceContour& s = contours[i];
     const Contour& c = s.contour;
     const double a = c.closed && finite_contour(c) ? geometry::signed_area(c) : 0.0;
-    if (!c.closed || c.vertices.empty() || !finite_contour(c) || !(std::abs(a) > 0.0)) {
-      const char* why = !c.closed ? "is not closed" : (!finite_contour(c) ? "has a non-finite coordinate" : "has no area");
+    if (!c.closed || c.vertices.empty() || !finite_contour(c) || !(geometry::length(c) > 0.0)) {
+      const char* why = !c.closed ? "is not closed" : (!finite_contour(c) ? "has a non-finite coordinate" : "has no length");
       nest.diagnostics.push_back(diagnostic_for(Severity::error, describe(s, i) + " " + why + "; left out of the nest", s));
       ++nest.dropped_invalid;
       continue;
@@ -136,6 +136,10 @@ Prepared prepare(std::vector<SourceContour> contours, Nest& nest) {
       }
     }
     if (duplicate) continue;
+    if (geometry::orientation(c) == geometry::Orientation::degenerate) {
+      // Still cut (a slot traced there and back, a figure 8), but it can hold nothing.
+      nest.diagnostics.push_back(diagnostic_for(Severity::warning, describe(s, i) + " encloses no area", s));
+    }
     NestContour nc;
     nc.area_mm2 = std::abs(a);
     nc.box = geometry::bounding_box(c);

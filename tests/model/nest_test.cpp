@@ -52,13 +52,20 @@ ContourId find(const Nest& nest, const std::string& handle) {
   return ContourId();
 }
 
+// Built by append: GCC 12 warns falsely (-Wrestrict) on "L" + std::to_string(k).
+std::string label(std::size_t k) {
+  std::string s = "L";
+  s += std::to_string(k);
+  return s;
+}
+
 void check_deep_nest(const std::vector<Contour>& levels) {
   // levels[k] is at depth k; fed in a shuffled order with mixed orientations.
   Rng rng(5);
   std::vector<SourceContour> in;
   for (std::size_t k = 0; k < levels.size(); ++k) {
     Contour c = rng.chance(0.5) ? geometry::reversed(levels[k]) : levels[k];
-    in.push_back(src(c, "0", "L" + std::to_string(k)));
+    in.push_back(src(c, "0", label(k)));
   }
   rng.shuffle(in.begin(), in.end());
   const Nest nest = build_nest(in, NestOptions{});
@@ -69,30 +76,30 @@ void check_deep_nest(const std::vector<Contour>& levels) {
   EXPECT_EQ(nest.parts.size(), (levels.size() + 1) / 2);
   for (std::size_t k = 0; k < levels.size(); ++k) {
     SCOPED_TRACE(k);
-    const NestContour& c = nest.contours[find(nest, "L" + std::to_string(k))];
+    const NestContour& c = nest.contours[find(nest, label(k))];
     EXPECT_EQ(c.depth, static_cast<int>(k));
     EXPECT_EQ(c.role, k % 2 == 0 ? ContourRole::outer : ContourRole::hole);
     if (k == 0) {
       EXPECT_FALSE(c.parent.valid());
     } else {
-      EXPECT_EQ(c.parent, find(nest, "L" + std::to_string(k - 1)));
+      EXPECT_EQ(c.parent, find(nest, label(k - 1)));
     }
     const Part& part = nest.parts[c.part];
     if (k % 2 == 0) {
-      EXPECT_EQ(part.outer, find(nest, "L" + std::to_string(k)));
+      EXPECT_EQ(part.outer, find(nest, label(k)));
       if (k + 1 < levels.size()) {
         ASSERT_EQ(part.holes.size(), 1u);
-        EXPECT_EQ(part.holes[0], find(nest, "L" + std::to_string(k + 1)));
+        EXPECT_EQ(part.holes[0], find(nest, label(k + 1)));
       }
       if (k >= 2) {
-        EXPECT_EQ(part.inside_hole, find(nest, "L" + std::to_string(k - 1)));
-        EXPECT_EQ(part.parent_part, nest.contours[find(nest, "L" + std::to_string(k - 2))].part);
+        EXPECT_EQ(part.inside_hole, find(nest, label(k - 1)));
+        EXPECT_EQ(part.parent_part, nest.contours[find(nest, label(k - 2))].part);
       } else {
         EXPECT_FALSE(part.inside_hole.valid());
         EXPECT_FALSE(part.parent_part.valid());
       }
     } else {
-      EXPECT_EQ(part.outer, find(nest, "L" + std::to_string(k - 1)));
+      EXPECT_EQ(part.outer, find(nest, label(k - 1)));
     }
   }
 }
@@ -284,6 +291,17 @@ TEST(Nest, DuplicatesAndInvalidDroppedWithErrors) {
   }
   EXPECT_TRUE(named_both);
   EXPECT_EQ(nest.contours[find(nest, "IN")].role, ContourRole::hole);
+}
+
+TEST(Nest, ZeroAreaContourStaysWithAWarning) {
+  // A slot traced there and back inside a square: kept (it is cut), holds nothing.
+  const Contour slot{{{{-1, 0}, 0}, {{1, 0}, 0}}, true};
+  const Nest nest = build_nest({src(square(5), "0", "SQ"), src(slot, "0", "SLOT")}, NestOptions{});
+  ASSERT_EQ(nest.contours.size(), 2u);
+  EXPECT_FALSE(has_errors(nest.diagnostics));
+  ASSERT_EQ(nest.diagnostics.size(), 1u);
+  EXPECT_EQ(nest.diagnostics[0].handle, "SLOT");
+  EXPECT_EQ(nest.contours[find(nest, "SLOT")].parent, find(nest, "SQ"));
 }
 
 TEST(Nest, RandomNestMatchesBruteForceContainment) {

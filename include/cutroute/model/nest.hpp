@@ -69,7 +69,7 @@ struct Nest {
   // options.sheet_size and no matching border, the rectangle (0, 0)–(W, H).
   std::optional<geometry::Box> sheet_box;
   std::size_t dropped_duplicates = 0;  // exact repeats of an earlier contour (error diagnostic each)
-  std::size_t dropped_invalid = 0;     // open, empty, zero-area or non-finite input (error diagnostic each)
+  std::size_t dropped_invalid = 0;     // open, empty, zero-length or non-finite input (error diagnostic each)
 };
 
 // Builds the containment tree with exact arcs: parent = smallest containing contour;
@@ -79,8 +79,10 @@ struct Nest {
 //
 // Steps (nest.cpp has one function per step):
 //  1. prepare: area, box; drop (with an error diagnostic) contours that are not closed, have no
-//     area or non-finite coordinates, and exact duplicates (the same vertex cycle, bit-exact,
-//     from any start vertex and in either direction; the first in input order stays).
+//     length or non-finite coordinates, and exact duplicates (the same vertex cycle, bit-exact,
+//     from any start vertex and in either direction; the first in input order stays). A
+//     contour enclosing no area (a slot traced there and back, a symmetric figure 8) stays,
+//     with a warning: it is cut but holds nothing.
 //  2. find the sheet candidate: the largest contour that is an axis-aligned rectangle whose box
 //     encloses every other contour's box (overhang up to tol::kSheetOverhangMm allowed) and that either matches options.sheet_size or lies
 //     on a layer named like sheet/plate/border/blech or is detected by geometry alone.

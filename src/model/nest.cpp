@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -43,6 +44,29 @@ std::string describe(const SourceContour& s, std::size_t input_index) {
   if (s.line) add("line " + std::to_string(*s.line));
   if (!s.layer.empty()) add("layer " + s.layer);
   if (!extra.empty()) out += " (" + extra + ")";
+  return out;
+}
+
+// A length for messages: 3 decimals (µm), trailing zeros kept short, never "-0".
+std::string format_mm(double v) {
+  if (v == 0.0) v = 0.0;  // folds -0
+  char buf[64];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, 3);
+  std::string out(buf, res.ptr);
+  if (out.find('.') != std::string::npos) {
+    while (out.back() == '0') out.pop_back();
+    if (out.back() == '.') out.pop_back();
+  }
+  if (out == "-0") out = "0";
+  return out;
+}
+
+std::string format_point(Vec2 p) {
+  std::string out = "(";
+  out += format_mm(p.x);
+  out += ", ";
+  out += format_mm(p.y);
+  out += ")";
   return out;
 }
 
@@ -253,14 +277,22 @@ Tree build_tree(const Nest& nest, const Prepared& prep, std::optional<std::size_
         const bool crossing = (s_in_b.inside > 0 && s_in_b.outside > 0) || (b_in_s.inside > 0 && b_in_s.outside > 0);
         const bool undecided = s_in_b.inside + s_in_b.outside == 0 || b_in_s.inside + b_in_s.outside == 0;
         const std::string pair = describe(ci.source, prep.input_index[i]) + " and " + describe(cj.source, prep.input_index[j]);
+        const std::string where = " near " + format_point(contact.first);
         if (crossing || undecided) {
-          tree.crossings.push_back(diagnostic_for(Severity::error, pair + " cross or overlap", ci.source));
+          std::string message = pair + " cross or overlap" + where;
+          if (crossing) {
+            message += ", by up to ";
+            message += format_mm(std::max(s_in_b.depth, b_in_s.depth));
+            message += " mm";
+          }
+          tree.crossings.push_back(diagnostic_for(Severity::error, std::move(message), ci.source));
           continue;
         }
         if (contact.overlaps > 0) {
-          tree.crossings.push_back(diagnostic_for(Severity::error, pair + " share a boundary stretch (common edge)", ci.source));
+          tree.crossings.push_back(
+              diagnostic_for(Severity::error, pair + " share a boundary stretch (common edge)" + where, ci.source));
         } else {
-          tree.crossings.push_back(diagnostic_for(Severity::warning, pair + " touch", ci.source));
+          tree.crossings.push_back(diagnostic_for(Severity::warning, pair + " touch" + where, ci.source));
         }
         // Touching from inside still nests: every decisive sample of the smaller is inside.
         if (!box_inside || s_in_b.inside == 0) continue;

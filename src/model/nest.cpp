@@ -281,7 +281,7 @@ Tree build_tree(const Nest& nest, const Prepared& prep, std::optional<std::size_
         if (crossing || undecided) {
           std::string message = pair + " cross or overlap" + where;
           if (crossing) {
-            message += ", by up to ";
+            message += ", by at least ";
             message += format_mm(std::max(s_in_b.depth, b_in_s.depth));
             message += " mm";
           }

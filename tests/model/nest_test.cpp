@@ -244,7 +244,7 @@ TEST(Nest, CrossingContoursDiagnosedNamingBoth) {
   EXPECT_NE(d.message.find("line 300"), std::string::npos) << d.message;
   // Where, and how deep: the circles meet at (7.5, ±6.614); each reaches 5 mm into the other.
   EXPECT_NE(d.message.find("near (7.5, "), std::string::npos) << d.message;
-  EXPECT_NE(d.message.find("by up to 5 mm"), std::string::npos) << d.message;
+  EXPECT_NE(d.message.find("by at least 5 mm"), std::string::npos) << d.message;
   EXPECT_EQ(d.handle, "1A");
   EXPECT_EQ(d.line, 120);
   EXPECT_FALSE(nest.contours[find(nest, "2B")].parent.valid());

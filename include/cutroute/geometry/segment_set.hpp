@@ -43,8 +43,8 @@ BoundaryContact boundary_contact(const SegmentSet& a, const SegmentSet& b, doubl
 struct BoundarySides {
   std::size_t inside = 0;
   std::size_t outside = 0;
-  double depth = 0.0;  // largest distance from an inside sample to b's boundary (how far a
-                       // crosses into b; estimated from at most 64 inside samples) [mm]
+  double depth = 0.0;  // largest distance from an inside sample to b's boundary: a lower
+                       // bound of how far a reaches into b (at most 64 samples measured) [mm]
 };
 BoundarySides boundary_sides(const SegmentSet& a, const SegmentSet& b, double tol_mm);
 

@@ -91,9 +91,10 @@ struct Nest {
 //     exact boundary test within touch_tol_mm and, when one box holds the other, one exact
 //     point-in-contour test of a vertex of the smaller. parent = the smallest container.
 //     Where the boundaries meet, both are sampled (vertices, segment quarter points) against the
-//     other region, and every diagnostic names both contours:
+//     other region, and every diagnostic names both contours and a common point ("near (x, y)"):
 //       crossing (samples on both sides), or all samples on the other boundary: error
-//       "cross or overlap", and neither becomes the other's parent;
+//       "cross or overlap" (crossing: "by at least D mm", D from the samples), and neither
+//       becomes the other's parent;
 //       touching with a common stretch (shared edge): error "share a boundary stretch";
 //       touching in points only (tangent, corner on edge): warning "touch".
 //     Touching contours still nest when the smaller one's samples lie inside the bigger.

@@ -199,7 +199,9 @@ TEST(Contour, RandomDegenerateContoursGiveFiniteAnswers) {
     ASSERT_TRUE(std::isfinite(len) && len >= 0) << trial;
     ASSERT_TRUE(std::isfinite(area)) << trial;
     EXPECT_NEAR(length(reversed(c)), len, 1e-9 * (1 + len));
-    if (c.closed) EXPECT_NEAR(signed_area(reversed(c)), -area, 1e-9 * (1 + std::abs(area)));
+    if (c.closed) {
+      EXPECT_NEAR(signed_area(reversed(c)), -area, 1e-9 * (1 + std::abs(area)));
+    }
     const Box box = bounding_box(c);
     ASSERT_TRUE(std::isfinite(box.xmin) && std::isfinite(box.ymax)) << trial;
     for (double s : {0.0, 0.3 * len, len, 2.5 * len}) ASSERT_TRUE(is_finite(point_at_length(c, s))) << trial;

@@ -237,6 +237,19 @@ std::optional<SheetCandidate> find_sheet_candidate(const Nest& nest, const NestO
 struct Tree {
   std::vector<std::int32_t> parent;  // -1 at the top
   Diagnostics crossings;
+  std::size_t unlisted_errors = 0;    // pairs beyond kMaxPairDiagnostics
+  std::size_t unlisted_warnings = 0;
+
+  // A drawing of thousands of mutually overlapping contours must not produce millions of
+  // messages: the first kMaxPairDiagnostics pairs are listed, the rest counted.
+  static constexpr std::size_t kMaxPairDiagnostics = 1000;
+  void report(Diagnostic d) {
+    if (crossings.size() < kMaxPairDiagnostics) {
+      crossings.push_back(std::move(d));
+    } else {
+      ++(d.severity == Severity::error ? unlisted_errors : unlisted_warnings);
+    }
+  }
 };
 
 Tree build_tree(const Nest& nest, const Prepared& prep, std::optional<std::size_t> excluded, double tol_mm) {
@@ -285,14 +298,14 @@ Tree build_tree(const Nest& nest, const Prepared& prep, std::optional<std::size_
             message += format_mm(std::max(s_in_b.depth, b_in_s.depth));
             message += " mm";
           }
-          tree.crossings.push_back(diagnostic_for(Severity::error, std::move(message), ci.source));
+          tree.report(diagnostic_for(Severity::error, std::move(message), ci.source));
           continue;
         }
         if (contact.overlaps > 0) {
-          tree.crossings.push_back(
+          tree.report(
               diagnostic_for(Severity::error, pair + " share a boundary stretch (common edge)" + where, ci.source));
         } else {
-          tree.crossings.push_back(diagnostic_for(Severity::warning, pair + " touch" + where, ci.source));
+          tree.report(diagnostic_for(Severity::warning, pair + " touch" + where, ci.source));
         }
         // Touching from inside still nests: every decisive sample of the smaller is inside.
         if (!box_inside || s_in_b.inside == 0) continue;
@@ -408,6 +421,13 @@ Nest build_nest(std::vector<SourceContour> contours, const NestOptions& options)
   if (sheet) sheet_index = sheet->index;
   assign_tree(nest, tree, sheet_index);
   nest.diagnostics.insert(nest.diagnostics.end(), tree.crossings.begin(), tree.crossings.end());
+  if (tree.unlisted_errors + tree.unlisted_warnings > 0) {
+    Diagnostic d;
+    d.severity = tree.unlisted_errors > 0 ? Severity::error : Severity::warning;
+    d.message = std::to_string(tree.unlisted_errors) + " more pairs of contours cross or overlap and " +
+                std::to_string(tree.unlisted_warnings) + " more touch (not listed)";
+    nest.diagnostics.push_back(std::move(d));
+  }
   if (sheet) {
     nest.sheet = ContourId(static_cast<std::int32_t>(sheet->index));
     nest.sheet_box = nest.contours[cid(sheet->index)].box;

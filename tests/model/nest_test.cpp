@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -256,6 +257,32 @@ TEST(Nest, CrossingContoursDiagnosedNamingBoth) {
   EXPECT_EQ(shared.diagnostics[0].severity, Severity::error);
   EXPECT_NE(shared.diagnostics[0].message.find("share a boundary stretch"), std::string::npos);
   EXPECT_NE(shared.diagnostics[0].message.find("entity R"), std::string::npos);
+}
+
+TEST(Nest, ThousandsOfOverlapsAreCountedNotListed) {
+  // 300 circles of r = 10 on a line, 1 mm apart: each crosses its neighbours within 20 mm,
+  // 19 or so each side: ~5600 crossing pairs.
+  std::vector<SourceContour> in;
+  for (int i = 0; i < 300; ++i) in.push_back(src(geometry::circle({1.0 * i, 0}, 10)));
+  const Nest nest = build_nest(in, NestOptions{});
+  ASSERT_EQ(nest.diagnostics.size(), 1001u);
+  const std::string& last = nest.diagnostics.back().message;
+  EXPECT_NE(last.find("more pairs of contours cross or overlap"), std::string::npos) << last;
+  // Neighbours closer than 20 mm cross (error); those exactly 20 mm apart touch (warning).
+  std::size_t crossing = 0;
+  for (int i = 0; i < 300; ++i) crossing += static_cast<std::size_t>(std::min(299 - i, 19));
+  const std::size_t touching = 300 - 20;
+  std::size_t listed_errors = 0, listed_warnings = 0;
+  for (std::size_t k = 0; k + 1 < nest.diagnostics.size(); ++k) {
+    ++(nest.diagnostics[k].severity == Severity::error ? listed_errors : listed_warnings);
+  }
+  std::size_t unlisted_errors = 0, unlisted_warnings = 0;
+  ASSERT_EQ(std::sscanf(last.c_str(), "%zu more pairs of contours cross or overlap and %zu", &unlisted_errors,
+                        &unlisted_warnings),
+            2);
+  EXPECT_EQ(listed_errors + unlisted_errors, crossing);
+  EXPECT_EQ(listed_warnings + unlisted_warnings, touching);
+  EXPECT_EQ(nest.parts.size(), 300u);
 }
 
 TEST(Nest, PointTouchIsAWarningAndStillNests) {

@@ -98,6 +98,7 @@ struct Nest {
 //       touching with a common stretch (shared edge): error "share a boundary stretch";
 //       touching in points only (tangent, corner on edge): warning "touch".
 //     Touching contours still nest when the smaller one's samples lie inside the bigger.
+//     Only the first 1000 such pairs are listed; one more diagnostic counts the rest.
 //  4. a candidate found by geometry alone (no size, no layer) is accepted only when it holds
 //     at least 2 top-level contours and some contour inside it has a contour inside it in turn
 //     (a part with a hole): a rectangular plate with holes, or a rectangular part with one

@@ -1,6 +1,7 @@
 // SegmentSet: indexed segments of one contour; winding, location and boundary tests through the index.
 #include <cutroute/geometry/segment_set.hpp>
 
+#include <algorithm>
 #include <limits>
 
 #include <cutroute/geometry/intersect.hpp>
@@ -84,6 +85,7 @@ BoundaryContact boundary_contact(const SegmentSet& a, const SegmentSet& b, doubl
     if (!small.boxes[i].intersects(large_box)) continue;
     large.index.visit(small.boxes[i].inflated(tol_mm), [&](std::uint32_t j) {
       const SegmentIntersection x = intersect(small.segments[i], large.segments[j], tol_mm);
+      if (x.kind != SegmentIntersection::Kind::none && !contact.any()) contact.first = x.points[0];
       if (x.kind == SegmentIntersection::Kind::points) ++contact.points;
       if (x.kind == SegmentIntersection::Kind::overlap) ++contact.overlaps;
       return true;
@@ -99,8 +101,14 @@ BoundarySides boundary_sides(const SegmentSet& a, const SegmentSet& b, double to
     // half-way points.
     for (const Vec2 p : {s.a, s.point_at(0.25), s.point_at(0.5), s.point_at(0.75)}) {
       const Location where = locate(b, p, tol_mm);
-      if (where == Location::inside) ++sides.inside;
       if (where == Location::outside) ++sides.outside;
+      if (where != Location::inside) continue;
+      // Depth costs O(|b|) per sample, so only the first 64 inside samples are measured.
+      if (++sides.inside <= 64) {
+        double d = std::numeric_limits<double>::infinity();
+        for (const Segment& t : b.segments) d = std::min(d, closest_point(t, p).distance);
+        sides.depth = std::max(sides.depth, d);
+      }
     }
   }
   return sides;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -43,6 +44,29 @@ std::string describe(const SourceContour& s, std::size_t input_index) {
   if (s.line) add("line " + std::to_string(*s.line));
   if (!s.layer.empty()) add("layer " + s.layer);
   if (!extra.empty()) out += " (" + extra + ")";
+  return out;
+}
+
+// A length for messages: 3 decimals (µm), trailing zeros kept short, never "-0".
+std::string format_mm(double v) {
+  if (v == 0.0) v = 0.0;  // folds -0
+  char buf[64];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, 3);
+  std::string out(buf, res.ptr);
+  if (out.find('.') != std::string::npos) {
+    while (out.back() == '0') out.pop_back();
+    if (out.back() == '.') out.pop_back();
+  }
+  if (out == "-0") out = "0";
+  return out;
+}
+
+std::string format_point(Vec2 p) {
+  std::string out = "(";
+  out += format_mm(p.x);
+  out += ", ";
+  out += format_mm(p.y);
+  out += ")";
   return out;
 }
 
@@ -112,8 +136,8 @@ Prepared prepare(std::vector<SourceContour> contours, Nest& nest) {
     SourceContour& s = contours[i];
     const Contour& c = s.contour;
     const double a = c.closed && finite_contour(c) ? geometry::signed_area(c) : 0.0;
-    if (!c.closed || c.vertices.empty() || !finite_contour(c) || !(std::abs(a) > 0.0)) {
-      const char* why = !c.closed ? "is not closed" : (!finite_contour(c) ? "has a non-finite coordinate" : "has no area");
+    if (!c.closed || c.vertices.empty() || !finite_contour(c) || !(geometry::length(c) > 0.0)) {
+      const char* why = !c.closed ? "is not closed" : (!finite_contour(c) ? "has a non-finite coordinate" : "has no length");
       nest.diagnostics.push_back(diagnostic_for(Severity::error, describe(s, i) + " " + why + "; left out of the nest", s));
       ++nest.dropped_invalid;
       continue;
@@ -136,6 +160,10 @@ Prepared prepare(std::vector<SourceContour> contours, Nest& nest) {
       }
     }
     if (duplicate) continue;
+    if (geometry::orientation(c) == geometry::Orientation::degenerate) {
+      // Still cut (a slot traced there and back, a figure 8), but it can hold nothing.
+      nest.diagnostics.push_back(diagnostic_for(Severity::warning, describe(s, i) + " encloses no area", s));
+    }
     NestContour nc;
     nc.area_mm2 = std::abs(a);
     nc.box = geometry::bounding_box(c);
@@ -209,6 +237,19 @@ std::optional<SheetCandidate> find_sheet_candidate(const Nest& nest, const NestO
 struct Tree {
   std::vector<std::int32_t> parent;  // -1 at the top
   Diagnostics crossings;
+  std::size_t unlisted_errors = 0;    // pairs beyond kMaxPairDiagnostics
+  std::size_t unlisted_warnings = 0;
+
+  // A drawing of thousands of mutually overlapping contours must not produce millions of
+  // messages: the first kMaxPairDiagnostics pairs are listed, the rest counted.
+  static constexpr std::size_t kMaxPairDiagnostics = 1000;
+  void report(Diagnostic d) {
+    if (crossings.size() < kMaxPairDiagnostics) {
+      crossings.push_back(std::move(d));
+    } else {
+      ++(d.severity == Severity::error ? unlisted_errors : unlisted_warnings);
+    }
+  }
 };
 
 Tree build_tree(const Nest& nest, const Prepared& prep, std::optional<std::size_t> excluded, double tol_mm) {
@@ -249,14 +290,22 @@ Tree build_tree(const Nest& nest, const Prepared& prep, std::optional<std::size_
         const bool crossing = (s_in_b.inside > 0 && s_in_b.outside > 0) || (b_in_s.inside > 0 && b_in_s.outside > 0);
         const bool undecided = s_in_b.inside + s_in_b.outside == 0 || b_in_s.inside + b_in_s.outside == 0;
         const std::string pair = describe(ci.source, prep.input_index[i]) + " and " + describe(cj.source, prep.input_index[j]);
+        const std::string where = " near " + format_point(contact.first);
         if (crossing || undecided) {
-          tree.crossings.push_back(diagnostic_for(Severity::error, pair + " cross or overlap", ci.source));
+          std::string message = pair + " cross or overlap" + where;
+          if (crossing) {
+            message += ", by at least ";
+            message += format_mm(std::max(s_in_b.depth, b_in_s.depth));
+            message += " mm";
+          }
+          tree.report(diagnostic_for(Severity::error, std::move(message), ci.source));
           continue;
         }
         if (contact.overlaps > 0) {
-          tree.crossings.push_back(diagnostic_for(Severity::error, pair + " share a boundary stretch (common edge)", ci.source));
+          tree.report(
+              diagnostic_for(Severity::error, pair + " share a boundary stretch (common edge)" + where, ci.source));
         } else {
-          tree.crossings.push_back(diagnostic_for(Severity::warning, pair + " touch", ci.source));
+          tree.report(diagnostic_for(Severity::warning, pair + " touch" + where, ci.source));
         }
         // Touching from inside still nests: every decisive sample of the smaller is inside.
         if (!box_inside || s_in_b.inside == 0) continue;
@@ -372,6 +421,13 @@ Nest build_nest(std::vector<SourceContour> contours, const NestOptions& options)
   if (sheet) sheet_index = sheet->index;
   assign_tree(nest, tree, sheet_index);
   nest.diagnostics.insert(nest.diagnostics.end(), tree.crossings.begin(), tree.crossings.end());
+  if (tree.unlisted_errors + tree.unlisted_warnings > 0) {
+    Diagnostic d;
+    d.severity = tree.unlisted_errors > 0 ? Severity::error : Severity::warning;
+    d.message = std::to_string(tree.unlisted_errors) + " more pairs of contours cross or overlap and " +
+                std::to_string(tree.unlisted_warnings) + " more touch (not listed)";
+    nest.diagnostics.push_back(std::move(d));
+  }
   if (sheet) {
     nest.sheet = ContourId(static_cast<std::int32_t>(sheet->index));
     nest.sheet_box = nest.contours[cid(sheet->index)].box;

@@ -87,6 +87,33 @@ TEST(Chain, CircleAsTwoHalfArcsInAnyDirection) {
   }
 }
 
+TEST(Chain, RoundedRectanglesFromShuffledLinesAndArcs) {
+  // 30 rounded rectangles (w x h, corner radius r), each as 4 LINEs and 4 quarter ARCs, all
+  // shuffled and half reversed: area w·h - (4 - π) r² and length 2(w + h) - (8 - 2π) r exactly.
+  Rng rng(8);
+  const double w = 20, h = 12, r = 3, q = std::tan(kPi / 8);
+  std::vector<ChainPiece> pieces;
+  for (int k = 0; k < 30; ++k) {
+    const Vec2 o{40.0 * (k % 6), 30.0 * (k / 6)};
+    const Vec2 p[8] = {o + Vec2{r, 0},     o + Vec2{w - r, 0}, o + Vec2{w, r},     o + Vec2{w, h - r},
+                       o + Vec2{w - r, h}, o + Vec2{r, h},     o + Vec2{0, h - r}, o + Vec2{0, r}};
+    for (int i = 0; i < 8; ++i) {
+      ChainPiece piece{Contour{{{p[i], i % 2 == 1 ? q : 0.0}, {p[(i + 1) % 8], 0.0}}, false}, k * 8 + i, 0};
+      if (rng.chance(0.5)) piece.path = reversed(piece.path);
+      pieces.push_back(piece);
+    }
+  }
+  rng.shuffle(pieces.begin(), pieces.end());
+  const ChainResult res = chain_contours(pieces, 0.01);
+  ASSERT_EQ(res.closed.size(), 30u);
+  EXPECT_TRUE(res.open.empty());
+  for (const ChainedContour& c : res.closed) {
+    EXPECT_NEAR(std::abs(signed_area(c.contour)), w * h - (4 - kPi) * r * r, 1e-9);
+    EXPECT_NEAR(length(c.contour), 2 * (w + h) - (8 - 2 * kPi) * r, 1e-9);
+    EXPECT_EQ(c.contour.vertices.size(), 8u);
+  }
+}
+
 TEST(Chain, GapsWithinSnapCloseExactlyAtMidpoints) {
   const double g = 0.004;  // each corner misses by g in x: inside the 0.01 snap
   std::vector<ChainPiece> pieces{line({0, 0}, {10, 0}), line({10 + g, 0}, {10, 10}), line({10, 10}, {0, 10}),

@@ -2,6 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <iterator>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -175,6 +178,43 @@ TEST(Segment, DegenerateInputGivesNoNaN) {
   const Contour collinear = polygon({{0, 0}, {1, 0}, {2, 0}, {3, 0}});
   EXPECT_EQ(signed_area(collinear), 0.0);
   EXPECT_TRUE(std::isfinite(closest_point(collinear, {1.5, 1}).distance));
+}
+
+TEST(Contour, RandomDegenerateContoursGiveFiniteAnswers) {
+  // Repeated vertices, collinear runs, bulges from 1e-12 to 1e9 (and NaN / inf): every measure
+  // stays finite, and length / area / winding obey their invariants.
+  Rng rng(31);
+  const double bulges[] = {0.0, 1e-12, -1e-9, 0.3, -1.0, 1.0, 5.0, -1e6, 1e9, std::nan(""),
+                           std::numeric_limits<double>::infinity()};
+  for (int trial = 0; trial < 500; ++trial) {
+    Contour c;
+    c.closed = rng.chance(0.7);
+    const int n = 1 + static_cast<int>(rng.below(7));
+    for (int i = 0; i < n; ++i) {
+      Vec2 p{static_cast<double>(rng.below(4)), static_cast<double>(rng.below(4))};  // many repeats
+      c.vertices.push_back({p, bulges[rng.below(std::size(bulges))]});
+    }
+    const Contour before = c;
+    const double len = length(c), area = signed_area(c);
+    ASSERT_TRUE(std::isfinite(len) && len >= 0) << trial;
+    ASSERT_TRUE(std::isfinite(area)) << trial;
+    EXPECT_NEAR(length(reversed(c)), len, 1e-9 * (1 + len));
+    if (c.closed) {
+      EXPECT_NEAR(signed_area(reversed(c)), -area, 1e-9 * (1 + std::abs(area)));
+    }
+    const Box box = bounding_box(c);
+    ASSERT_TRUE(std::isfinite(box.xmin) && std::isfinite(box.ymax)) << trial;
+    for (double s : {0.0, 0.3 * len, len, 2.5 * len}) ASSERT_TRUE(is_finite(point_at_length(c, s))) << trial;
+    const Vec2 q{rng.uniform01() * 5 - 1, rng.uniform01() * 5 - 1};
+    const ClosestPoint cp = closest_point(c, q);
+    ASSERT_TRUE(std::isfinite(cp.distance) && is_finite(cp.point)) << trial;
+    (void)winding_number(c, q);
+    (void)locate(c, q, 1e-9);
+    for (Vec2 p : flatten(c, 0.01)) ASSERT_TRUE(is_finite(p)) << trial;
+    // Bitwise: NaN bulges compare unequal to themselves.
+    ASSERT_EQ(c.vertices.size(), before.vertices.size());
+    EXPECT_EQ(std::memcmp(c.vertices.data(), before.vertices.data(), c.vertices.size() * sizeof(Vertex)), 0);
+  }
 }
 
 TEST(Contour, PointAtLengthAndClosestPointOnCircle) {

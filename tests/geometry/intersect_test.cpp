@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <cutroute/core/random.hpp>
+#include <cutroute/core/tolerances.hpp>
 
 #include <cutroute/geometry/arc.hpp>
 #include <cutroute/geometry/intersect.hpp>
@@ -120,11 +121,16 @@ TEST(SegmentDistance, AgreesWithDenseSamplingOnRandomPairs) {
   auto random_segment = [&]() {
     const Vec2 a{rng.uniform01() * 10, rng.uniform01() * 10}, b{rng.uniform01() * 10, rng.uniform01() * 10};
     const double kind = rng.uniform01();
-    const double bulge = kind < 0.3 ? 0.0 : (kind < 0.8 ? 2 * rng.uniform01() - 1 : (rng.chance(0.5) ? 1 : -1) * (1 + 3 * rng.uniform01()));
+    const double sign = rng.chance(0.5) ? 1 : -1;
+    double bulge = 0.0;  // lines, minor arcs, major arcs, nearly straight and nearly full arcs
+    if (kind >= 0.25 && kind < 0.6) bulge = 2 * rng.uniform01() - 1;
+    if (kind >= 0.6 && kind < 0.8) bulge = sign * (1 + 3 * rng.uniform01());
+    if (kind >= 0.8 && kind < 0.9) bulge = sign * 1e-7 * rng.uniform01();
+    if (kind >= 0.9) bulge = sign * (10 + 40 * rng.uniform01());
     return Segment{a, b, bulge};
   };
-  constexpr int kSamples = 400;
-  for (int trial = 0; trial < 300; ++trial) {
+  constexpr int kSamples = 250;
+  for (int trial = 0; trial < 400; ++trial) {
     const Segment s = random_segment(), t = random_segment();
     std::vector<Vec2> ps, pt;
     for (int i = 0; i <= kSamples; ++i) {
@@ -135,7 +141,10 @@ TEST(SegmentDistance, AgreesWithDenseSamplingOnRandomPairs) {
     for (Vec2 p : ps) for (Vec2 q : pt) sampled = std::min(sampled, distance(p, q));
     const double spacing = std::max(s.length(), t.length()) / kSamples;
     const double exact = distance(s, t);
-    ASSERT_LE(exact, sampled + 1e-9) << trial;
+    // Arcs with a sagitta below tol::kCollinearMm are measured as their chord (intersect.hpp).
+    ASSERT_LE(exact, sampled + 1e-9 + tol::kCollinearMm) << trial << " s " << s.a.x << "," << s.a.y << " " << s.b.x << "," << s.b.y << " b " << s.bulge
+                                     << " t " << t.a.x << "," << t.a.y << " " << t.b.x << "," << t.b.y << " b " << t.bulge
+                                     << " diff " << exact - sampled;
     ASSERT_GE(exact, sampled - spacing) << trial;
     EXPECT_NEAR(distance(t, s), exact, 1e-9);
     // Reported intersection points lie on both segments; symmetric in kind.

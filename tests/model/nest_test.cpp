@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -52,13 +53,20 @@ ContourId find(const Nest& nest, const std::string& handle) {
   return ContourId();
 }
 
+// Built by append: GCC 12 warns falsely (-Wrestrict) on "L" + std::to_string(k).
+std::string label(std::size_t k) {
+  std::string s = "L";
+  s += std::to_string(k);
+  return s;
+}
+
 void check_deep_nest(const std::vector<Contour>& levels) {
   // levels[k] is at depth k; fed in a shuffled order with mixed orientations.
   Rng rng(5);
   std::vector<SourceContour> in;
   for (std::size_t k = 0; k < levels.size(); ++k) {
     Contour c = rng.chance(0.5) ? geometry::reversed(levels[k]) : levels[k];
-    in.push_back(src(c, "0", "L" + std::to_string(k)));
+    in.push_back(src(c, "0", label(k)));
   }
   rng.shuffle(in.begin(), in.end());
   const Nest nest = build_nest(in, NestOptions{});
@@ -69,30 +77,30 @@ void check_deep_nest(const std::vector<Contour>& levels) {
   EXPECT_EQ(nest.parts.size(), (levels.size() + 1) / 2);
   for (std::size_t k = 0; k < levels.size(); ++k) {
     SCOPED_TRACE(k);
-    const NestContour& c = nest.contours[find(nest, "L" + std::to_string(k))];
+    const NestContour& c = nest.contours[find(nest, label(k))];
     EXPECT_EQ(c.depth, static_cast<int>(k));
     EXPECT_EQ(c.role, k % 2 == 0 ? ContourRole::outer : ContourRole::hole);
     if (k == 0) {
       EXPECT_FALSE(c.parent.valid());
     } else {
-      EXPECT_EQ(c.parent, find(nest, "L" + std::to_string(k - 1)));
+      EXPECT_EQ(c.parent, find(nest, label(k - 1)));
     }
     const Part& part = nest.parts[c.part];
     if (k % 2 == 0) {
-      EXPECT_EQ(part.outer, find(nest, "L" + std::to_string(k)));
+      EXPECT_EQ(part.outer, find(nest, label(k)));
       if (k + 1 < levels.size()) {
         ASSERT_EQ(part.holes.size(), 1u);
-        EXPECT_EQ(part.holes[0], find(nest, "L" + std::to_string(k + 1)));
+        EXPECT_EQ(part.holes[0], find(nest, label(k + 1)));
       }
       if (k >= 2) {
-        EXPECT_EQ(part.inside_hole, find(nest, "L" + std::to_string(k - 1)));
-        EXPECT_EQ(part.parent_part, nest.contours[find(nest, "L" + std::to_string(k - 2))].part);
+        EXPECT_EQ(part.inside_hole, find(nest, label(k - 1)));
+        EXPECT_EQ(part.parent_part, nest.contours[find(nest, label(k - 2))].part);
       } else {
         EXPECT_FALSE(part.inside_hole.valid());
         EXPECT_FALSE(part.parent_part.valid());
       }
     } else {
-      EXPECT_EQ(part.outer, find(nest, "L" + std::to_string(k - 1)));
+      EXPECT_EQ(part.outer, find(nest, label(k - 1)));
     }
   }
 }
@@ -235,6 +243,9 @@ TEST(Nest, CrossingContoursDiagnosedNamingBoth) {
   EXPECT_NE(d.message.find("entity 1A"), std::string::npos) << d.message;
   EXPECT_NE(d.message.find("entity 2B"), std::string::npos) << d.message;
   EXPECT_NE(d.message.find("line 300"), std::string::npos) << d.message;
+  // Where, and how deep: the circles meet at (7.5, ±6.614); each reaches 5 mm into the other.
+  EXPECT_NE(d.message.find("near (7.5, "), std::string::npos) << d.message;
+  EXPECT_NE(d.message.find("by at least 5 mm"), std::string::npos) << d.message;
   EXPECT_EQ(d.handle, "1A");
   EXPECT_EQ(d.line, 120);
   EXPECT_FALSE(nest.contours[find(nest, "2B")].parent.valid());
@@ -246,6 +257,32 @@ TEST(Nest, CrossingContoursDiagnosedNamingBoth) {
   EXPECT_EQ(shared.diagnostics[0].severity, Severity::error);
   EXPECT_NE(shared.diagnostics[0].message.find("share a boundary stretch"), std::string::npos);
   EXPECT_NE(shared.diagnostics[0].message.find("entity R"), std::string::npos);
+}
+
+TEST(Nest, ThousandsOfOverlapsAreCountedNotListed) {
+  // 300 circles of r = 10 on a line, 1 mm apart: each crosses its neighbours within 20 mm,
+  // 19 or so each side: ~5600 crossing pairs.
+  std::vector<SourceContour> in;
+  for (int i = 0; i < 300; ++i) in.push_back(src(geometry::circle({1.0 * i, 0}, 10)));
+  const Nest nest = build_nest(in, NestOptions{});
+  ASSERT_EQ(nest.diagnostics.size(), 1001u);
+  const std::string& last = nest.diagnostics.back().message;
+  EXPECT_NE(last.find("more pairs of contours cross or overlap"), std::string::npos) << last;
+  // Neighbours closer than 20 mm cross (error); those exactly 20 mm apart touch (warning).
+  std::size_t crossing = 0;
+  for (int i = 0; i < 300; ++i) crossing += static_cast<std::size_t>(std::min(299 - i, 19));
+  const std::size_t touching = 300 - 20;
+  std::size_t listed_errors = 0, listed_warnings = 0;
+  for (std::size_t k = 0; k + 1 < nest.diagnostics.size(); ++k) {
+    ++(nest.diagnostics[k].severity == Severity::error ? listed_errors : listed_warnings);
+  }
+  std::size_t unlisted_errors = 0, unlisted_warnings = 0;
+  ASSERT_EQ(std::sscanf(last.c_str(), "%zu more pairs of contours cross or overlap and %zu", &unlisted_errors,
+                        &unlisted_warnings),
+            2);
+  EXPECT_EQ(listed_errors + unlisted_errors, crossing);
+  EXPECT_EQ(listed_warnings + unlisted_warnings, touching);
+  EXPECT_EQ(nest.parts.size(), 300u);
 }
 
 TEST(Nest, PointTouchIsAWarningAndStillNests) {
@@ -284,6 +321,17 @@ TEST(Nest, DuplicatesAndInvalidDroppedWithErrors) {
   }
   EXPECT_TRUE(named_both);
   EXPECT_EQ(nest.contours[find(nest, "IN")].role, ContourRole::hole);
+}
+
+TEST(Nest, ZeroAreaContourStaysWithAWarning) {
+  // A slot traced there and back inside a square: kept (it is cut), holds nothing.
+  const Contour slot{{{{-1, 0}, 0}, {{1, 0}, 0}}, true};
+  const Nest nest = build_nest({src(square(5), "0", "SQ"), src(slot, "0", "SLOT")}, NestOptions{});
+  ASSERT_EQ(nest.contours.size(), 2u);
+  EXPECT_FALSE(has_errors(nest.diagnostics));
+  ASSERT_EQ(nest.diagnostics.size(), 1u);
+  EXPECT_EQ(nest.diagnostics[0].handle, "SLOT");
+  EXPECT_EQ(nest.contours[find(nest, "SLOT")].parent, find(nest, "SQ"));
 }
 
 TEST(Nest, RandomNestMatchesBruteForceContainment) {

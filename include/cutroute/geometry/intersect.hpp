@@ -24,6 +24,9 @@ struct SegmentIntersection {
   Vec2 points[2];
 };
 
+// Arcs whose sagitta is below tol::kCollinearMm are treated as their chord here and in the
+// distance functions below (their centre is then so far away that circle formulas would lose
+// more precision than the chord approximation): answers are exact to within kCollinearMm.
 SegmentIntersection intersect(const Segment& s, const Segment& t, double tol_mm);
 
 // Closest point of one segment to p.

@@ -32,6 +32,7 @@ std::size_t count_close_segment_pairs(const SegmentSet& a, const SegmentSet& b, 
 struct BoundaryContact {
   std::size_t points = 0;
   std::size_t overlaps = 0;
+  Vec2 first;  // a common point (the first found; for messages), valid when any() [mm]
   bool any() const { return points + overlaps > 0; }
 };
 BoundaryContact boundary_contact(const SegmentSet& a, const SegmentSet& b, double tol_mm);
@@ -42,6 +43,8 @@ BoundaryContact boundary_contact(const SegmentSet& a, const SegmentSet& b, doubl
 struct BoundarySides {
   std::size_t inside = 0;
   std::size_t outside = 0;
+  double depth = 0.0;  // largest distance from an inside sample to b's boundary: a lower
+                       // bound of how far a reaches into b (at most 64 samples measured) [mm]
 };
 BoundarySides boundary_sides(const SegmentSet& a, const SegmentSet& b, double tol_mm);
 

@@ -69,7 +69,7 @@ struct Nest {
   // options.sheet_size and no matching border, the rectangle (0, 0)–(W, H).
   std::optional<geometry::Box> sheet_box;
   std::size_t dropped_duplicates = 0;  // exact repeats of an earlier contour (error diagnostic each)
-  std::size_t dropped_invalid = 0;     // open, empty, zero-area or non-finite input (error diagnostic each)
+  std::size_t dropped_invalid = 0;     // open, empty, zero-length or non-finite input (error diagnostic each)
 };
 
 // Builds the containment tree with exact arcs: parent = smallest containing contour;
@@ -79,8 +79,10 @@ struct Nest {
 //
 // Steps (nest.cpp has one function per step):
 //  1. prepare: area, box; drop (with an error diagnostic) contours that are not closed, have no
-//     area or non-finite coordinates, and exact duplicates (the same vertex cycle, bit-exact,
-//     from any start vertex and in either direction; the first in input order stays).
+//     length or non-finite coordinates, and exact duplicates (the same vertex cycle, bit-exact,
+//     from any start vertex and in either direction; the first in input order stays). A
+//     contour enclosing no area (a slot traced there and back, a symmetric figure 8) stays,
+//     with a warning: it is cut but holds nothing.
 //  2. find the sheet candidate: the largest contour that is an axis-aligned rectangle whose box
 //     encloses every other contour's box (overhang up to tol::kSheetOverhangMm allowed) and that either matches options.sheet_size or lies
 //     on a layer named like sheet/plate/border/blech or is detected by geometry alone.
@@ -89,12 +91,14 @@ struct Nest {
 //     exact boundary test within touch_tol_mm and, when one box holds the other, one exact
 //     point-in-contour test of a vertex of the smaller. parent = the smallest container.
 //     Where the boundaries meet, both are sampled (vertices, segment quarter points) against the
-//     other region, and every diagnostic names both contours:
+//     other region, and every diagnostic names both contours and a common point ("near (x, y)"):
 //       crossing (samples on both sides), or all samples on the other boundary: error
-//       "cross or overlap", and neither becomes the other's parent;
+//       "cross or overlap" (crossing: "by at least D mm", D from the samples), and neither
+//       becomes the other's parent;
 //       touching with a common stretch (shared edge): error "share a boundary stretch";
 //       touching in points only (tangent, corner on edge): warning "touch".
 //     Touching contours still nest when the smaller one's samples lie inside the bigger.
+//     Only the first 1000 such pairs are listed; one more diagnostic counts the rest.
 //  4. a candidate found by geometry alone (no size, no layer) is accepted only when it holds
 //     at least 2 top-level contours and some contour inside it has a contour inside it in turn
 //     (a part with a hole): a rectangular plate with holes, or a rectangular part with one

@@ -32,4 +32,25 @@ inline constexpr double kConstraintSlackRel = 1e-9;
 // Relative termination width of golden-section searches [dimensionless].
 inline constexpr double kGoldenSectionRel = 1e-10;
 
+// Kerf offset (geometry/offset.hpp). An offset arc whose radius falls to or below this has
+// collapsed (its side of the offset shrinks to nothing) and is dropped [mm].
+inline constexpr double kOffsetCollapseRadiusMm = 1e-6;
+
+// Two raw offset segment ends closer than this are joined as they are, without a join arc or
+// a trim; also the length under which an offset piece is dropped [mm]. A convex corner turning
+// by less than 1e-5 rad at a 0.1 mm offset leaves a gap below this.
+inline constexpr double kOffsetJoinMm = 1e-6;
+
+// Two offset pieces meet (touch or cross) when they come closer than this; also the distance
+// under which two intersection points are the same point [mm]. Far below kOffsetJoinMm so that
+// near-tangent crossings are still told apart, far above the rounding of 1e3 mm coordinates.
+inline constexpr double kOffsetIntersectMm = 1e-9;
+
+// A piece of the joined raw offset is kept only if its distance to the source contour is at
+// least |offset| minus this slack [mm]; valid pieces sit at exactly |offset| up to rounding.
+inline constexpr double kOffsetPruneMm = 1e-6;
+
+// A closed offset loop enclosing less than this is numerical debris and is dropped [mm²].
+inline constexpr double kOffsetMinLoopAreaMm2 = 1e-9;
+
 }  // namespace cutroute::tol

@@ -1,0 +1,218 @@
+// Kerf offset of contours and open paths: steps 0-2 and the top level (offset.hpp).
+#include <cutroute/geometry/offset.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <optional>
+
+#include <cutroute/core/tolerances.hpp>
+
+#include "geometry/offset_math.hpp"
+#include "geometry/offset_prune.hpp"
+
+namespace cutroute::geometry {
+
+namespace {
+
+using offset_detail::Piece;
+
+// Below this sine of the turn angle, two opposite tangents are a 180° reversal [1].
+constexpr double kReversalSine = 1e-12;
+
+// A raw offset piece; a collapsed arc keeps its source (the centre is used by joins).
+struct RawPiece {
+  Piece piece;
+  bool collapsed = false;
+};
+
+// Step 0: the source as pieces, zero-length segments dropped and the path kept continuous.
+// nullopt when a coordinate or bulge is not a number.
+std::optional<std::vector<Piece>> source_pieces(const Contour& c, bool closed) {
+  const auto& vs = c.vertices;
+  for (const Vertex& v : vs)
+    if (!is_finite(v.p) || std::isnan(v.bulge)) return std::nullopt;
+  const std::size_t n = vs.size();
+  const std::size_t segments = n == 0 ? 0 : (closed ? n : n - 1);
+  std::vector<Piece> pieces;
+  std::vector<double> bulges;
+  for (std::size_t i = 0; i < segments; ++i) {
+    const Vec2 a = pieces.empty() ? vs[i].p : pieces.back().b;
+    const Piece p = offset_detail::make_piece(a, vs[(i + 1) % n].p, vs[i].bulge);
+    if (offset_detail::length(p) <= tol::kSamePointMm) continue;
+    pieces.push_back(p);
+    bulges.push_back(vs[i].bulge);
+  }
+  if (closed && !pieces.empty() && pieces.back().b != pieces.front().a)
+    pieces.back() = offset_detail::make_piece(pieces.back().a, pieces.front().a, bulges.back());
+  return pieces;
+}
+
+// Step 1: a line moves along its left normal; an arc keeps its centre and changes radius.
+RawPiece raw_offset(const Piece& s, double d) {
+  if (!s.is_arc()) {
+    const Vec2 shift = perp(normalized(s.b - s.a)) * d;
+    return {offset_detail::make_line(s.a + shift, s.b + shift)};
+  }
+  // Left of a counter-clockwise arc is its centre side.
+  const double r = s.r - (s.sweep > 0 ? d : -d);
+  if (r <= tol::kOffsetCollapseRadiusMm) return {s, true};
+  return {offset_detail::make_arc(s.c, r, s.c + normalized(s.a - s.c) * r, s.c + normalized(s.b - s.c) * r,
+                                  s.sweep)};
+}
+
+// Trims prev's end and next's start at their crossing nearest `near`; false if they do not meet.
+bool trim_at_crossing(Piece& prev, Piece& next, Vec2 near) {
+  const auto hits = offset_detail::intersect(prev, next, tol::kOffsetIntersectMm);
+  if (hits.count == 0) return false;
+  Vec2 x = hits.points[0];
+  for (std::size_t h = 1; h < hits.count; ++h)
+    if (distance(hits.points[h], near) < distance(x, near)) x = hits.points[h];
+  const double tp = std::clamp(offset_detail::param_of(prev, x), 0.0, 1.0);
+  const double tn = std::clamp(offset_detail::param_of(next, x), 0.0, 1.0);
+  prev = offset_detail::sub_piece(prev, 0.0, tp, prev.a, x);
+  next = offset_detail::sub_piece(next, tn, 1.0, x, next.b);
+  return true;
+}
+
+// Straight connections through the given points; on closed contours these points lie inside
+// the band of width |d| around the source, so step 3 removes whatever loop they close.
+void connect_through(Vec2 from, const std::vector<Vec2>& through, Vec2 to, std::vector<Piece>& out) {
+  Vec2 cur = from;
+  for (Vec2 p : through) {
+    out.push_back(offset_detail::make_line(cur, p));
+    cur = p;
+  }
+  out.push_back(offset_detail::make_line(cur, to));
+}
+
+// Step 2: connects prev's end to next's start. `vertex` is the source vertex between them;
+// `collapsed_centres` are the centres of collapsed arcs between them (usually none).
+void join(Piece& prev, Piece& next, Vec2 vertex, const std::vector<Vec2>& collapsed_centres, double d, bool closed,
+          std::vector<Piece>& out) {
+  if (!collapsed_centres.empty()) {
+    Vec2 near{};
+    for (Vec2 c : collapsed_centres) near += c;
+    near = near / static_cast<double>(collapsed_centres.size());
+    if (trim_at_crossing(prev, next, near)) return;
+    connect_through(prev.b, closed ? collapsed_centres : std::vector<Vec2>{}, next.a, out);
+    return;
+  }
+  if (distance(prev.b, next.a) <= tol::kOffsetJoinMm) {
+    next.a = prev.b;
+    return;
+  }
+  const Vec2 t1 = offset_detail::end_tangent(prev);
+  const Vec2 t2 = offset_detail::start_tangent(next);
+  const double turn = cross(t1, t2);
+  const bool reversal = std::abs(turn) <= kReversalSine && dot(t1, t2) < 0;
+  if (reversal || turn * d < 0) {
+    // Gap: the path turns away from the offset side; both ends are |d| from the vertex.
+    const Vec2 u = prev.b - vertex;
+    const Vec2 w = next.a - vertex;
+    const double angle = std::atan2(std::abs(cross(u, w)), dot(u, w));  // [0, π]
+    out.push_back(offset_detail::make_arc(vertex, std::abs(d), prev.b, next.a, d > 0 ? -angle : angle));
+    return;
+  }
+  if (trim_at_crossing(prev, next, vertex)) return;
+  connect_through(prev.b, closed ? std::vector<Vec2>{vertex} : std::vector<Vec2>{}, next.a, out);
+}
+
+// Steps 1 and 2: the joined raw offset as a chain of pieces (closed: last end = first start).
+std::vector<Piece> joined_raw_offset(const std::vector<Piece>& source, double d, bool closed) {
+  std::vector<RawPiece> raw;
+  raw.reserve(source.size());
+  for (const Piece& s : source) raw.push_back(raw_offset(s, d));
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < raw.size(); ++i)
+    if (!raw[i].collapsed) kept.push_back(i);
+  // A closed path needs two pieces to enclose anything (one arc cannot cross itself).
+  if (kept.empty() || (closed && kept.size() < 2)) return {};
+
+  const std::size_t n = raw.size();
+  const std::size_t joins = closed ? kept.size() : kept.size() - 1;
+  std::vector<std::vector<Piece>> connectors(kept.size());
+  for (std::size_t k = 0; k < joins; ++k) {
+    const std::size_t i = kept[k];
+    const std::size_t j = kept[(k + 1) % kept.size()];
+    std::vector<Vec2> centres;
+    for (std::size_t m = (i + 1) % n; m != j; m = (m + 1) % n) centres.push_back(raw[m].piece.c);
+    join(raw[i].piece, raw[j].piece, source[i].b, centres, d, closed, connectors[k]);
+  }
+
+  // Pieces trimmed to nothing are dropped; the neighbour takes over their end point.
+  std::vector<Piece> path;
+  auto append = [&path](const Piece& p) {
+    if (offset_detail::length(p) > tol::kOffsetJoinMm) {
+      path.push_back(p);
+    } else if (!path.empty()) {
+      path.back().b = p.b;
+    }
+  };
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    append(raw[kept[k]].piece);
+    for (const Piece& p : connectors[k]) append(p);
+  }
+  if (closed && !path.empty()) path.back().b = path.front().a;
+  return path;
+}
+
+double signed_area(const std::vector<Piece>& loop) {
+  double area = 0.0;
+  for (const Piece& p : loop) area += offset_detail::area_term(p);
+  return area;
+}
+
+Contour to_contour(const std::vector<Piece>& pieces, bool closed) {
+  Contour c;
+  c.closed = closed;
+  c.vertices.reserve(pieces.size() + 1);
+  for (const Piece& p : pieces) c.vertices.push_back({p.a, p.bulge()});
+  if (!closed && !pieces.empty()) c.vertices.push_back({pieces.back().b, 0.0});
+  return c;
+}
+
+}  // namespace
+
+OffsetResult offset_contour(const Contour& c, double distance) {
+  OffsetResult result;
+  if (!c.closed) {
+    Contour open = offset_open_path(c, distance);
+    if (!open.vertices.empty()) result.contours.push_back(std::move(open));
+    result.collapsed = result.contours.empty();
+    return result;
+  }
+  const auto source = source_pieces(c, true);
+  const double source_area = source ? signed_area(*source) : 0.0;
+  if (!source || !std::isfinite(distance) || std::abs(source_area) <= tol::kOffsetMinLoopAreaMm2) {
+    result.collapsed = true;
+    return result;
+  }
+  if (distance == 0.0) {
+    result.contours.push_back(to_contour(*source, true));
+    return result;
+  }
+
+  const std::vector<Piece> path = joined_raw_offset(*source, distance, true);
+  const auto pruned = offset_detail::prune_invalid_loops(path, *source, std::abs(distance));
+  result.self_intersection_removed = pruned.removed;
+  for (const auto& loop : pruned.loops) {
+    const double area = signed_area(loop);
+    if (std::abs(area) > tol::kOffsetMinLoopAreaMm2 && (area > 0) == (source_area > 0)) {
+      result.contours.push_back(to_contour(loop, true));
+    } else {
+      result.self_intersection_removed = result.self_intersection_removed || pruned.loops.size() > 1;
+    }
+  }
+  result.collapsed = result.contours.empty();
+  return result;
+}
+
+Contour offset_open_path(const Contour& c, double distance) {
+  const auto source = source_pieces(c, false);
+  if (!source || source->empty() || !std::isfinite(distance)) return Contour{};
+  if (distance == 0.0) return to_contour(*source, false);
+  return to_contour(joined_raw_offset(*source, distance, false), false);
+}
+
+}  // namespace cutroute::geometry

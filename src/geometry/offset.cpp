@@ -49,16 +49,24 @@ std::optional<std::vector<Piece>> source_pieces(const Contour& c, bool closed) {
 }
 
 // Step 1: a line moves along its left normal; an arc keeps its centre and changes radius.
-RawPiece raw_offset(const Piece& s, double d) {
+// An arc whose radius would fall to <= 0 collapses. On a closed contour its raw offset is then
+// the mirrored arc (radius d - r, on the far side of the centre, a point when that is ~0): the
+// true parallel curve, whose ends are |d| from the arc's end vertices so that the ordinary joins
+// apply, and which lies wholly inside the band of width |d| so that step 3 drops it. On an open
+// path (no step 3) a collapsed arc is simply left out.
+RawPiece raw_offset(const Piece& s, double d, bool closed) {
   if (!s.is_arc()) {
     const Vec2 shift = perp(normalized(s.b - s.a)) * d;
     return {offset_detail::make_line(s.a + shift, s.b + shift)};
   }
   // Left of a counter-clockwise arc is its centre side.
   const double r = s.r - (s.sweep > 0 ? d : -d);
-  if (r <= tol::kOffsetCollapseRadiusMm) return {s, true};
-  return {offset_detail::make_arc(s.c, r, s.c + normalized(s.a - s.c) * r, s.c + normalized(s.b - s.c) * r,
-                                  s.sweep)};
+  const Vec2 ua = normalized(s.a - s.c);
+  const Vec2 ub = normalized(s.b - s.c);
+  if (r > tol::kOffsetCollapseRadiusMm) return {offset_detail::make_arc(s.c, r, s.c + ua * r, s.c + ub * r, s.sweep)};
+  if (!closed) return {s, true};
+  if (-r <= tol::kOffsetCollapseRadiusMm) return {offset_detail::make_line(s.c, s.c)};
+  return {offset_detail::make_arc(s.c, -r, s.c + ua * r, s.c + ub * r, s.sweep)};
 }
 
 // Trims prev's end and next's start at their crossing nearest `near`; false if they do not meet.
@@ -86,10 +94,12 @@ void connect_through(Vec2 from, const std::vector<Vec2>& through, Vec2 to, std::
   out.push_back(offset_detail::make_line(cur, to));
 }
 
-// Step 2: connects prev's end to next's start. `vertex` is the source vertex between them;
-// `collapsed_centres` are the centres of collapsed arcs between them (usually none).
-void join(Piece& prev, Piece& next, Vec2 vertex, const std::vector<Vec2>& collapsed_centres, double d, bool closed,
-          std::vector<Piece>& out) {
+// Step 2: connects prev's end to next's start. `before` and `after` are their source pieces,
+// which meet at a source vertex (the turn is judged on them: a raw piece may have been trimmed
+// to nothing or mirrored). `collapsed_centres` are the centres of arcs left out between them
+// (open paths only).
+void join(Piece& prev, Piece& next, const Piece& before, const Piece& after,
+          const std::vector<Vec2>& collapsed_centres, double d, bool closed, std::vector<Piece>& out) {
   if (!collapsed_centres.empty()) {
     Vec2 near{};
     for (Vec2 c : collapsed_centres) near += c;
@@ -102,8 +112,9 @@ void join(Piece& prev, Piece& next, Vec2 vertex, const std::vector<Vec2>& collap
     next.a = prev.b;
     return;
   }
-  const Vec2 t1 = offset_detail::end_tangent(prev);
-  const Vec2 t2 = offset_detail::start_tangent(next);
+  const Vec2 vertex = before.b;
+  const Vec2 t1 = offset_detail::end_tangent(before);
+  const Vec2 t2 = offset_detail::start_tangent(after);
   const double turn = cross(t1, t2);
   const bool reversal = std::abs(turn) <= kReversalSine && dot(t1, t2) < 0;
   if (reversal || turn * d < 0) {
@@ -122,7 +133,7 @@ void join(Piece& prev, Piece& next, Vec2 vertex, const std::vector<Vec2>& collap
 std::vector<Piece> joined_raw_offset(const std::vector<Piece>& source, double d, bool closed) {
   std::vector<RawPiece> raw;
   raw.reserve(source.size());
-  for (const Piece& s : source) raw.push_back(raw_offset(s, d));
+  for (const Piece& s : source) raw.push_back(raw_offset(s, d, closed));
   std::vector<std::size_t> kept;
   for (std::size_t i = 0; i < raw.size(); ++i)
     if (!raw[i].collapsed) kept.push_back(i);
@@ -137,7 +148,7 @@ std::vector<Piece> joined_raw_offset(const std::vector<Piece>& source, double d,
     const std::size_t j = kept[(k + 1) % kept.size()];
     std::vector<Vec2> centres;
     for (std::size_t m = (i + 1) % n; m != j; m = (m + 1) % n) centres.push_back(raw[m].piece.c);
-    join(raw[i].piece, raw[j].piece, source[i].b, centres, d, closed, connectors[k]);
+    join(raw[i].piece, raw[j].piece, source[i], source[j], centres, d, closed, connectors[k]);
   }
 
   // Pieces trimmed to nothing are dropped; the neighbour takes over their end point.

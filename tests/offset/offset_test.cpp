@@ -530,5 +530,83 @@ TEST(OffsetOpenPath, CornersGetJoinArcsOrTrims) {
   EXPECT_TRUE(offset_open_path(Contour{{{{1, 1}, 0}, {{1, 1}, 3}}, false}, 1).vertices.empty());
 }
 
+// ---- Random shapes against brute force
+
+// Deterministic generator for the test shapes (splitmix64).
+struct TestRng {
+  unsigned long long state;
+  double uniform(double lo, double hi) {
+    unsigned long long z = (state += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    z ^= z >> 31;
+    return lo + (hi - lo) * static_cast<double>(z >> 11) / 9007199254740992.0;
+  }
+};
+
+// Star-shaped polygon around the origin with random radii and bulges, counter-clockwise.
+Contour random_star(TestRng& rng, int n, double max_bulge) {
+  Contour c;
+  c.closed = true;
+  for (int i = 0; i < n; ++i) {
+    const double ang = 2 * kPi * (i + rng.uniform(0.1, 0.9)) / n;
+    const double r = rng.uniform(4, 10);
+    c.vertices.push_back({{r * std::cos(ang), r * std::sin(ang)}, rng.uniform(-max_bulge, max_bulge)});
+  }
+  return c;
+}
+
+bool loops_cross(const Contour& a, const Contour& b) {
+  const std::vector<Vec2> p = polygon(a, 64), q = polygon(b, 64);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (std::size_t j = 0; j < q.size(); ++j)
+      if (segments_cross(p[i], p[(i + 1) % p.size()], q[j], q[(j + 1) % q.size()])) return true;
+  return false;
+}
+
+TEST(OffsetContour, RandomStarShapesMatchBruteForce) {
+  TestRng rng{20261121};
+  int checked = 0;
+  for (int shape = 0; shape < 30; ++shape) {
+    const Contour src = random_star(rng, 5 + shape % 10, shape % 3 == 0 ? 0.0 : 0.35);
+    if (!is_simple(src)) continue;
+    // Per grid point: inside? and distance to the source, computed once per shape.
+    const double h = 0.15, m = 3.2;
+    const std::vector<Vec2> poly = polygon(src, 48);
+    std::vector<char> in;
+    std::vector<double> dist;
+    for (double y = -10 - m + h / 2; y < 10 + m; y += h)
+      for (double x = -10 - m + h / 2; x < 10 + m; x += h) {
+        in.push_back(inside(poly, {x, y}) ? 1 : 0);
+        dist.push_back(dist_to(src, {x, y}));
+      }
+    for (double d : {0.3, -0.3, 1.2, -1.2, 3.0, -3.0}) {
+      SCOPED_TRACE(testing::Message() << "shape " << shape << " d " << d);
+      const OffsetResult r = offset_contour(src, d);
+      double total = 0, perim = 0;
+      for (const Contour& o : r.contours) {
+        ASSERT_TRUE(all_finite(o));
+        expect_at_offset(o, src, d, 1e-7);
+        EXPECT_TRUE(is_simple(o));
+        EXPECT_GT(area(o), 0);
+        total += area(o);
+        perim += perimeter(o);
+      }
+      for (std::size_t i = 0; i < r.contours.size(); ++i)
+        for (std::size_t j = i + 1; j < r.contours.size(); ++j)
+          EXPECT_FALSE(loops_cross(r.contours[i], r.contours[j]));
+      EXPECT_EQ(r.collapsed, r.contours.empty());
+      double grid = 0;
+      for (std::size_t k = 0; k < in.size(); ++k)
+        if (d > 0 ? (in[k] && dist[k] >= d) : (in[k] || dist[k] <= -d)) grid += h * h;
+      // Each boundary cell is off by at most h² / 2 (the perimeter of src bounds the offset's
+      // for inward offsets; for outward ones the offset's own perimeter is used).
+      EXPECT_NEAR(total, grid, std::max(perim, perimeter(src)) * h / 2 + 4 * h * h);
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 120);
+}
+
 }  // namespace
 }  // namespace cutroute::geometry

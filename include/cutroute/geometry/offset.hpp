@@ -16,7 +16,11 @@
 //     coordinates (empty result).
 //  1. Raw offset of every segment: a line moves along its left normal by d; an arc keeps its
 //     centre and gets radius r - d (counter-clockwise arc) or r + d (clockwise arc). An arc
-//     whose radius would fall to <= tol::kOffsetCollapseRadiusMm collapses and is dropped.
+//     whose radius would fall to <= tol::kOffsetCollapseRadiusMm collapses and is dropped: on
+//     a closed contour it is first replaced by its mirrored parallel curve (radius |r - d| on
+//     the far side of the centre, or the centre itself), which the joins treat like any raw
+//     piece and which step 3 then removes, since it lies wholly within |d| of the source; on
+//     an open path it is left out at once.
 //  2. Join consecutive raw segments at each source vertex V:
 //     - ends closer than tol::kOffsetJoinMm (tangent-continuous source): connect as they are;
 //     - gap (the vertex is convex on the offset side): a join arc of radius |d| centred on V,
@@ -24,8 +28,9 @@
 //     - overlap (concave side): intersect the two raw segments (line-line, line-arc, arc-arc)
 //       and trim both at the intersection nearest V. Without an intersection (a short
 //       segment), closed contours go through V itself (a spike that step 3 removes) and open
-//       paths get a straight connection. Across a collapsed arc, the neighbours are
-//       intersected likewise, else connected through the collapsed arc's centre.
+//       paths get a straight connection. Convex/concave is judged on the source tangents.
+//       On open paths, the neighbours of a left-out collapsed arc are intersected likewise,
+//       else connected by a straight line.
 //  3. Closed contours only: the joined path crosses itself where the source has features
 //     narrower than 2|d| (thin slots, small holes). Split it at every self-intersection into
 //     slices; keep a slice only if it does not cross the source and its sampled distance to

@@ -83,6 +83,20 @@ bool trim_at_crossing(Piece& prev, Piece& next, Vec2 near) {
   return true;
 }
 
+// Do the full line or circle of p and of q meet (ignoring where the pieces end)?
+bool supports_meet(const Piece& p, const Piece& q) {
+  const double tol = tol::kOffsetIntersectMm;
+  if (!p.is_arc() && !q.is_arc()) return true;  // parallel offsets of a concave corner do not occur
+  if (!p.is_arc() || !q.is_arc()) {
+    const Piece& line = p.is_arc() ? q : p;
+    const Piece& arc = p.is_arc() ? p : q;
+    const Vec2 u = normalized(line.b - line.a);
+    return std::abs(cross(u, arc.c - line.a)) <= arc.r + tol;
+  }
+  const double dc = distance(p.c, q.c);
+  return dc <= p.r + q.r + tol && dc >= std::abs(p.r - q.r) - tol;
+}
+
 // Straight connections through the given points; on closed contours these points lie inside
 // the band of width |d| around the source, so step 3 removes whatever loop they close.
 void connect_through(Vec2 from, const std::vector<Vec2>& through, Vec2 to, std::vector<Piece>& out) {
@@ -117,15 +131,25 @@ void join(Piece& prev, Piece& next, const Piece& before, const Piece& after,
   const Vec2 t2 = offset_detail::start_tangent(after);
   const double turn = cross(t1, t2);
   const bool reversal = std::abs(turn) <= kReversalSine && dot(t1, t2) < 0;
-  if (reversal || turn * d < 0) {
-    // Gap: the path turns away from the offset side; both ends are |d| from the vertex.
+  const auto join_arc = [&] {
     const Vec2 u = prev.b - vertex;
     const Vec2 w = next.a - vertex;
     const double angle = std::atan2(std::abs(cross(u, w)), dot(u, w));  // [0, π]
     out.push_back(offset_detail::make_arc(vertex, std::abs(d), prev.b, next.a, d > 0 ? -angle : angle));
+  };
+  if (reversal || turn * d < 0) {
+    // Gap: the path turns away from the offset side; both ends are |d| from the vertex.
+    join_arc();
     return;
   }
   if (trim_at_crossing(prev, next, vertex)) return;
+  // Concave, yet the two never meet: arcs curving away from each other (a cusp), where the
+  // offset boundary passes around V like at a convex corner. (Pieces whose lines or circles do
+  // meet, just beyond their ends, are the classic short-segment case handled through V.)
+  if (closed && !supports_meet(prev, next)) {
+    join_arc();
+    return;
+  }
   connect_through(prev.b, closed ? std::vector<Vec2>{vertex} : std::vector<Vec2>{}, next.a, out);
 }
 

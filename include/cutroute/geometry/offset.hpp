@@ -28,7 +28,9 @@
 //     - overlap (concave side): intersect the two raw segments (line-line, line-arc, arc-arc)
 //       and trim both at the intersection nearest V. Without an intersection (a short
 //       segment), closed contours go through V itself (a spike that step 3 removes) and open
-//       paths get a straight connection. Convex/concave is judged on the source tangents.
+//       paths get a straight connection. If the two raw pieces' full circles (or line and
+//       circle) do not meet at all, they curve away from each other (a cusp): a join arc as
+//       for a gap. Convex/concave is judged on the source tangents.
 //       On open paths, the neighbours of a left-out collapsed arc are intersected likewise,
 //       else connected by a straight line.
 //  3. Closed contours only: the joined path crosses itself where the source has features

@@ -236,7 +236,7 @@ OffsetResult offset_contour(const Contour& c, double distance) {
     if (std::abs(area) > tol::kOffsetMinLoopAreaMm2 && (area > 0) == (source_area > 0)) {
       result.contours.push_back(to_contour(loop, true));
     } else {
-      result.self_intersection_removed = result.self_intersection_removed || pruned.loops.size() > 1;
+      result.self_intersection_removed = true;  // an inverted or vanishing loop
     }
   }
   result.collapsed = result.contours.empty();

@@ -233,6 +233,7 @@ TEST(OffsetContour, SquareInwardIsSmallerSharpSquare) {
   const Contour sq = rect(0, 0, a, a);
   const OffsetResult r = offset_contour(sq, d);
   ASSERT_EQ(r.contours.size(), 1u);
+  EXPECT_FALSE(r.self_intersection_removed);
   const Contour& o = r.contours[0];
   ASSERT_EQ(o.vertices.size(), 4u);
   for (const Vertex& v : o.vertices) EXPECT_EQ(v.bulge, 0.0);
@@ -360,6 +361,7 @@ TEST(OffsetContour, SmallHoleCollapses) {
   EXPECT_TRUE(c.contours.empty());
   const OffsetResult sq = offset_contour(rect(0, 0, 1, 1), 0.6);  // shifted edges cross over
   EXPECT_TRUE(sq.collapsed);
+  EXPECT_TRUE(sq.self_intersection_removed);  // the inverted square was dropped
   EXPECT_TRUE(sq.contours.empty());
   const OffsetResult far = offset_contour(rect(0, 0, 1, 1), 3);  // shifted edges miss each other
   EXPECT_TRUE(far.collapsed);
@@ -525,6 +527,14 @@ TEST(OffsetOpenPath, CornersGetJoinArcsOrTrims) {
   EXPECT_NEAR(distance(right.vertices[1].p, {9, -1}), 0, 1e-12);
   EXPECT_NEAR(distance(right.vertices[0].p, {0, -1}), 0, 1e-12);
   EXPECT_NEAR(distance(right.vertices[2].p, {9, -10}), 0, 1e-12);
+  // A fillet tighter than the offset collapses: the neighbours meet in a sharp corner.
+  const Contour fillet{{{{0, 0}, 0}, {{10, 0}, std::tan(kPi / 8)}, {{10.2, 0.2}, 0}, {{10.2, 10}, 0}}, false};
+  const Contour sharp = offset_open_path(fillet, 0.5);
+  ASSERT_EQ(sharp.vertices.size(), 3u);
+  EXPECT_NEAR(distance(sharp.vertices[0].p, {0, 0.5}), 0, 1e-12);
+  EXPECT_NEAR(distance(sharp.vertices[1].p, {9.7, 0.5}), 0, 1e-12);
+  EXPECT_NEAR(distance(sharp.vertices[2].p, {9.7, 10}), 0, 1e-12);
+  expect_at_offset(sharp, fillet, 0.5);
   // Degenerate open paths.
   EXPECT_TRUE(offset_open_path(Contour{{{{1, 1}, 0}}, false}, 1).vertices.empty());
   EXPECT_TRUE(offset_open_path(Contour{{{{1, 1}, 0}, {{1, 1}, 3}}, false}, 1).vertices.empty());

@@ -56,7 +56,8 @@ struct OffsetResult {
   std::vector<Contour> contours;
   // No loop survived (e.g. a hole smaller than the kerf, or a degenerate/zero-area source).
   bool collapsed = false;
-  // Step 3 discarded some part of the joined raw offset.
+  // Step 3 discarded some part of the joined raw offset (a slice, or a loop of the wrong
+  // orientation); may be set together with `collapsed`.
   bool self_intersection_removed = false;
 };
 
@@ -66,7 +67,9 @@ OffsetResult offset_contour(const Contour& c, double distance);
 
 // Offsets an open path (lead-ins, lead-outs) by `distance` mm to its left (negative: right):
 // per-segment raw offset and joins (steps 0-2), no loop removal. The result is open; its end
-// points are the offsets of the source's end points. `c.closed` is ignored.
+// points are the offsets of the source's end points (unless an arc at an end collapsed, which
+// is left out). Empty for fewer than two distinct points or non-finite input. `c.closed` is
+// ignored.
 Contour offset_open_path(const Contour& c, double distance);
 
 }  // namespace cutroute::geometry

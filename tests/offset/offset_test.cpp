@@ -618,5 +618,67 @@ TEST(OffsetContour, RandomStarShapesMatchBruteForce) {
   EXPECT_GE(checked, 120);
 }
 
+// Combs on an integer grid: teeth and gaps 1-3 mm wide, so that offsets by 0.5, 1 and 1.5 mm
+// make walls coincide exactly (gaps of exactly 2|d|) or pass exactly through corners.
+Contour random_comb(TestRng& rng, int teeth) {
+  std::vector<Vec2> top;  // the toothed top edge, left to right
+  double x = 0;
+  for (int i = 0; i < teeth; ++i) {
+    const double w = std::floor(rng.uniform(1, 4)), h = std::floor(rng.uniform(1, 6)), g = std::floor(rng.uniform(1, 4));
+    top.push_back({x, 2});
+    top.push_back({x, 2 + h});
+    top.push_back({x + w, 2 + h});
+    top.push_back({x + w, 2});
+    x += w + g;
+  }
+  Contour c;
+  c.closed = true;
+  c.vertices.push_back({{x, 0}, 0});
+  c.vertices.push_back({{x, 2}, 0});
+  for (auto it = top.rbegin(); it != top.rend(); ++it) c.vertices.push_back({*it, 0});
+  c.vertices.push_back({{-1, 2}, 0});
+  c.vertices.push_back({{-1, 0}, 0});
+  return c;
+}
+
+TEST(OffsetContour, RandomCombsWithExactCoincidencesMatchBruteForce) {
+  TestRng rng{7};
+  int checked = 0;
+  for (int shape = 0; shape < 12; ++shape) {
+    const Contour src = random_comb(rng, 2 + shape % 4);
+    ASSERT_TRUE(is_simple(src));
+    double xmax = 0;
+    for (const Vertex& v : src.vertices) xmax = std::max(xmax, v.p.x);
+    const double h = 0.1, m = 2;
+    const std::vector<Vec2> poly = polygon(src, 1);
+    std::vector<char> in;
+    std::vector<double> dist;
+    for (double y = -m + h / 2; y < 8 + m; y += h)
+      for (double x = -1 - m + h / 2; x < xmax + m; x += h) {
+        in.push_back(inside(poly, {x, y}) ? 1 : 0);
+        dist.push_back(dist_to(src, {x, y}));
+      }
+    for (double d : {0.5, -0.5, 1.0, -1.0, 1.5, -1.5}) {
+      SCOPED_TRACE(testing::Message() << "comb " << shape << " d " << d);
+      const OffsetResult r = offset_contour(src, d);
+      double total = 0, perim = 0;
+      for (const Contour& o : r.contours) {
+        ASSERT_TRUE(all_finite(o));
+        expect_at_offset(o, src, d, 1e-7);
+        EXPECT_TRUE(is_simple(o));
+        EXPECT_GT(area(o), 0);
+        total += area(o);
+        perim += perimeter(o);
+      }
+      double grid = 0;
+      for (std::size_t k = 0; k < in.size(); ++k)
+        if (d > 0 ? (in[k] && dist[k] >= d) : (in[k] || dist[k] <= -d)) grid += h * h;
+      EXPECT_NEAR(total, grid, std::max(perim, perimeter(src)) * h / 2 + 4 * h * h);
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 72);
+}
+
 }  // namespace
 }  // namespace cutroute::geometry

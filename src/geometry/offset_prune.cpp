@@ -1,5 +1,6 @@
 // Invalid-loop removal of the kerf offset (step 3, see offset.hpp and offset_prune.hpp).
 #include "geometry/offset_prune.hpp"
+#include "geometry/offset_grid.hpp"
 
 #include <algorithm>
 #include <cstddef>
@@ -97,31 +98,53 @@ Slice extract_slice(const std::vector<Piece>& path, const Split& from, const Spl
 
 // Between two crossings the distance to the source stays on one side of |d|, so a few samples
 // per piece decide; the crossing test catches slices that cut through the source itself.
+// `near` holds the source boxes grown by |d|.
 bool slice_is_valid(const Slice& slice, const std::vector<Piece>& source, const std::vector<Box>& source_boxes,
-                    double abs_offset) {
+                    const BoxGrid& near, double abs_offset) {
   const double min_dist = abs_offset - tol::kOffsetPruneMm;
   for (const Piece& q : slice.pieces) {
     for (double t : {0.25, 0.5, 0.75}) {
       const Vec2 x = point_at(q, t);
-      for (std::size_t s = 0; s < source.size(); ++s) {
-        if (!source_boxes[s].inflated(abs_offset).contains(x)) continue;  // farther than |d| anyway
-        if (distance_to(source[s], x) < min_dist) return false;
-      }
+      Box at;
+      at.add(x);
+      if (near.any_near(at, [&](std::size_t s) { return distance_to(source[s], x) < min_dist; })) return false;
     }
     const Box qb = box_of(q).inflated(tol::kOffsetIntersectMm);
-    for (std::size_t s = 0; s < source.size(); ++s)
-      if (qb.intersects(source_boxes[s]) && intersect(q, source[s], tol::kOffsetIntersectMm).count > 0)
-        return false;
+    if (near.any_near(qb, [&](std::size_t s) {
+          return qb.intersects(source_boxes[s]) && intersect(q, source[s], tol::kOffsetIntersectMm).count > 0;
+        }))
+      return false;
   }
   return true;
 }
 
 // Chains kept slices end to start. Each slice starts where another one ended (a crossing);
-// a chain that cannot be closed is dropped.
+// a chain that cannot be closed is dropped. Starts are sorted on x so that finding the next
+// slice is a binary search.
 PrunedLoops stitch(std::vector<Slice> slices, bool removed) {
   PrunedLoops result;
   result.removed = removed;
+  const double tol = tol::kSamePointMm;
+  std::vector<std::size_t> by_x(slices.size());
+  std::iota(by_x.begin(), by_x.end(), std::size_t{0});
+  std::sort(by_x.begin(), by_x.end(), [&](std::size_t a, std::size_t b) {
+    return slices[a].start.x < slices[b].start.x || (slices[a].start.x == slices[b].start.x && a < b);
+  });
   std::vector<bool> used(slices.size(), false);
+  auto next_from = [&](Vec2 end) {
+    auto it = std::lower_bound(by_x.begin(), by_x.end(), end.x - tol,
+                               [&](std::size_t s, double x) { return slices[s].start.x < x; });
+    std::size_t best = slices.size();
+    double best_dist = tol;
+    for (; it != by_x.end() && slices[*it].start.x <= end.x + tol; ++it) {
+      const double dist = distance(slices[*it].start, end);
+      if (!used[*it] && dist <= best_dist) {
+        best = *it;
+        best_dist = dist;
+      }
+    }
+    return best;
+  };
   for (std::size_t first = 0; first < slices.size(); ++first) {
     if (used[first]) continue;
     used[first] = true;
@@ -130,20 +153,11 @@ PrunedLoops stitch(std::vector<Slice> slices, bool removed) {
     Vec2 end = slices[first].end;
     bool closed = false;
     for (std::size_t guard = 0; guard <= slices.size(); ++guard) {
-      if (distance(end, start) <= tol::kSamePointMm) {
+      if (distance(end, start) <= tol) {
         closed = true;
         break;
       }
-      std::size_t best = slices.size();
-      double best_dist = tol::kSamePointMm;
-      for (std::size_t s = 0; s < slices.size(); ++s) {
-        if (used[s]) continue;
-        const double dist = distance(slices[s].start, end);
-        if (dist <= best_dist) {
-          best = s;
-          best_dist = dist;
-        }
-      }
+      const std::size_t best = next_from(end);
       if (best == slices.size()) break;
       used[best] = true;
       loop.insert(loop.end(), slices[best].pieces.begin(), slices[best].pieces.end());
@@ -165,13 +179,14 @@ PrunedLoops prune_invalid_loops(const std::vector<Piece>& path, const std::vecto
   if (path.empty()) return {};
   std::vector<Box> source_boxes(source.size());
   for (std::size_t s = 0; s < source.size(); ++s) source_boxes[s] = box_of(source[s]);
+  const BoxGrid near(source_boxes, abs_offset);
 
   const std::vector<Split> splits = find_splits(path);
   std::vector<Slice> kept;
   bool removed = false;
   if (splits.empty()) {
     Slice whole{path, path.front().a, path.front().a};
-    if (slice_is_valid(whole, source, source_boxes, abs_offset)) {
+    if (slice_is_valid(whole, source, source_boxes, near, abs_offset)) {
       kept.push_back(std::move(whole));
     } else {
       removed = true;
@@ -181,7 +196,7 @@ PrunedLoops prune_invalid_loops(const std::vector<Piece>& path, const std::vecto
   for (std::size_t i = 0; i < splits.size(); ++i) {
     Slice slice = extract_slice(path, splits[i], splits[(i + 1) % splits.size()], splits.size() == 1);
     if (slice.pieces.empty()) continue;
-    if (slice_is_valid(slice, source, source_boxes, abs_offset)) {
+    if (slice_is_valid(slice, source, source_boxes, near, abs_offset)) {
       kept.push_back(std::move(slice));
     } else {
       removed = true;

@@ -131,12 +131,12 @@ bool all_finite(const Contour& c) {
   return true;
 }
 
-// Every vertex and 16 points on every segment of `result` are |d| from `source`.
-void expect_at_offset(const Contour& result, const Contour& source, double d, double tol = 1e-9) {
+// Every vertex and `steps` points on every segment of `result` are |d| from `source`.
+void expect_at_offset(const Contour& result, const Contour& source, double d, double tol = 1e-9, int steps = 16) {
   for (std::size_t i = 0; i < seg_count(result); ++i) {
     const Arc s = seg(result, i);
-    for (int k = 0; k <= 16; ++k) {
-      const Vec2 p = point_on(s, k / 16.0);
+    for (int k = 0; k <= steps; ++k) {
+      const Vec2 p = point_on(s, static_cast<double>(k) / steps);
       ASSERT_NEAR(dist_to(source, p), std::abs(d), tol) << "segment " << i << " sample " << k << " at (" << p.x
                                                          << ", " << p.y << ")";
     }
@@ -678,6 +678,38 @@ TEST(OffsetContour, RandomCombsWithExactCoincidencesMatchBruteForce) {
     }
   }
   EXPECT_EQ(checked, 72);
+}
+
+// Many short pieces (as from a spline converted to arcs) with waves of about the offset's size:
+// whatever is trimmed or removed between the waves, the result keeps its distance.
+TEST(OffsetContour, LargeWavyContourKeepsDistance) {
+  TestRng rng{99};
+  Contour c;
+  c.closed = true;
+  const int n = 1000;
+  for (int i = 0; i < n; ++i) {
+    const double ang = 2 * kPi * i / n, r = 100 + rng.uniform(0, 0.5);
+    c.vertices.push_back({{r * std::cos(ang), r * std::sin(ang)}, i % 3 == 0 ? 0.1 : 0.0});
+  }
+  for (double d : {1.0, -1.0}) {
+    SCOPED_TRACE(d);
+    const OffsetResult r = offset_contour(c, d);
+    ASSERT_EQ(r.contours.size(), 1u);
+    expect_at_offset(r.contours[0], c, d, 1e-7, 2);
+    // Between the circles of radius 100 - d and 100.5 - d (resp. 100 + |d|, 100.5 + |d|).
+    const double lo = d > 0 ? 100 - d : 100 + std::abs(d), hi = lo + 0.5;
+    EXPECT_GT(area(r.contours[0]), kPi * lo * lo);
+    EXPECT_LT(area(r.contours[0]), kPi * hi * hi);
+  }
+}
+
+TEST(OffsetContour, SelfIntersectingInputGivesFiniteOutput) {
+  // A figure eight and a bow tie: not valid contours, but no crash and no NaN.
+  const Contour eight{{{{0, 0}, 0.8}, {{10, 0}, -0.8}, {{20, 0}, 0.8}, {{10, 0}, -0.8}}, true};
+  const Contour bow{{{{0, 0}, 0}, {{10, 10}, 0}, {{10, 0}, 0}, {{0, 10}, 0}}, true};
+  for (const Contour* c : {&eight, &bow})
+    for (double d : {0.5, -0.5, 3.0, -3.0})
+      for (const Contour& o : offset_contour(*c, d).contours) EXPECT_TRUE(all_finite(o));
 }
 
 }  // namespace

@@ -712,5 +712,41 @@ TEST(OffsetContour, SelfIntersectingInputGivesFiniteOutput) {
       for (const Contour& o : offset_contour(*c, d).contours) EXPECT_TRUE(all_finite(o));
 }
 
+// A cavity whose mouth is narrower than 2d: the outward offset seals the mouth; the loop around
+// the sealed cavity has the opposite orientation and is dropped, so the one loop left encloses
+// the dilated part together with the cavity.
+TEST(OffsetContour, SealedCavityLeavesOnlyTheOuterLoop) {
+  const Contour part{{{{0, 0}, 0},
+                      {{20, 0}, 0},
+                      {{20, 20}, 0},
+                      {{10.5, 20}, 0},
+                      {{10.5, 15}, 0},
+                      {{15, 15}, 0},
+                      {{15, 5}, 0},
+                      {{5, 5}, 0},
+                      {{5, 15}, 0},
+                      {{9.5, 15}, 0},
+                      {{9.5, 20}, 0},
+                      {{0, 20}, 0}},
+                     true};
+  ASSERT_TRUE(is_simple(part));
+  const double d = 1;
+  const OffsetResult r = offset_contour(part, -d);
+  EXPECT_TRUE(r.self_intersection_removed);
+  ASSERT_EQ(r.contours.size(), 1u);
+  const Contour& o = r.contours[0];
+  EXPECT_TRUE(is_simple(o));
+  expect_at_offset(o, part, d);
+  const double h = 0.04;
+  const std::vector<Vec2> poly = polygon(part, 1);
+  double grid = 0;
+  for (double y = -2 + h / 2; y < 22; y += h)
+    for (double x = -2 + h / 2; x < 22; x += h) {
+      const bool cavity = x > 5 && x < 15 && y > 5 && y < 15;
+      if (cavity || inside(poly, {x, y}) || dist_to(part, {x, y}) <= d) grid += h * h;
+    }
+  EXPECT_NEAR(area(o), grid, perimeter(o) * h);
+}
+
 }  // namespace
 }  // namespace cutroute::geometry

@@ -52,7 +52,9 @@ namespace cutroute::geometry {
 struct OffsetResult {
   // Closed offset loops with the source's orientation; the first vertex of each loop is where
   // its first kept piece starts. Usually one loop; none when the contour collapsed; several
-  // when a thin neck of the source splits the offset region.
+  // when a thin neck of the source splits the offset region. Loops of the opposite orientation
+  // are dropped: e.g. around a cavity whose mouth is narrower than 2|d|, which an outward
+  // offset seals (the tool could not enter it anyway).
   std::vector<Contour> contours;
   // No loop survived (e.g. a hole smaller than the kerf, or a degenerate/zero-area source).
   bool collapsed = false;

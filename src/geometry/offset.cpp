@@ -202,7 +202,10 @@ Contour to_contour(const std::vector<Piece>& pieces, bool closed) {
   Contour c;
   c.closed = closed;
   c.vertices.reserve(pieces.size() + 1);
-  for (const Piece& p : pieces) c.vertices.push_back({p.a, p.bulge()});
+  // Slivers left where crossings fall next to a vertex would be zero-length moves in G-code;
+  // dropping one moves the next vertex by at most tol::kOffsetJoinMm.
+  for (const Piece& p : pieces)
+    if (!closed || offset_detail::length(p) > tol::kOffsetJoinMm) c.vertices.push_back({p.a, p.bulge()});
   if (!closed && !pieces.empty()) c.vertices.push_back({pieces.back().b, 0.0});
   return c;
 }

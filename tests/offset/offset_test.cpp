@@ -125,6 +125,15 @@ bool is_simple(const Contour& c) {
   return true;
 }
 
+double shortest_segment(const Contour& c) {
+  double m = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < seg_count(c); ++i) {
+    const Arc s = seg(c, i);
+    m = std::min(m, s.line ? distance(s.a, s.b) : s.r * std::abs(s.theta));
+  }
+  return m;
+}
+
 bool all_finite(const Contour& c) {
   for (const Vertex& v : c.vertices)
     if (!std::isfinite(v.p.x) || !std::isfinite(v.p.y) || !std::isfinite(v.bulge)) return false;
@@ -596,6 +605,7 @@ TEST(OffsetContour, RandomStarShapesMatchBruteForce) {
       double total = 0, perim = 0;
       for (const Contour& o : r.contours) {
         ASSERT_TRUE(all_finite(o));
+        EXPECT_GE(shortest_segment(o), 1e-6);
         expect_at_offset(o, src, d, 1e-7);
         EXPECT_TRUE(is_simple(o));
         EXPECT_GT(area(o), 0);
@@ -664,6 +674,7 @@ TEST(OffsetContour, RandomCombsWithExactCoincidencesMatchBruteForce) {
       double total = 0, perim = 0;
       for (const Contour& o : r.contours) {
         ASSERT_TRUE(all_finite(o));
+        EXPECT_GE(shortest_segment(o), 1e-6);
         expect_at_offset(o, src, d, 1e-7);
         EXPECT_TRUE(is_simple(o));
         EXPECT_GT(area(o), 0);

@@ -226,7 +226,9 @@ OffsetResult offset_contour(const Contour& c, double distance) {
     result.collapsed = true;
     return result;
   }
-  if (distance == 0.0) {
+  // Below the join resolution an offset cannot be told from the source (and the snapped joins
+  // could touch it).
+  if (std::abs(distance) <= tol::kOffsetJoinMm) {
     result.contours.push_back(to_contour(*source, true));
     return result;
   }
@@ -249,7 +251,7 @@ OffsetResult offset_contour(const Contour& c, double distance) {
 Contour offset_open_path(const Contour& c, double distance) {
   const auto source = source_pieces(c, false);
   if (!source || source->empty() || !std::isfinite(distance)) return Contour{};
-  if (distance == 0.0) return to_contour(*source, false);
+  if (std::abs(distance) <= tol::kOffsetJoinMm) return to_contour(*source, false);
   return to_contour(joined_raw_offset(*source, distance, false), false);
 }
 

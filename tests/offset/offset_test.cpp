@@ -759,5 +759,27 @@ TEST(OffsetContour, SealedCavityLeavesOnlyTheOuterLoop) {
   EXPECT_NEAR(area(o), grid, perimeter(o) * h);
 }
 
+// Offsets down to the join resolution stay exact; below it the source comes back unchanged.
+TEST(OffsetContour, TinyOffsets) {
+  const Contour l = l_shape();
+  for (double d : {1e-9, 1e-7, 1e-6, 2e-6, 1e-5, 1e-4}) {
+    for (double s : {1.0, -1.0}) {
+      SCOPED_TRACE(d * s);
+      const OffsetResult r = offset_contour(l, d * s);
+      ASSERT_EQ(r.contours.size(), 1u);
+      if (d <= 1e-6) {
+        EXPECT_EQ(r.contours[0], l);
+        continue;
+      }
+      expect_at_offset(r.contours[0], l, d, 1e-12);
+      // Inward: the edge strips overlap by d² at the 5 convex corners and leave a quarter disc at
+      // the concave one; outward: d² overlap at the concave corner, quarter discs at the convex.
+      const double expected =
+          s > 0 ? 300 - 80 * d + 5 * d * d - kPi * d * d / 4 : 300 + 80 * d - d * d + 5 * kPi * d * d / 4;
+      EXPECT_NEAR(area(r.contours[0]), expected, 1e-9);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace cutroute::geometry

@@ -13,7 +13,7 @@
 //
 // Algorithm (offset_contour; offset_open_path runs steps 0-2):
 //  0. Clean the input: drop zero-length segments, clamp |bulge| to 1e9, reject non-finite
-//     coordinates (empty result).
+//     coordinates (empty result). |d| <= tol::kOffsetJoinMm returns the cleaned source.
 //  1. Raw offset of every segment: a line moves along its left normal by d; an arc keeps its
 //     centre and gets radius r - d (counter-clockwise arc) or r + d (clockwise arc). An arc
 //     whose radius would fall to <= tol::kOffsetCollapseRadiusMm collapses and is dropped: on

@@ -46,22 +46,37 @@ inline constexpr double kSheetSizeMm = 0.5;
 // warning; well below any real clearance between parts and sheet edge (~5 mm).
 inline constexpr double kSheetOverhangMm = 0.5;
 
-}  // namespace cutroute::tol
-
-namespace cutroute::tol {
 
 // A requested sheet thickness equals a table thickness when closer than this [mm].
 // Tables list thicknesses to 0.1 mm; 1e-6 only absorbs decimal-to-binary conversion.
 inline constexpr double kThicknessMm = 1e-6;
 
-}  // namespace cutroute::tol
-
-namespace cutroute::tol {
 
 // Radius mismatch of a G-code arc in an inch (G20) program before it is an error [inch].
 // Inch programs are usually written to 0.001 in (0.0254 mm); rounding start, end and centre
 // moves the end radius by up to about 1.5 of that (0.036 mm seen in dxf2gcode output), which
 // kGcodeArcRadiusMm would reject.
 inline constexpr double kGcodeArcRadiusInch = 0.002;
+
+// Kerf offset (geometry/offset.hpp). An offset arc whose radius falls to or below this has
+// collapsed (its side of the offset shrinks to nothing) and is dropped [mm].
+inline constexpr double kOffsetCollapseRadiusMm = 1e-6;
+
+// Two raw offset segment ends closer than this are joined as they are, without a join arc or
+// a trim; also the length under which an offset piece is dropped [mm]. A convex corner turning
+// by less than 1e-5 rad at a 0.1 mm offset leaves a gap below this.
+inline constexpr double kOffsetJoinMm = 1e-6;
+
+// Two offset pieces meet (touch or cross) when they come closer than this; also the distance
+// under which two intersection points are the same point [mm]. Far below kOffsetJoinMm so that
+// near-tangent crossings are still told apart, far above the rounding of 1e3 mm coordinates.
+inline constexpr double kOffsetIntersectMm = 1e-9;
+
+// A piece of the joined raw offset is kept only if its distance to the source contour is at
+// least |offset| minus this slack [mm]; valid pieces sit at exactly |offset| up to rounding.
+inline constexpr double kOffsetPruneMm = 1e-6;
+
+// A closed offset loop enclosing less than this is numerical debris and is dropped [mm²].
+inline constexpr double kOffsetMinLoopAreaMm2 = 1e-9;
 
 }  // namespace cutroute::tol

@@ -483,7 +483,9 @@ std::vector<Vertex> nurbs_to_arcs(const Nurbs& s, double tol_mm, double* max_dev
     ParamCurve c;
     SpanPoly poly;
     if (span_poly(s, k, poly)) {
-      c.point = [poly](double t) { return poly.point(t, nullptr); };
+      // Span ends exactly as the recurrence gives them (clamped ends are control points).
+      const Vec2 pa = nurbs_point(s, k, a, nullptr), pb = nurbs_point(s, k, b, nullptr);
+      c.point = [poly, pa, pb](double t) { return t == 0 ? pa : t == 1 ? pb : poly.point(t, nullptr); };
       c.derivative = [poly](double t) {
         Vec2 d;
         poly.point(t, &d);

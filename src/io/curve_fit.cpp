@@ -37,14 +37,16 @@ double distance2_to_line(Vec2 a, Vec2 b, Vec2 p) {
 
 double distance_to_line(Vec2 a, Vec2 b, Vec2 p) { return std::sqrt(distance2_to_line(a, b, p)); }
 
-// Distance from p to the polyline pts, searching outward from segment `guess` and stopping once
-// a segment is closer than `good` (the exact minimum is not needed below that).
-double distance_to_polyline(const std::vector<Vec2>& pts, Vec2 p, std::size_t guess, double good) {
+// Distance from p to the polyline pts, searching outward from segment `guess` (at most `window`
+// segments each way) and stopping once a segment is closer than `good`. A nearest segment
+// outside the window only overestimates the distance, which makes the fit more careful.
+double distance_to_polyline(const std::vector<Vec2>& pts, Vec2 p, std::size_t guess, double good,
+                            std::size_t window) {
   const std::size_t nseg = pts.size() - 1;
   guess = std::min(guess, nseg - 1);
   const double good2 = good * good;
   double best = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < nseg; ++k) {
+  for (std::size_t k = 0; k < std::min(nseg, 2 * window + 1); ++k) {
     // guess, guess+1, guess-1, guess+2, ...
     const std::size_t off = (k + 1) / 2;
     std::size_t j;
@@ -307,7 +309,7 @@ double fit_biarcs(const ParamCurve& curve, double tol_mm, std::vector<Vertex>& o
           ++i;
           const double frac = (k + double(i) / (kSamples / 2)) / narcs;
           const auto guess = static_cast<std::size_t>(frac * kSamples);
-          dev = std::max(dev, distance_to_polyline(samples, q, guess, 0.1 * tol_mm));
+          dev = std::max(dev, distance_to_polyline(samples, q, guess, 0.5 * tol_mm, 2));
         });
       }
     }

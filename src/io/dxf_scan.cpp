@@ -77,6 +77,18 @@ bool is_forwarded_type(std::string_view t) {
          t == "SPLINE" || t == "INSERT";
 }
 
+bool forwarded_code(int code) {
+  switch (code) {
+    case 2: case 10: case 20: case 11: case 21: case 12: case 22: case 13: case 23:
+    case 40: case 41: case 42: case 44: case 45: case 50: case 51:
+    case 70: case 71: case 72: case 73: case 74: case 90:
+    case 210: case 220: case 230:
+      return true;
+    default:
+      return false;
+  }
+}
+
 struct Pair {
   int code;
   std::string_view value;  // untrimmed
@@ -153,20 +165,22 @@ double Scanner::coordinate_limit() {
 
 std::optional<Diagnostic> Scanner::check_value(int code, std::string_view value, long line) {
   const Kind k = kind_of(code);
-  const std::string codes = std::to_string(code);
+  auto fail = [&](const char* what) {
+    return error("group code " + std::to_string(code) + ": '" + std::string(trim(value)) + "' " + what, line);
+  };
   if (k == Kind::real) {
     double v = 0;
-    if (!parse_real(value, v)) return error("group code " + codes + ": '" + std::string(trim(value)) + "' is not a number", line);
-    if (!std::isfinite(v)) return error("group code " + codes + ": '" + std::string(trim(value)) + "' is not a finite number", line);
+    if (!parse_real(value, v)) return fail("is not a number");
+    if (!std::isfinite(v)) return fail("is not a finite number");
     const bool geometry_section = section_ == "ENTITIES" || section_ == "BLOCKS";
     if (geometry_section && code >= 10 && code <= 39 && std::abs(v) > coordinate_limit()) {
-      return error("group code " + codes + ": coordinate " + std::string(trim(value)) +
+      return error("group code " + std::to_string(code) + ": coordinate " + std::string(trim(value)) +
                        " is out of range (more than 1e6 mm from the origin)",
                    line);
     }
   } else if (k == Kind::integer) {
     long v = 0;
-    if (!parse_int(value, v)) return error("group code " + codes + ": '" + std::string(trim(value)) + "' is not an integer", line);
+    if (!parse_int(value, v)) return fail("is not an integer");
   }
   return std::nullopt;
 }
@@ -279,12 +293,16 @@ std::optional<Diagnostic> Scanner::finish_entity() {
       if (!counts_.c74) t += "74\n0\n";
     }
     for (const Pair& p : cur_pairs_) {
-      // Comments, variables, control strings and extended data are of no use and can confuse
-      // dxflib's state machine (group 9 starts a header variable there).
-      if (p.code == 999 || p.code == 9 || p.code == 102 || p.code >= 1000) continue;
+      // Only the groups the reader takes from dxflib: less to parse (dxflib converts every
+      // number through a string stream), and nothing that can confuse its state machine
+      // (group 9 starts a header variable there, 1000+ are extended data). Z coordinates are
+      // dropped: the reader projects onto the XY plane.
+      if (!forwarded_code(p.code)) continue;
       std::string_view v = trim(p.value);
       if (v.size() > kMaxForwardedValue) v = v.substr(0, kMaxForwardedValue);
-      t += std::to_string(p.code);
+      char buf[8];
+      const auto r = std::to_chars(buf, buf + sizeof buf, p.code);
+      t.append(buf, r.ptr);
       t += '\n';
       t += v;
       t += '\n';

@@ -53,12 +53,8 @@ struct Payload {
   // LWPOLYLINE, POLYLINE
   int flags = 0;
   std::vector<Vertex> vertices;
-  // SPLINE
+  // SPLINE (its number arrays come from the scan: ScanSpline)
   int degree = 3;
-  std::vector<double> knots;
-  std::vector<Vec2> control;
-  std::vector<double> weights;
-  std::vector<Vec2> fit;
   Vec2 tan_start, tan_end;
   // INSERT
   Vec2 ins;
@@ -120,18 +116,6 @@ class Collector : public DL_CreationAdapter {
       p->tan_start = {d.tangentStartX, d.tangentStartY};
       p->tan_end = {d.tangentEndX, d.tangentEndY};
     }
-  }
-  void addControlPoint(const DL_ControlPointData& d) override {
-    if (Payload* p = slot()) {
-      p->control.push_back({d.x, d.y});
-      p->weights.push_back(d.w);
-    }
-  }
-  void addFitPoint(const DL_FitPointData& d) override {
-    if (Payload* p = slot()) p->fit.push_back({d.x, d.y});
-  }
-  void addKnot(const DL_KnotData& d) override {
-    if (Payload* p = slot()) p->knots.push_back(d.k);
   }
   void addInsert(const DL_InsertData& d) override {
     if (Payload* p = slot()) {
@@ -522,14 +506,19 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
   } else if (e.type == "SPLINE") {
     Contour c;
     const bool closed_flag = (p.flags & 1) != 0;
-    if (!p.control.empty()) {
+    const detail::ScanSpline& arrays = scan_.splines[static_cast<std::size_t>(e.spline)];
+    if (!arrays.control.empty()) {
       detail::Nurbs s;
       s.degree = p.degree;
-      for (const Vec2& q : p.control) s.control.push_back(t.apply(q));
-      s.knots = p.knots;
+      for (const Vec2& q : arrays.control) s.control.push_back(t.apply(q));
+      s.knots = arrays.knots;
       bool rational = false;
-      for (double w : p.weights) rational = rational || w != 1.0;
-      if (rational) s.weights = p.weights;
+      for (double w : arrays.weights) rational = rational || w != 1.0;
+      if (rational) {
+        // Missing trailing weights are 1, as dxflib would have them.
+        s.weights = arrays.weights;
+        s.weights.resize(s.control.size(), 1.0);
+      }
       for (double w : s.weights) {
         if (!(w > 0)) return entity_error("SPLINE has a weight <= 0", top);
       }
@@ -561,9 +550,9 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
           dev = dev2;
         }
       }
-    } else if (p.fit.size() >= 2) {
+    } else if (arrays.fit.size() >= 2) {
       std::vector<Vec2> pts;
-      for (const Vec2& q : p.fit) pts.push_back(t.apply(q));
+      for (const Vec2& q : arrays.fit) pts.push_back(t.apply(q));
       const Vec2 ts = t.apply_linear(p.tan_start), te = t.apply_linear(p.tan_end);
       const bool has_ts = geometry::norm(p.tan_start) > 0, has_te = geometry::norm(p.tan_end) > 0;
       c.vertices = detail::fit_points_to_arcs(pts, closed_flag, has_ts ? &ts : nullptr, has_te ? &te : nullptr, tol, &dev);

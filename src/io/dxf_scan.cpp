@@ -124,6 +124,7 @@ class Scanner {
   UnitsRule rule_;
   const void* ctx_;
   std::optional<double> limit_units_;
+  double last_real_ = 0;  // value of the last real group checked
 
   ScanResult r_;
   std::string section_;
@@ -172,6 +173,7 @@ std::optional<Diagnostic> Scanner::check_value(int code, std::string_view value,
     double v = 0;
     if (!parse_real(value, v)) return fail("is not a number");
     if (!std::isfinite(v)) return fail("is not a finite number");
+    last_real_ = v;
     const bool geometry_section = section_ == "ENTITIES" || section_ == "BLOCKS";
     if (geometry_section && code >= 10 && code <= 39 && std::abs(v) > coordinate_limit()) {
       return error("group code " + std::to_string(code) + ": coordinate " + std::string(trim(value)) +
@@ -196,6 +198,10 @@ void Scanner::start_entity(std::string_view type, long line) {
     if (e.type == "SEQEND") owner_ = -1;
   } else {
     owner_ = (e.type == "POLYLINE" || e.type == "INSERT") ? idx : -1;
+  }
+  if (e.type == "SPLINE") {
+    e.spline = static_cast<int>(r_.splines.size());
+    r_.splines.emplace_back();
   }
   r_.entities.push_back(std::move(e));
   cur_ = idx;
@@ -223,6 +229,21 @@ std::optional<Diagnostic> Scanner::entity_pair(int code, std::string_view value,
     case 11: ++counts_.n11; break;
     case 40: ++counts_.n40; break;
     case 41: ++counts_.n41; break;
+    default: break;
+  }
+  if (e.spline >= 0) {
+    ScanSpline& sp = r_.splines[static_cast<std::size_t>(e.spline)];
+    switch (code) {
+      case 40: sp.knots.push_back(last_real_); break;
+      case 41: sp.weights.push_back(last_real_); break;
+      case 10: sp.control.push_back({last_real_, 0.0}); break;
+      case 20: if (!sp.control.empty()) sp.control.back().y = last_real_; break;
+      case 11: sp.fit.push_back({last_real_, 0.0}); break;
+      case 21: if (!sp.fit.empty()) sp.fit.back().y = last_real_; break;
+      default: break;
+    }
+  }
+  switch (code) {
     case 42: if (counts_.n10 == 0) counts_.bulge_before_vertex = true; break;
     case 90: if (parse_int(v, iv)) counts_.c90 = iv; break;
     case 72: if (parse_int(v, iv)) counts_.c72 = iv; break;
@@ -287,12 +308,13 @@ std::optional<Diagnostic> Scanner::finish_entity() {
     // dxflib keeps vertex/knot/control/fit counts from the previous entity when a count group
     // is absent; an explicit 0 (the scan checked that there is no data) resets them.
     if (e.type == "LWPOLYLINE" && !counts_.c90) t += "90\n0\n";
-    if (e.type == "SPLINE") {
-      if (!counts_.c72) t += "72\n0\n";
-      if (!counts_.c73) t += "73\n0\n";
-      if (!counts_.c74) t += "74\n0\n";
-    }
+    const bool spline = e.type == "SPLINE";
+    if (spline) t += "72\n0\n73\n0\n74\n0\n";  // arrays come from the scan (ScanSpline)
     for (const Pair& p : cur_pairs_) {
+      if (spline && (p.code == 10 || p.code == 20 || p.code == 11 || p.code == 21 || p.code == 40 || p.code == 41 ||
+                     p.code == 72 || p.code == 73 || p.code == 74)) {
+        continue;
+      }
       // Only the groups the reader takes from dxflib: less to parse (dxflib converts every
       // number through a string stream), and nothing that can confuse its state machine
       // (group 9 starts a header variable there, 1000+ are extended data). Z coordinates are

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <filesystem>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -707,6 +708,8 @@ Result<DxfDrawing> read_dxf_string(const std::string& content, const std::string
 }
 
 Result<DxfDrawing> read_dxf(const std::string& path, const DxfOptions& options) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return make_error("is a directory, not a DXF file", path);
   std::ifstream f(path, std::ios::binary);
   if (!f) return make_error("cannot open file", path);
   f.seekg(0, std::ios::end);

@@ -1,6 +1,7 @@
 // Reader tests on drawings generated here: every entity and variant, transforms, units, layers.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <string>
 
@@ -507,6 +508,53 @@ TEST(DxfReader, ExpansionLimitsAreCheckedBeforeExpanding) {
   EXPECT_EQ(rd.error().message, "INSERT nesting deeper than 4 levels");
   shallow.max_insert_depth = 6;
   EXPECT_TRUE(io::read_dxf_string(deep.str(), "x.dxf", shallow).ok());
+}
+
+TEST(DxfReader, EntityLevelErrorsNameTheEntity) {
+  struct Case {
+    std::function<void(DxfBuilder&)> draw;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {[](DxfBuilder& b) { b.spline(3, {0, 0, 0, 0, 1, 1, 1}, {{0, 0}, {1, 1}, {2, 1}, {3, 0}}, {}, 8); },
+       "SPLINE of degree 3 with 4 control points needs 8 knots, has 7"},
+      {[](DxfBuilder& b) { b.spline(3, {0, 0, 0, 0, 1, 0.5, 1, 1}, {{0, 0}, {1, 1}, {2, 1}, {3, 0}}, {}, 8); },
+       "SPLINE knots are not in increasing order"},
+      {[](DxfBuilder& b) { b.spline(2, {0, 0, 0, 1, 1, 1}, {{0, 0}, {1, 1}, {2, 0}}, {1, 0, 1}, 8); },
+       "SPLINE has a weight <= 0"},
+      {[](DxfBuilder& b) { b.lwpolyline({{{0, 0}, 1e12}, {{1, 0}, 0}}, false); }, "LWPOLYLINE has an invalid bulge"},
+      {[](DxfBuilder& b) { b.begin_block("B").line({0, 0}, {1e5, 0}).end_block().insert("B", {0, 0}, 100, 100); },
+       "LINE lies more than 1e6 mm from the origin after INSERT and unit scaling"},
+  };
+  for (const auto& c : cases) {
+    DxfBuilder b;
+    b.line({0, 0}, {1, 1});
+    c.draw(b);
+    const std::string text = b.str();
+    const auto r = io::read_dxf_string(text, "e.dxf", {});
+    ASSERT_FALSE(r.ok()) << c.message;
+    EXPECT_EQ(r.error().message, c.message);
+    EXPECT_TRUE(r.error().line.has_value());
+    EXPECT_FALSE(r.error().handle.empty());
+  }
+}
+
+TEST(DxfReader, DegenerateEntitiesAreWarnings) {
+  DxfBuilder b;
+  b.circle({0, 0}, 0).arc({0, 0}, -1, 0, 90).ellipse({0, 0}, {0, 0}, 0.5, 0, 1).line({0, 0}, {1, 0});
+  const auto d = read(b.str());
+  EXPECT_EQ(d.entities.size(), 1u);
+  std::vector<std::string> messages;
+  for (const auto& x : d.diagnostics) messages.push_back(x.message);
+  EXPECT_EQ(messages, (std::vector<std::string>{"CIRCLE with radius <= 0 skipped", "ARC with radius <= 0 skipped",
+                                                "degenerate ELLIPSE skipped"}));
+  EXPECT_EQ(d.diagnostics[0].line, line_of(b.str(), "CIRCLE"));
+}
+
+TEST(DxfReader, DirectoryIsAnError) {
+  const auto r = io::read_dxf("/", {});
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().message, "is a directory, not a DXF file");
 }
 
 }  // namespace

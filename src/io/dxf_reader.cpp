@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
-#include <filesystem>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -287,10 +287,8 @@ class Expander {
   std::size_t degenerate_warnings_ = 0;
 };
 
-std::pair<int, int> grid(const ScanEntity& e, const Payload& p) {
-  (void)e;
-  return {std::max(1, p.rows), std::max(1, p.cols)};
-}
+// MINSERT rows and columns; 0 or negative counts (invalid) are read as 1.
+std::pair<int, int> grid(const Payload& p) { return {std::max(1, p.rows), std::max(1, p.cols)}; }
 
 std::optional<Diagnostic> Expander::count_block(int b, int depth, double& count) {
   const std::size_t bi = static_cast<std::size_t>(b);
@@ -320,7 +318,7 @@ std::optional<Diagnostic> Expander::count_block(int b, int depth, double& count)
     }
     double c = 0;
     if (auto d = count_block(child, depth + 1, c)) return d;
-    const auto [rows, cols] = grid(e, pay_[static_cast<std::size_t>(idx)]);
+    const auto [rows, cols] = grid(pay_[static_cast<std::size_t>(idx)]);
     total += static_cast<double>(rows) * static_cast<double>(cols) * c;
     total = std::min(total, 1e300);
   }
@@ -347,7 +345,7 @@ std::optional<Diagnostic> Expander::check_expansion() {
                               {e.handle, e.line});
         }
         if (auto d = count_block(b, 1, c)) return d;
-        const auto [rows, cols] = grid(e, pay_[static_cast<std::size_t>(idx)]);
+        const auto [rows, cols] = grid(pay_[static_cast<std::size_t>(idx)]);
         total += static_cast<double>(rows) * static_cast<double>(cols) * c;
       }
     }
@@ -484,7 +482,7 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
       if (degenerate_warnings_++ < 20) warn_entity("degenerate ELLIPSE skipped", e, layer);
       return std::nullopt;
     }
-    const Vec2 m = Vec2{n.y * 0 - n.z * M.y, n.z * M.x - n.x * 0} * (p.ratio / nl);
+    const Vec2 m = Vec2{-n.z * M.y, n.z * M.x} * (p.ratio / nl);  // (N x M).xy with M in the XY plane
     double u0 = p.t0, u1 = p.t1;
     while (u1 <= u0) u1 += 2 * kPi;
     bool full = u1 - u0 >= 2 * kPi - 1e-9;
@@ -626,7 +624,7 @@ std::optional<Diagnostic> Expander::emit(int idx, const Affine& t, const std::st
       if (degenerate_warnings_++ < 20) warn_entity("INSERT with zero scale skipped", e, layer);
       return std::nullopt;
     }
-    const auto [rows, cols] = grid(e, p);
+    const auto [rows, cols] = grid(p);
     const Affine base = t.then_after(ocs(p.extrusion))
                             .then_after(Affine::translate(p.ins))
                             .then_after(Affine::rotate(p.angle * kPi / 180));

@@ -221,10 +221,8 @@ std::optional<Diagnostic> Scanner::entity_pair(int code, std::string_view value,
     case 70:
       if (parse_int(v, iv)) {
         e.flags = static_cast<int>(std::clamp(iv, -1000000L, 1000000L));
-        if (e.type == "INSERT") e.cols = e.flags;
       }
       break;
-    case 71: if (e.type == "INSERT" && parse_int(v, iv)) e.rows = static_cast<int>(std::clamp(iv, -1000000L, 1000000L)); break;
     case 10: ++counts_.n10; break;
     case 11: ++counts_.n11; break;
     case 40: ++counts_.n40; break;

@@ -37,8 +37,6 @@ struct ScanEntity {
   bool forwarded = false;       // handed to dxflib
   int spline = -1;              // SPLINE: index in ScanResult::splines
   std::string block_name;       // INSERT: group 2
-  int rows = 1;                 // INSERT/MINSERT: group 71
-  int cols = 1;                 // INSERT/MINSERT: group 70
 };
 
 struct ScanBlock {

@@ -487,18 +487,25 @@ Result<ScanResult> Scanner::run() {
     if (eof_seen) break;
   }
   if (!eof_seen) {
-    if (state == State::section_name) return error("file is truncated after SECTION", section_line);
-    if (state == State::section) {
+    // A file cut off after its ENTITIES section (in OBJECTS, say) still has all its geometry.
+    const bool after_entities = entities_closed_ && section_ != "BLOCKS";
+    if (state != State::top && after_entities) {
+      r_.warnings.push_back(make_warning("file is truncated after the ENTITIES section (in section " +
+                                             (section_.empty() ? std::string("?") : section_) + ")",
+                                         file_, line_no_));
+    } else if (state == State::section_name) {
+      return error("file is truncated after SECTION", section_line);
+    } else if (state == State::section) {
       if ((section_ == "ENTITIES" || section_ == "BLOCKS") && cur_ >= 0) {
         const ScanEntity& e = r_.entities[static_cast<std::size_t>(cur_)];
         return error("file is truncated inside the " + e.type + " entity starting at this line (no ENDSEC/EOF)", e.line);
       }
       return error("file is truncated in section " + section_ + " (no ENDSEC/EOF)", line_no_);
+    } else {
+      r_.warnings.push_back(make_warning("file has no EOF marker", file_, line_no_));
     }
-    r_.warnings.push_back(make_warning("file has no EOF marker", file_, line_no_));
   }
   if (!entities_seen_) return error("no ENTITIES section", std::nullopt);
-  (void)entities_closed_;
   if (paperspace_skipped_ > 0) {
     r_.warnings.push_back(make_warning(std::to_string(paperspace_skipped_) + " paper-space entities ignored", file_));
   }

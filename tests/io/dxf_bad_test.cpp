@@ -91,6 +91,20 @@ TEST(DxfBad, EveryTruncationOfAFileIsHandled) {
   EXPECT_LE(ok, 4);
 }
 
+// EOF present or at least ENTITIES complete: a cut in a later section only warns.
+TEST(DxfBad, TruncationAfterEntitiesIsAWarning) {
+  DxfBuilder b;
+  b.line({0, 0}, {1, 0});
+  std::string text = b.str();
+  text = text.substr(0, text.rfind("0\nEOF\n")) + "0\nSECTION\n2\nOBJECTS\n0\nDICTIONARY\n5\nC\n";
+  const auto r = io::read_dxf_string(text, "cut.dxf", {});
+  ASSERT_TRUE(r.ok()) << format(r.error());
+  EXPECT_EQ(r->entities.size(), 1u);
+  ASSERT_EQ(r->diagnostics.size(), 1u);
+  EXPECT_EQ(r->diagnostics[0].message, "file is truncated after the ENTITIES section (in section OBJECTS)");
+  EXPECT_EQ(r->diagnostics[0].severity, Severity::warning);
+}
+
 // Single-byte corruptions anywhere in a valid file never crash.
 TEST(DxfBad, ByteFlipsAreHandled) {
   DxfBuilder b;

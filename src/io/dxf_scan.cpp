@@ -169,6 +169,9 @@ std::optional<Diagnostic> Scanner::check_value(int code, std::string_view value,
   auto fail = [&](const char* what) {
     return error("group code " + std::to_string(code) + ": '" + std::string(trim(value)) + "' " + what, line);
   };
+  if (k != Kind::text && trim(value).size() > kMaxForwardedValue) {
+    return error("group code " + std::to_string(code) + ": number of more than 1000 characters", line);
+  }
   if (k == Kind::real) {
     double v = 0;
     if (!parse_real(value, v)) return fail("is not a number");

@@ -105,6 +105,18 @@ TEST(DxfBad, TruncationAfterEntitiesIsAWarning) {
   EXPECT_EQ(r->diagnostics[0].severity, Severity::warning);
 }
 
+// dxflib reads lines into a 1024-byte buffer: numbers that long are refused up front.
+TEST(DxfBad, OverlongNumberIsAnError) {
+  DxfBuilder b;
+  b.line({0, 0}, {1, 0});
+  std::string text = b.str();
+  const std::string lead = "10\n0\n20";
+  text.replace(text.find(lead), lead.size(), "10\n" + std::string(1500, '0') + "\n20");
+  const auto r = io::read_dxf_string(text, "long.dxf", {});
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().message, "group code 10: number of more than 1000 characters");
+}
+
 // Single-byte corruptions anywhere in a valid file never crash.
 TEST(DxfBad, ByteFlipsAreHandled) {
   DxfBuilder b;

@@ -99,10 +99,10 @@ inline double dist(Vec2 a, Vec2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
 
 // Two-sided deviation between a contour and a parametric curve f on [t0, t1], both densely
 // sampled (the sampling error is far below the tolerances tested).
-inline double deviation(const Contour& c, const std::function<Vec2(double)>& f, double t0, double t1, int n = 4000) {
+inline double deviation(const Contour& c, const std::function<Vec2(double)>& f, double t0, double t1, int n = 2000) {
   std::vector<Vec2> curve;
   for (int i = 0; i <= n; ++i) curve.push_back(f(t0 + (t1 - t0) * i / n));
-  const std::vector<Vec2> pts = sample(c, 64);
+  const std::vector<Vec2> pts = sample(c, 32);
   auto to_poly = [](const std::vector<Vec2>& poly, Vec2 p) {
     double best = 1e300;
     for (std::size_t i = 0; i + 1 < poly.size(); ++i) {

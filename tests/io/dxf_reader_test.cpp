@@ -499,7 +499,8 @@ TEST(DxfReader, ExpansionLimitsAreCheckedBeforeExpanding) {
 
   DxfBuilder deep;
   deep.begin_block("D0").line({0, 0}, {1, 0}).end_block();
-  for (int i = 1; i <= 5; ++i) deep.begin_block("D" + std::to_string(i)).insert("D" + std::to_string(i - 1), {1, 0}).end_block();
+  const char* names[] = {"D0", "D1", "D2", "D3", "D4", "D5"};
+  for (int i = 1; i <= 5; ++i) deep.begin_block(names[i]).insert(names[i - 1], {1, 0}).end_block();
   deep.insert("D5", {0, 0});
   io::DxfOptions shallow;
   shallow.max_insert_depth = 4;
@@ -555,6 +556,45 @@ TEST(DxfReader, DirectoryIsAnError) {
   const auto r = io::read_dxf("/", {});
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.error().message, "is a directory, not a DXF file");
+}
+
+TEST(DxfReader, InsertAttributesAndPolylineVariants) {
+  DxfBuilder b;
+  b.begin_block("B").line({0, 0}, {1, 0}).end_block();
+  // INSERT followed by its ATTRIBs and SEQEND (group 66 = 1).
+  b.insert("B", {10, 0}).raw(66, "1");
+  b.raw(0, "ATTRIB").raw(8, "0").raw(10, "0").raw(20, "0").raw(40, "1").raw(1, "value").raw(2, "TAG");
+  b.raw(0, "SEQEND").raw(8, "0");
+  // A 3D POLYLINE (flag 8): projected onto XY, no bulges.
+  b.raw(0, "POLYLINE").raw(8, "0").raw(66, "1").raw(70, "8");
+  b.raw(0, "VERTEX").raw(8, "0").raw(10, "0").raw(20, "0").raw(30, "5").raw(70, "32");
+  b.raw(0, "VERTEX").raw(8, "0").raw(10, "3").raw(20, "4").raw(30, "-2").raw(70, "32");
+  b.raw(0, "SEQEND").raw(8, "0");
+  // A polyface mesh (flag 64): a surface, skipped.
+  b.raw(0, "POLYLINE").raw(8, "0").raw(66, "1").raw(70, "64");
+  b.raw(0, "VERTEX").raw(8, "0").raw(10, "0").raw(20, "0").raw(70, "192");
+  b.raw(0, "SEQEND").raw(8, "0");
+  // A spline-fit 2D POLYLINE (flag 4): the frame control points (vertex flag 16) are not on it.
+  b.raw(0, "POLYLINE").raw(8, "0").raw(66, "1").raw(70, "4");
+  b.raw(0, "VERTEX").raw(8, "0").raw(10, "0").raw(20, "0").raw(70, "16");
+  b.raw(0, "VERTEX").raw(8, "0").raw(10, "0").raw(20, "1").raw(70, "8");
+  b.raw(0, "VERTEX").raw(8, "0").raw(10, "5").raw(20, "9").raw(70, "16");
+  b.raw(0, "VERTEX").raw(8, "0").raw(10, "2").raw(20, "2").raw(70, "8");
+  b.raw(0, "SEQEND").raw(8, "0");
+  b.line({0, 5}, {1, 5});
+  const auto d = read(b.str());
+  ASSERT_EQ(d.entities.size(), 4u);
+  expect_point(d.entities[0].path.vertices[1].p, {11, 0});
+  EXPECT_EQ(d.entities[1].path.vertices.size(), 2u);
+  EXPECT_NEAR(path_length(d.entities[1].path), 5, 1e-12);
+  ASSERT_EQ(d.entities[2].path.vertices.size(), 2u);
+  expect_point(d.entities[2].path.vertices[0].p, {0, 1});
+  expect_point(d.entities[2].path.vertices[1].p, {2, 2});
+  EXPECT_EQ(d.entities[3].type, "LINE");
+  EXPECT_EQ(d.entity_counts.at("POLYLINE"), 3u);
+  EXPECT_EQ(d.skipped.at("POLYLINE"), 1u);
+  EXPECT_EQ(d.entity_counts.count("ATTRIB"), 0u);
+  EXPECT_EQ(d.entity_counts.at("INSERT"), 1u);
 }
 
 }  // namespace

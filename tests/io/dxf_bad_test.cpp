@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cutroute/core/random.hpp>
 #include <cutroute/io/dxf.hpp>
 
 #include "support/dxf_builder.hpp"
@@ -134,6 +135,53 @@ TEST(DxfBad, ByteFlipsAreHandled) {
       }
     }
   }
+}
+
+// Line-level mutations of a drawing with every entity kind (deleted, duplicated, swapped or
+// replaced lines): each read ends in a value or an error, never a crash (run under ASan/UBSan).
+TEST(DxfBad, RandomLineMutationsAreHandled) {
+  DxfBuilder b;
+  b.insunits(4).begin_block("B", {1, 1}).arc({0, 0}, 1, 0, 90).circle({2, 2}, 1).end_block();
+  b.line({0, 0}, {1, 0}).lwpolyline({{{0, 0}, 0.5}, {{1, 0}, 0}, {{1, 1}, 0}}, true).insert("B", {1, 1}, 2, 1, 30);
+  b.polyline({{{0, 0}, 0.3}, {{4, 0}, 0}, {{4, 4}, 0}}, true).text({0, 0}, "t");
+  b.spline(3, {0, 0, 0, 0, 1, 1, 1, 1}, {{0, 0}, {1, 1}, {2, 1}, {3, 0}}, {1, 2, 1, 1}, 8);
+  b.spline_fit({{0, 0}, {1, 2}, {3, 1}}, 8).ellipse({0, 0}, {2, 0}, 0.5, 0, 1, "0", -1);
+  b.insert("B", {5, 5}, 1, 1, 0, "0", 3, 2, 4, 4);
+  std::vector<std::string> lines;
+  {
+    const std::string text = b.str();
+    std::size_t pos = 0;
+    while (pos < text.size()) {
+      const std::size_t end = text.find('\n', pos);
+      lines.push_back(text.substr(pos, end - pos));
+      pos = end + 1;
+    }
+  }
+  const char* values[] = {"0", "-1", "1e308", "99999999999", "SPLINE", "INSERT", "POLYLINE", "SEQEND", "42", "90",
+                          "73", "B", "ENDSEC", "", "3.5", "-0.5"};
+  Rng rng(99);
+  int errors = 0;
+  for (int round = 0; round < 3000; ++round) {
+    std::vector<std::string> l = lines;
+    const int edits = 1 + static_cast<int>(rng.below(3));
+    for (int k = 0; k < edits; ++k) {
+      const std::size_t i = rng.below(l.size());
+      switch (rng.below(4)) {
+        case 0: l.erase(l.begin() + static_cast<std::ptrdiff_t>(i)); break;
+        case 1: l.insert(l.begin() + static_cast<std::ptrdiff_t>(i), l[i]); break;
+        case 2: std::swap(l[i], l[rng.below(l.size())]); break;
+        default: l[i] = values[rng.below(std::size(values))]; break;
+      }
+    }
+    std::string t;
+    for (const auto& x : l) t += x + "\n";
+    const auto r = io::read_dxf_string(t, "mutant.dxf", {});
+    if (!r.ok()) {
+      ++errors;
+      EXPECT_FALSE(r.error().message.empty());
+    }
+  }
+  EXPECT_GT(errors, 100);
 }
 
 }  // namespace

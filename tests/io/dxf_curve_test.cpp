@@ -260,5 +260,23 @@ TEST(DxfCurves, SplineInInchesIsFittedInMillimetres) {
   EXPECT_LE(deviation(e.path, f, 0, 1), kTol);
 }
 
+TEST(DxfCurves, ClosedFitPointSplineIsPeriodic) {
+  std::vector<Vec2> fit;
+  for (int i = 0; i < 12; ++i) fit.push_back({40 * std::cos(i * kPi / 6), 25 * std::sin(i * kPi / 6)});
+  DxfBuilder b;
+  b.spline_fit(fit, 1 | 8);
+  const auto e = read_one(b.str());
+  EXPECT_TRUE(e.path.closed);
+  const auto pts = sample(e.path, 100);
+  for (const Vec2& f : fit) {
+    double best = 1e9;
+    for (const Vec2& q : pts) best = std::min(best, dist(q, f));
+    EXPECT_LT(best, kTol);
+  }
+  // A smooth closed curve near the ellipse through the points (no kink where it closes): the
+  // area is within 1% of the ellipse's.
+  EXPECT_NEAR(path_area(e.path), kPi * 40 * 25, 0.01 * kPi * 40 * 25);
+}
+
 }  // namespace
 }  // namespace cutroute::test

@@ -228,7 +228,12 @@ double fit_biarcs(const ParamCurve& curve, double tol_mm, std::vector<Vertex>& o
   // Depth-first, left to right, so vertices come out in curve order.
   std::vector<Piece> stack{{curve.t0, curve.t1, 0}};
   std::vector<Vec2> samples(kSamples + 1);
-  auto sample = [&](const Piece& pc, int i) { return curve.point(pc.a + (pc.b - pc.a) * i / kSamples); };
+  bool overflow = false;
+  auto sample = [&](const Piece& pc, int i) {
+    const Vec2 q = curve.point(pc.a + (pc.b - pc.a) * i / kSamples);
+    if (!geometry::is_finite(q)) overflow = true;
+    return q;
+  };
   while (!stack.empty()) {
     const Piece piece = stack.back();
     stack.pop_back();
@@ -240,12 +245,16 @@ double fit_biarcs(const ParamCurve& curve, double tol_mm, std::vector<Vertex>& o
     };
     const Vec2 p0 = curve.point(piece.a);
     const Vec2 p1 = curve.point(piece.b);
+    // Overflowing input (weights, scales, ratios near 1e308) gives no curve to follow; splitting
+    // would only multiply the work.
+    if (!geometry::is_finite(p0) || !geometry::is_finite(p1)) return std::numeric_limits<double>::infinity();
     const Vec2 chord = p1 - p0;
     const double chord_len = len(chord);
     if (chord_len <= 1e-12) {
       // A closed or vanishing piece: split unless the whole piece is one point.
       double spread = 0;
       for (int i = 1; i < kSamples; ++i) spread = std::max(spread, len(sample(piece, i) - p0));
+      if (overflow) return std::numeric_limits<double>::infinity();
       if (spread > tol_mm && can_split) {
         split();
         continue;
@@ -289,6 +298,7 @@ double fit_biarcs(const ParamCurve& curve, double tol_mm, std::vector<Vertex>& o
         break;
       }
     }
+    if (overflow) return std::numeric_limits<double>::infinity();
     if (early_fail) {
       split();
       continue;
@@ -313,6 +323,7 @@ double fit_biarcs(const ParamCurve& curve, double tol_mm, std::vector<Vertex>& o
         });
       }
     }
+    if (overflow) return std::numeric_limits<double>::infinity();
     if (dev > tol_mm && can_split) {
       split();
       continue;

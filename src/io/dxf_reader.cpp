@@ -227,6 +227,10 @@ Affine ocs(Vec3 n) {
   return a;
 }
 
+bool within_limit(Vec2 p) {
+  return geometry::is_finite(p) && std::abs(p.x) <= units::kMaxCoordinateMm && std::abs(p.y) <= units::kMaxCoordinateMm;
+}
+
 class Expander {
  public:
   Expander(const ScanResult& scan, const std::vector<Payload>& pay, const DxfOptions& opt, DxfDrawing& out)
@@ -382,6 +386,11 @@ Contour Expander::transform(const Contour& c, const Affine& a, double& dev) cons
     const detail::ArcSeg s{v.p, b, v.bulge};
     const Vec2 ctr = detail::arc_center(s);
     const double rad = geometry::distance(ctr, v.p);
+    const double stretch = std::sqrt(a.m00 * a.m00 + a.m01 * a.m01 + a.m10 * a.m10 + a.m11 * a.m11);  // >= largest
+    if (!within_limit(a.apply(ctr)) || !within_limit(a.apply(v.p)) || !(rad * stretch < units::kMaxCoordinateMm)) {
+      r.vertices.push_back({a.apply(v.p), 0.0});  // out of range: the caller's limit check reports it
+      continue;
+    }
     const double th = std::atan2(v.p.y - ctr.y, v.p.x - ctr.x);
     const double sweep = 4 * std::atan(v.bulge);
     detail::ParamCurve pc;
@@ -488,6 +497,10 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
     bool full = u1 - u0 >= 2 * kPi - 1e-9;
     if (full) u1 = u0 + 2 * kPi;
     const Vec2 C = p.center;
+    if (!within_limit(t.apply(C)) ||
+        !(geometry::norm(t.apply_linear(M)) + geometry::norm(t.apply_linear(m)) < units::kMaxCoordinateMm)) {
+      return entity_error(e.type + " lies more than 1e6 mm from the origin after INSERT and unit scaling", top);
+    }
     detail::ParamCurve pc;
     pc.point = [=](double u) { return t.apply(C + M * std::cos(u) + m * std::sin(u)); };
     pc.derivative = [=](double u) { return t.apply_linear(M * -std::sin(u) + m * std::cos(u)); };
@@ -509,7 +522,13 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
     if (!arrays.control.empty()) {
       detail::Nurbs s;
       s.degree = p.degree;
-      for (const Vec2& q : arrays.control) s.control.push_back(t.apply(q));
+      for (const Vec2& q : arrays.control) {
+        s.control.push_back(t.apply(q));
+        // The curve lies in the hull of its control points (positive weights).
+        if (!within_limit(s.control.back())) {
+          return entity_error(e.type + " lies more than 1e6 mm from the origin after INSERT and unit scaling", top);
+        }
+      }
       s.knots = arrays.knots;
       bool rational = false;
       for (double w : arrays.weights) rational = rational || w != 1.0;
@@ -551,7 +570,12 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
       }
     } else if (arrays.fit.size() >= 2) {
       std::vector<Vec2> pts;
-      for (const Vec2& q : arrays.fit) pts.push_back(t.apply(q));
+      for (const Vec2& q : arrays.fit) {
+        pts.push_back(t.apply(q));
+        if (!within_limit(pts.back())) {
+          return entity_error(e.type + " lies more than 1e6 mm from the origin after INSERT and unit scaling", top);
+        }
+      }
       const Vec2 ts = t.apply_linear(p.tan_start), te = t.apply_linear(p.tan_end);
       const bool has_ts = geometry::norm(p.tan_start) > 0, has_te = geometry::norm(p.tan_end) > 0;
       c.vertices = detail::fit_points_to_arcs(pts, closed_flag, has_ts ? &ts : nullptr, has_te ? &te : nullptr, tol, &dev);
@@ -560,6 +584,7 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
       warn_entity("SPLINE without control or fit points skipped", e, layer);
       return std::nullopt;
     }
+    if (!std::isfinite(dev)) return entity_error(e.type + " has no finite points (overflowing numbers)", top);
     if (!c.closed && closed_flag && c.vertices.size() > 2 &&
         geometry::distance(c.vertices.front().p, c.vertices.back().p) <= tol::kSnapMm) {
       c.vertices.pop_back();
@@ -573,6 +598,7 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
   } else {
     return std::nullopt;
   }
+  if (!std::isfinite(dev)) return entity_error(e.type + " has no finite points (overflowing numbers)", top);
   if (dev > tol) {
     char buf[32];
     const auto r = std::to_chars(buf, buf + sizeof buf, dev, std::chars_format::general, 3);
@@ -582,8 +608,7 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
   for (Contour& c : results) {
     drop_repeats(c);
     for (const Vertex& v : c.vertices) {
-      if (!geometry::is_finite(v.p) || std::abs(v.p.x) > units::kMaxCoordinateMm ||
-          std::abs(v.p.y) > units::kMaxCoordinateMm) {
+      if (!within_limit(v.p)) {
         return entity_error(e.type + " lies more than 1e6 mm from the origin after INSERT and unit scaling", top);
       }
     }

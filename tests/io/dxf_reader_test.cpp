@@ -526,6 +526,14 @@ TEST(DxfReader, EntityLevelErrorsNameTheEntity) {
       {[](DxfBuilder& b) { b.lwpolyline({{{0, 0}, 1e12}, {{1, 0}, 0}}, false); }, "LWPOLYLINE has an invalid bulge"},
       {[](DxfBuilder& b) { b.begin_block("B").line({0, 0}, {1e5, 0}).end_block().insert("B", {0, 0}, 100, 100); },
        "LINE lies more than 1e6 mm from the origin after INSERT and unit scaling"},
+      {[](DxfBuilder& b) { b.ellipse({0, 0}, {10, 0}, 1e300, 0, 1); },
+       "ELLIPSE lies more than 1e6 mm from the origin after INSERT and unit scaling"},
+      {[](DxfBuilder& b) { b.spline(2, {0, 0, 0, 1, 1, 1}, {{0, 0}, {1, 1e5}, {2, 0}}, {1, 1e308, 1}, 8); },
+       "SPLINE has no finite points (overflowing numbers)"},
+      {[](DxfBuilder& b) {
+         b.begin_block("C").circle({0, 0}, 1e5).end_block().insert("C", {0, 0}, 1e3, 1);
+       },
+       "CIRCLE lies more than 1e6 mm from the origin after INSERT and unit scaling"},
   };
   for (const auto& c : cases) {
     DxfBuilder b;

@@ -315,9 +315,9 @@ double fit_biarcs(const ParamCurve& curve, double tol_mm, std::vector<Vertex>& o
       for (int k = 0; k < narcs; ++k) {
         const ArcGeom& g = k == 0 ? g0 : *g1;
         int i = 0;
-        g.for_points(kSamples / 2, [&](Vec2 q) {
+        g.for_points(kSamples / 4, [&](Vec2 q) {
           ++i;
-          const double frac = (k + double(i) / (kSamples / 2)) / narcs;
+          const double frac = (k + double(i) / (kSamples / 4)) / narcs;
           const auto guess = static_cast<std::size_t>(frac * kSamples);
           dev = std::max(dev, distance_to_polyline(samples, q, guess, 0.5 * tol_mm, 2));
         });

@@ -123,7 +123,8 @@ std::string slurp(const std::string& path) {
 }
 
 TEST(DxfGenerated, FilesAreCurrent) {
-  const bool regenerate = std::getenv("CUTROUTE_REGENERATE") != nullptr;
+  const char* env = std::getenv("CUTROUTE_REGENERATE");
+  const bool regenerate = env != nullptr && std::string(env) == "1";
   for (const auto& g : kGenerated) {
     const std::string path = test_data(std::string("dxf/") + g.file);
     const std::string want = g.make();

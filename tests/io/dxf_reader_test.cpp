@@ -605,5 +605,21 @@ TEST(DxfReader, InsertAttributesAndPolylineVariants) {
   EXPECT_EQ(d.entity_counts.at("INSERT"), 1u);
 }
 
+TEST(DxfReader, CurveToleranceIsValidated) {
+  const std::string text = DxfBuilder().ellipse({0, 0}, {10, 0}, 0.5, 0, 1).str();
+  for (double tol : {0.0, 1e-7, 101.0, std::nan("")}) {
+    io::DxfOptions opt;
+    opt.curve_tol_mm = tol;
+    const auto r = io::read_dxf_string(text, "t.dxf", opt);
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().message, "curve tolerance must be between 1e-6 and 100 mm");
+  }
+  io::DxfOptions fine;
+  fine.curve_tol_mm = 1e-6;
+  const auto r = io::read_dxf_string(text, "t.dxf", fine);
+  ASSERT_TRUE(r.ok());
+  EXPECT_TRUE(r->diagnostics.empty());  // reached without exceeding the tolerance
+}
+
 }  // namespace
 }  // namespace cutroute::test

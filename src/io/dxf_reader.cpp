@@ -8,7 +8,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <map>
 #include <numbers>
 #include <sstream>
@@ -717,11 +716,14 @@ Result<DxfDrawing> read_dxf_string(const std::string& content, const std::string
   for (auto& w : s.warnings) d.diagnostics.push_back(std::move(w));
 
   std::vector<Payload> payloads(s.entities.size());
-  {
+  try {
+    // dxflib sees only the sanitised text of the scan; it has no error reporting of its own.
     std::istringstream in(s.dxflib_text);
     Collector collector(s, in, payloads);
     DL_Dxf dxf;
     dxf.in(in, &collector);
+  } catch (const std::exception& x) {
+    return make_error(std::string("DXF parser failed: ") + x.what(), name);
   }
 
   Expander ex(s, payloads, options, d);

@@ -37,14 +37,16 @@ double distance2_to_line(Vec2 a, Vec2 b, Vec2 p) {
 
 double distance_to_line(Vec2 a, Vec2 b, Vec2 p) { return std::sqrt(distance2_to_line(a, b, p)); }
 
-// Distance from p to the polyline pts, searching outward from segment `guess` and stopping once
-// a segment is closer than `good` (the exact minimum is not needed below that).
-double distance_to_polyline(const std::vector<Vec2>& pts, Vec2 p, std::size_t guess, double good) {
+// Distance from p to the polyline pts, searching outward from segment `guess` (at most `window`
+// segments each way) and stopping once a segment is closer than `good`. A nearest segment
+// outside the window only overestimates the distance, which makes the fit more careful.
+double distance_to_polyline(const std::vector<Vec2>& pts, Vec2 p, std::size_t guess, double good,
+                            std::size_t window) {
   const std::size_t nseg = pts.size() - 1;
   guess = std::min(guess, nseg - 1);
   const double good2 = good * good;
   double best = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < nseg; ++k) {
+  for (std::size_t k = 0; k < std::min(nseg, 2 * window + 1); ++k) {
     // guess, guess+1, guess-1, guess+2, ...
     const std::size_t off = (k + 1) / 2;
     std::size_t j;
@@ -226,7 +228,12 @@ double fit_biarcs(const ParamCurve& curve, double tol_mm, std::vector<Vertex>& o
   // Depth-first, left to right, so vertices come out in curve order.
   std::vector<Piece> stack{{curve.t0, curve.t1, 0}};
   std::vector<Vec2> samples(kSamples + 1);
-  auto sample = [&](const Piece& pc, int i) { return curve.point(pc.a + (pc.b - pc.a) * i / kSamples); };
+  bool overflow = false;
+  auto sample = [&](const Piece& pc, int i) {
+    const Vec2 q = curve.point(pc.a + (pc.b - pc.a) * i / kSamples);
+    if (!geometry::is_finite(q)) overflow = true;
+    return q;
+  };
   while (!stack.empty()) {
     const Piece piece = stack.back();
     stack.pop_back();
@@ -238,12 +245,16 @@ double fit_biarcs(const ParamCurve& curve, double tol_mm, std::vector<Vertex>& o
     };
     const Vec2 p0 = curve.point(piece.a);
     const Vec2 p1 = curve.point(piece.b);
+    // Overflowing input (weights, scales, ratios near 1e308) gives no curve to follow; splitting
+    // would only multiply the work.
+    if (!geometry::is_finite(p0) || !geometry::is_finite(p1)) return std::numeric_limits<double>::infinity();
     const Vec2 chord = p1 - p0;
     const double chord_len = len(chord);
     if (chord_len <= 1e-12) {
       // A closed or vanishing piece: split unless the whole piece is one point.
       double spread = 0;
       for (int i = 1; i < kSamples; ++i) spread = std::max(spread, len(sample(piece, i) - p0));
+      if (overflow) return std::numeric_limits<double>::infinity();
       if (spread > tol_mm && can_split) {
         split();
         continue;
@@ -287,6 +298,7 @@ double fit_biarcs(const ParamCurve& curve, double tol_mm, std::vector<Vertex>& o
         break;
       }
     }
+    if (overflow) return std::numeric_limits<double>::infinity();
     if (early_fail) {
       split();
       continue;
@@ -303,14 +315,15 @@ double fit_biarcs(const ParamCurve& curve, double tol_mm, std::vector<Vertex>& o
       for (int k = 0; k < narcs; ++k) {
         const ArcGeom& g = k == 0 ? g0 : *g1;
         int i = 0;
-        g.for_points(kSamples / 2, [&](Vec2 q) {
+        g.for_points(kSamples / 4, [&](Vec2 q) {
           ++i;
-          const double frac = (k + double(i) / (kSamples / 2)) / narcs;
+          const double frac = (k + double(i) / (kSamples / 4)) / narcs;
           const auto guess = static_cast<std::size_t>(frac * kSamples);
-          dev = std::max(dev, distance_to_polyline(samples, q, guess, 0.1 * tol_mm));
+          dev = std::max(dev, distance_to_polyline(samples, q, guess, 0.5 * tol_mm, 2));
         });
       }
     }
+    if (overflow) return std::numeric_limits<double>::infinity();
     if (dev > tol_mm && can_split) {
       split();
       continue;
@@ -483,7 +496,9 @@ std::vector<Vertex> nurbs_to_arcs(const Nurbs& s, double tol_mm, double* max_dev
     ParamCurve c;
     SpanPoly poly;
     if (span_poly(s, k, poly)) {
-      c.point = [poly](double t) { return poly.point(t, nullptr); };
+      // Span ends exactly as the recurrence gives them (clamped ends are control points).
+      const Vec2 pa = nurbs_point(s, k, a, nullptr), pb = nurbs_point(s, k, b, nullptr);
+      c.point = [poly, pa, pb](double t) { return t == 0 ? pa : t == 1 ? pb : poly.point(t, nullptr); };
       c.derivative = [poly](double t) {
         Vec2 d;
         poly.point(t, &d);

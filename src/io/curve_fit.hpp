@@ -60,7 +60,8 @@ struct ParamCurve {
 // piece whose biarc misses the tolerance is split in two, down to a small limit where a line is
 // used. The deviation is checked at sample points of the curve against the fitted arcs.
 // Returns the largest deviation measured [mm]. Splitting stops once `out` holds max_vertices
-// (a guard against absurd tolerances; the returned deviation then exceeds tol_mm).
+// (a guard against absurd tolerances; the returned deviation then exceeds tol_mm). Returns
+// +inf, leaving `out` incomplete, when the curve has non-finite points.
 double fit_biarcs(const ParamCurve& curve, double tol_mm, std::vector<Vertex>& out,
                   std::size_t max_vertices = 1'000'000);
 

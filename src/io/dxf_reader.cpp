@@ -6,8 +6,8 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <map>
 #include <numbers>
 #include <sstream>
@@ -53,12 +53,8 @@ struct Payload {
   // LWPOLYLINE, POLYLINE
   int flags = 0;
   std::vector<Vertex> vertices;
-  // SPLINE
+  // SPLINE (its number arrays come from the scan: ScanSpline)
   int degree = 3;
-  std::vector<double> knots;
-  std::vector<Vec2> control;
-  std::vector<double> weights;
-  std::vector<Vec2> fit;
   Vec2 tan_start, tan_end;
   // INSERT
   Vec2 ins;
@@ -120,18 +116,6 @@ class Collector : public DL_CreationAdapter {
       p->tan_start = {d.tangentStartX, d.tangentStartY};
       p->tan_end = {d.tangentEndX, d.tangentEndY};
     }
-  }
-  void addControlPoint(const DL_ControlPointData& d) override {
-    if (Payload* p = slot()) {
-      p->control.push_back({d.x, d.y});
-      p->weights.push_back(d.w);
-    }
-  }
-  void addFitPoint(const DL_FitPointData& d) override {
-    if (Payload* p = slot()) p->fit.push_back({d.x, d.y});
-  }
-  void addKnot(const DL_KnotData& d) override {
-    if (Payload* p = slot()) p->knots.push_back(d.k);
   }
   void addInsert(const DL_InsertData& d) override {
     if (Payload* p = slot()) {
@@ -242,6 +226,10 @@ Affine ocs(Vec3 n) {
   return a;
 }
 
+bool within_limit(Vec2 p) {
+  return geometry::is_finite(p) && std::abs(p.x) <= units::kMaxCoordinateMm && std::abs(p.y) <= units::kMaxCoordinateMm;
+}
+
 class Expander {
  public:
   Expander(const ScanResult& scan, const std::vector<Payload>& pay, const DxfOptions& opt, DxfDrawing& out)
@@ -302,10 +290,8 @@ class Expander {
   std::size_t degenerate_warnings_ = 0;
 };
 
-std::pair<int, int> grid(const ScanEntity& e, const Payload& p) {
-  (void)e;
-  return {std::max(1, p.rows), std::max(1, p.cols)};
-}
+// MINSERT rows and columns; 0 or negative counts (invalid) are read as 1.
+std::pair<int, int> grid(const Payload& p) { return {std::max(1, p.rows), std::max(1, p.cols)}; }
 
 std::optional<Diagnostic> Expander::count_block(int b, int depth, double& count) {
   const std::size_t bi = static_cast<std::size_t>(b);
@@ -335,7 +321,7 @@ std::optional<Diagnostic> Expander::count_block(int b, int depth, double& count)
     }
     double c = 0;
     if (auto d = count_block(child, depth + 1, c)) return d;
-    const auto [rows, cols] = grid(e, pay_[static_cast<std::size_t>(idx)]);
+    const auto [rows, cols] = grid(pay_[static_cast<std::size_t>(idx)]);
     total += static_cast<double>(rows) * static_cast<double>(cols) * c;
     total = std::min(total, 1e300);
   }
@@ -362,7 +348,7 @@ std::optional<Diagnostic> Expander::check_expansion() {
                               {e.handle, e.line});
         }
         if (auto d = count_block(b, 1, c)) return d;
-        const auto [rows, cols] = grid(e, pay_[static_cast<std::size_t>(idx)]);
+        const auto [rows, cols] = grid(pay_[static_cast<std::size_t>(idx)]);
         total += static_cast<double>(rows) * static_cast<double>(cols) * c;
       }
     }
@@ -399,6 +385,11 @@ Contour Expander::transform(const Contour& c, const Affine& a, double& dev) cons
     const detail::ArcSeg s{v.p, b, v.bulge};
     const Vec2 ctr = detail::arc_center(s);
     const double rad = geometry::distance(ctr, v.p);
+    const double stretch = std::sqrt(a.m00 * a.m00 + a.m01 * a.m01 + a.m10 * a.m10 + a.m11 * a.m11);  // >= largest
+    if (!within_limit(a.apply(ctr)) || !within_limit(a.apply(v.p)) || !(rad * stretch < units::kMaxCoordinateMm)) {
+      r.vertices.push_back({a.apply(v.p), 0.0});  // out of range: the caller's limit check reports it
+      continue;
+    }
     const double th = std::atan2(v.p.y - ctr.y, v.p.x - ctr.x);
     const double sweep = 4 * std::atan(v.bulge);
     detail::ParamCurve pc;
@@ -499,12 +490,16 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
       if (degenerate_warnings_++ < 20) warn_entity("degenerate ELLIPSE skipped", e, layer);
       return std::nullopt;
     }
-    const Vec2 m = Vec2{n.y * 0 - n.z * M.y, n.z * M.x - n.x * 0} * (p.ratio / nl);
+    const Vec2 m = Vec2{-n.z * M.y, n.z * M.x} * (p.ratio / nl);  // (N x M).xy with M in the XY plane
     double u0 = p.t0, u1 = p.t1;
     while (u1 <= u0) u1 += 2 * kPi;
     bool full = u1 - u0 >= 2 * kPi - 1e-9;
     if (full) u1 = u0 + 2 * kPi;
     const Vec2 C = p.center;
+    if (!within_limit(t.apply(C)) ||
+        !(geometry::norm(t.apply_linear(M)) + geometry::norm(t.apply_linear(m)) < units::kMaxCoordinateMm)) {
+      return entity_error(e.type + " lies more than 1e6 mm from the origin after INSERT and unit scaling", top);
+    }
     detail::ParamCurve pc;
     pc.point = [=](double u) { return t.apply(C + M * std::cos(u) + m * std::sin(u)); };
     pc.derivative = [=](double u) { return t.apply_linear(M * -std::sin(u) + m * std::cos(u)); };
@@ -522,14 +517,25 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
   } else if (e.type == "SPLINE") {
     Contour c;
     const bool closed_flag = (p.flags & 1) != 0;
-    if (!p.control.empty()) {
+    const detail::ScanSpline& arrays = scan_.splines[static_cast<std::size_t>(e.spline)];
+    if (!arrays.control.empty()) {
       detail::Nurbs s;
       s.degree = p.degree;
-      for (const Vec2& q : p.control) s.control.push_back(t.apply(q));
-      s.knots = p.knots;
+      for (const Vec2& q : arrays.control) {
+        s.control.push_back(t.apply(q));
+        // The curve lies in the hull of its control points (positive weights).
+        if (!within_limit(s.control.back())) {
+          return entity_error(e.type + " lies more than 1e6 mm from the origin after INSERT and unit scaling", top);
+        }
+      }
+      s.knots = arrays.knots;
       bool rational = false;
-      for (double w : p.weights) rational = rational || w != 1.0;
-      if (rational) s.weights = p.weights;
+      for (double w : arrays.weights) rational = rational || w != 1.0;
+      if (rational) {
+        // Missing trailing weights are 1, as dxflib would have them.
+        s.weights = arrays.weights;
+        s.weights.resize(s.control.size(), 1.0);
+      }
       for (double w : s.weights) {
         if (!(w > 0)) return entity_error("SPLINE has a weight <= 0", top);
       }
@@ -561,9 +567,14 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
           dev = dev2;
         }
       }
-    } else if (p.fit.size() >= 2) {
+    } else if (arrays.fit.size() >= 2) {
       std::vector<Vec2> pts;
-      for (const Vec2& q : p.fit) pts.push_back(t.apply(q));
+      for (const Vec2& q : arrays.fit) {
+        pts.push_back(t.apply(q));
+        if (!within_limit(pts.back())) {
+          return entity_error(e.type + " lies more than 1e6 mm from the origin after INSERT and unit scaling", top);
+        }
+      }
       const Vec2 ts = t.apply_linear(p.tan_start), te = t.apply_linear(p.tan_end);
       const bool has_ts = geometry::norm(p.tan_start) > 0, has_te = geometry::norm(p.tan_end) > 0;
       c.vertices = detail::fit_points_to_arcs(pts, closed_flag, has_ts ? &ts : nullptr, has_te ? &te : nullptr, tol, &dev);
@@ -572,6 +583,7 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
       warn_entity("SPLINE without control or fit points skipped", e, layer);
       return std::nullopt;
     }
+    if (!std::isfinite(dev)) return entity_error(e.type + " has no finite points (overflowing numbers)", top);
     if (!c.closed && closed_flag && c.vertices.size() > 2 &&
         geometry::distance(c.vertices.front().p, c.vertices.back().p) <= tol::kSnapMm) {
       c.vertices.pop_back();
@@ -585,6 +597,7 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
   } else {
     return std::nullopt;
   }
+  if (!std::isfinite(dev)) return entity_error(e.type + " has no finite points (overflowing numbers)", top);
   if (dev > tol) {
     char buf[32];
     const auto r = std::to_chars(buf, buf + sizeof buf, dev, std::chars_format::general, 3);
@@ -594,8 +607,7 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
   for (Contour& c : results) {
     drop_repeats(c);
     for (const Vertex& v : c.vertices) {
-      if (!geometry::is_finite(v.p) || std::abs(v.p.x) > units::kMaxCoordinateMm ||
-          std::abs(v.p.y) > units::kMaxCoordinateMm) {
+      if (!within_limit(v.p)) {
         return entity_error(e.type + " lies more than 1e6 mm from the origin after INSERT and unit scaling", top);
       }
     }
@@ -636,7 +648,7 @@ std::optional<Diagnostic> Expander::emit(int idx, const Affine& t, const std::st
       if (degenerate_warnings_++ < 20) warn_entity("INSERT with zero scale skipped", e, layer);
       return std::nullopt;
     }
-    const auto [rows, cols] = grid(e, p);
+    const auto [rows, cols] = grid(p);
     const Affine base = t.then_after(ocs(p.extrusion))
                             .then_after(Affine::translate(p.ins))
                             .then_after(Affine::rotate(p.angle * kPi / 180));
@@ -704,11 +716,14 @@ Result<DxfDrawing> read_dxf_string(const std::string& content, const std::string
   for (auto& w : s.warnings) d.diagnostics.push_back(std::move(w));
 
   std::vector<Payload> payloads(s.entities.size());
-  {
+  try {
+    // dxflib sees only the sanitised text of the scan; it has no error reporting of its own.
     std::istringstream in(s.dxflib_text);
     Collector collector(s, in, payloads);
     DL_Dxf dxf;
     dxf.in(in, &collector);
+  } catch (const std::exception& x) {
+    return make_error(std::string("DXF parser failed: ") + x.what(), name);
   }
 
   Expander ex(s, payloads, options, d);
@@ -718,6 +733,8 @@ Result<DxfDrawing> read_dxf_string(const std::string& content, const std::string
 }
 
 Result<DxfDrawing> read_dxf(const std::string& path, const DxfOptions& options) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return make_error("is a directory, not a DXF file", path);
   std::ifstream f(path, std::ios::binary);
   if (!f) return make_error("cannot open file", path);
   f.seekg(0, std::ios::end);

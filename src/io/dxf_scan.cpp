@@ -77,6 +77,18 @@ bool is_forwarded_type(std::string_view t) {
          t == "SPLINE" || t == "INSERT";
 }
 
+bool forwarded_code(int code) {
+  switch (code) {
+    case 2: case 10: case 20: case 11: case 21: case 12: case 22: case 13: case 23:
+    case 40: case 41: case 42: case 44: case 45: case 50: case 51:
+    case 70: case 71: case 72: case 73: case 74: case 90:
+    case 210: case 220: case 230:
+      return true;
+    default:
+      return false;
+  }
+}
+
 struct Pair {
   int code;
   std::string_view value;  // untrimmed
@@ -112,6 +124,7 @@ class Scanner {
   UnitsRule rule_;
   const void* ctx_;
   std::optional<double> limit_units_;
+  double last_real_ = 0;  // value of the last real group checked
 
   ScanResult r_;
   std::string section_;
@@ -153,20 +166,26 @@ double Scanner::coordinate_limit() {
 
 std::optional<Diagnostic> Scanner::check_value(int code, std::string_view value, long line) {
   const Kind k = kind_of(code);
-  const std::string codes = std::to_string(code);
+  auto fail = [&](const char* what) {
+    return error("group code " + std::to_string(code) + ": '" + std::string(trim(value)) + "' " + what, line);
+  };
+  if (k != Kind::text && trim(value).size() > kMaxForwardedValue) {
+    return error("group code " + std::to_string(code) + ": number of more than 1000 characters", line);
+  }
   if (k == Kind::real) {
     double v = 0;
-    if (!parse_real(value, v)) return error("group code " + codes + ": '" + std::string(trim(value)) + "' is not a number", line);
-    if (!std::isfinite(v)) return error("group code " + codes + ": '" + std::string(trim(value)) + "' is not a finite number", line);
+    if (!parse_real(value, v)) return fail("is not a number");
+    if (!std::isfinite(v)) return fail("is not a finite number");
+    last_real_ = v;
     const bool geometry_section = section_ == "ENTITIES" || section_ == "BLOCKS";
     if (geometry_section && code >= 10 && code <= 39 && std::abs(v) > coordinate_limit()) {
-      return error("group code " + codes + ": coordinate " + std::string(trim(value)) +
+      return error("group code " + std::to_string(code) + ": coordinate " + std::string(trim(value)) +
                        " is out of range (more than 1e6 mm from the origin)",
                    line);
     }
   } else if (k == Kind::integer) {
     long v = 0;
-    if (!parse_int(value, v)) return error("group code " + codes + ": '" + std::string(trim(value)) + "' is not an integer", line);
+    if (!parse_int(value, v)) return fail("is not an integer");
   }
   return std::nullopt;
 }
@@ -182,6 +201,10 @@ void Scanner::start_entity(std::string_view type, long line) {
     if (e.type == "SEQEND") owner_ = -1;
   } else {
     owner_ = (e.type == "POLYLINE" || e.type == "INSERT") ? idx : -1;
+  }
+  if (e.type == "SPLINE") {
+    e.spline = static_cast<int>(r_.splines.size());
+    r_.splines.emplace_back();
   }
   r_.entities.push_back(std::move(e));
   cur_ = idx;
@@ -201,14 +224,27 @@ std::optional<Diagnostic> Scanner::entity_pair(int code, std::string_view value,
     case 70:
       if (parse_int(v, iv)) {
         e.flags = static_cast<int>(std::clamp(iv, -1000000L, 1000000L));
-        if (e.type == "INSERT") e.cols = e.flags;
       }
       break;
-    case 71: if (e.type == "INSERT" && parse_int(v, iv)) e.rows = static_cast<int>(std::clamp(iv, -1000000L, 1000000L)); break;
     case 10: ++counts_.n10; break;
     case 11: ++counts_.n11; break;
     case 40: ++counts_.n40; break;
     case 41: ++counts_.n41; break;
+    default: break;
+  }
+  if (e.spline >= 0) {
+    ScanSpline& sp = r_.splines[static_cast<std::size_t>(e.spline)];
+    switch (code) {
+      case 40: sp.knots.push_back(last_real_); break;
+      case 41: sp.weights.push_back(last_real_); break;
+      case 10: sp.control.push_back({last_real_, 0.0}); break;
+      case 20: if (!sp.control.empty()) sp.control.back().y = last_real_; break;
+      case 11: sp.fit.push_back({last_real_, 0.0}); break;
+      case 21: if (!sp.fit.empty()) sp.fit.back().y = last_real_; break;
+      default: break;
+    }
+  }
+  switch (code) {
     case 42: if (counts_.n10 == 0) counts_.bulge_before_vertex = true; break;
     case 90: if (parse_int(v, iv)) counts_.c90 = iv; break;
     case 72: if (parse_int(v, iv)) counts_.c72 = iv; break;
@@ -273,18 +309,23 @@ std::optional<Diagnostic> Scanner::finish_entity() {
     // dxflib keeps vertex/knot/control/fit counts from the previous entity when a count group
     // is absent; an explicit 0 (the scan checked that there is no data) resets them.
     if (e.type == "LWPOLYLINE" && !counts_.c90) t += "90\n0\n";
-    if (e.type == "SPLINE") {
-      if (!counts_.c72) t += "72\n0\n";
-      if (!counts_.c73) t += "73\n0\n";
-      if (!counts_.c74) t += "74\n0\n";
-    }
+    const bool spline = e.type == "SPLINE";
+    if (spline) t += "72\n0\n73\n0\n74\n0\n";  // arrays come from the scan (ScanSpline)
     for (const Pair& p : cur_pairs_) {
-      // Comments, variables, control strings and extended data are of no use and can confuse
-      // dxflib's state machine (group 9 starts a header variable there).
-      if (p.code == 999 || p.code == 9 || p.code == 102 || p.code >= 1000) continue;
+      if (spline && (p.code == 10 || p.code == 20 || p.code == 11 || p.code == 21 || p.code == 40 || p.code == 41 ||
+                     p.code == 72 || p.code == 73 || p.code == 74)) {
+        continue;
+      }
+      // Only the groups the reader takes from dxflib: less to parse (dxflib converts every
+      // number through a string stream), and nothing that can confuse its state machine
+      // (group 9 starts a header variable there, 1000+ are extended data). Z coordinates are
+      // dropped: the reader projects onto the XY plane.
+      if (!forwarded_code(p.code)) continue;
       std::string_view v = trim(p.value);
       if (v.size() > kMaxForwardedValue) v = v.substr(0, kMaxForwardedValue);
-      t += std::to_string(p.code);
+      char buf[8];
+      const auto r = std::to_chars(buf, buf + sizeof buf, p.code);
+      t.append(buf, r.ptr);
       t += '\n';
       t += v;
       t += '\n';
@@ -449,18 +490,25 @@ Result<ScanResult> Scanner::run() {
     if (eof_seen) break;
   }
   if (!eof_seen) {
-    if (state == State::section_name) return error("file is truncated after SECTION", section_line);
-    if (state == State::section) {
+    // A file cut off after its ENTITIES section (in OBJECTS, say) still has all its geometry.
+    const bool after_entities = entities_closed_ && section_ != "BLOCKS";
+    if (state != State::top && after_entities) {
+      r_.warnings.push_back(make_warning("file is truncated after the ENTITIES section (in section " +
+                                             (section_.empty() ? std::string("?") : section_) + ")",
+                                         file_, line_no_));
+    } else if (state == State::section_name) {
+      return error("file is truncated after SECTION", section_line);
+    } else if (state == State::section) {
       if ((section_ == "ENTITIES" || section_ == "BLOCKS") && cur_ >= 0) {
         const ScanEntity& e = r_.entities[static_cast<std::size_t>(cur_)];
         return error("file is truncated inside the " + e.type + " entity starting at this line (no ENDSEC/EOF)", e.line);
       }
       return error("file is truncated in section " + section_ + " (no ENDSEC/EOF)", line_no_);
+    } else {
+      r_.warnings.push_back(make_warning("file has no EOF marker", file_, line_no_));
     }
-    r_.warnings.push_back(make_warning("file has no EOF marker", file_, line_no_));
   }
   if (!entities_seen_) return error("no ENTITIES section", std::nullopt);
-  (void)entities_closed_;
   if (paperspace_skipped_ > 0) {
     r_.warnings.push_back(make_warning(std::to_string(paperspace_skipped_) + " paper-space entities ignored", file_));
   }

@@ -35,7 +35,9 @@ struct DxfOptions {
   std::optional<std::string> units;       // override: "mm", "cm", "m", "in", "ft"
   std::vector<std::string> layers;        // keep only these layers (empty = all)
   std::vector<std::string> ignore_layers; // drop these layers
-  double curve_tol_mm = tol::kArcChordMm; // SPLINE/ELLIPSE to arcs chord tolerance [mm]
+  double curve_tol_mm = tol::kArcChordMm; // SPLINE/ELLIPSE to arcs chord tolerance [mm], in
+                                          // [1e-6, 100]; also used for arcs under non-uniform
+                                          // INSERT scale (they become elliptic)
   std::size_t max_entities = 2'000'000;   // after INSERT expansion; beyond: input error
   int max_insert_depth = 32;              // INSERT nesting levels; beyond: input error
 };
@@ -47,9 +49,12 @@ struct DxfDrawing {
   double mm_per_unit = 1.0;
   std::optional<int> insunits;            // raw $INSUNITS of the HEADER, when present
   std::optional<int> measurement;         // raw $MEASUREMENT of the HEADER, when present
-  std::vector<DxfEntity> entities;        // curves only
+  std::vector<DxfEntity> entities;        // curves only, in file order (block contents at
+                                          // the place of their INSERT)
   std::map<std::string, std::size_t> entity_counts;  // every entity type seen in modelspace
-                                                      // (after INSERT expansion), skipped ones included
+                                                      // (after INSERT expansion), skipped ones included;
+                                                      // each placed INSERT counts too; paper space
+                                                      // and filtered layers do not
   std::map<std::string, std::size_t> skipped;        // types read but not turned into curves
   Diagnostics diagnostics;                // warnings (skipped, converted, odd values)
 };

@@ -1,12 +1,17 @@
 // cutroute estimate: cutting time (eq. 1 and eq. 10) and cost (eq. 3) of a G-code program.
 #include <charconv>
+#include <cmath>
 #include <iostream>
+#include <numbers>
+#include <optional>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include <cutroute/core/units.hpp>
 #include <cutroute/cost/estimate.hpp>
 #include <cutroute/cost/machine_profile.hpp>
+#include <cutroute/cost/motion_model.hpp>
 #include <cutroute/cost/speed_table.hpp>
 #include <cutroute/nc/dialect.hpp>
 #include <cutroute/nc/gcode_reader.hpp>
@@ -63,6 +68,32 @@ cost::ProgramTotals totals_of(const nc::ProgramStats& s) {
   return t;
 }
 
+// The cutting moves as the motion model sees them: a move starts from rest after a pierce or
+// after anything that is not a cut; the turn is the angle between consecutive tangents.
+std::vector<cost::MotionMove> cutting_moves(const std::vector<nc::Move>& moves, double v_set_mm_s) {
+  std::vector<cost::MotionMove> out;
+  out.reserve(moves.size());
+  const nc::Move* prev = nullptr;
+  for (const auto& m : moves) {
+    if (!m.beam_on) {
+      prev = nullptr;
+      continue;
+    }
+    cost::MotionMove c;
+    c.length_mm = m.length_mm;
+    c.feed_mm_s = m.feed_mm_min > 0.0 ? m.feed_mm_min / 60.0 : v_set_mm_s;
+    c.radius_mm = m.radius_mm;
+    c.from_rest = m.pierce || prev == nullptr;
+    if (prev) {
+      double d = std::remainder(m.start_dir_rad - prev->end_dir_rad, 2.0 * std::numbers::pi);
+      c.turn_rad = std::abs(d);
+    }
+    out.push_back(c);
+    prev = &m;
+  }
+  return out;
+}
+
 int run_estimate(const EstimateOptions& o) {
   if (o.material.empty() != (o.thickness_mm <= 0.0)) {
     std::cerr << "cutroute: error: --material and --thickness go together\n";
@@ -88,6 +119,9 @@ int run_estimate(const EstimateOptions& o) {
   if (!dialect) return fail(dialect.error());
   nc::ReadOptions ro;
   ro.dialect = *dialect;
+  std::vector<nc::Move> moves;
+  const auto& lim = profile->motion;
+  if (lim.accel_m_s2) ro.moves = &moves;
   auto stats = nc::read_gcode_file(o.program, ro);
   if (!stats) return fail(stats.error());
   for (const auto& w : stats->warnings) std::cerr << "cutroute: " << format(w) << '\n';
@@ -95,6 +129,14 @@ int run_estimate(const EstimateOptions& o) {
     std::cerr << "cutroute: " << o.program << ": " << stats->suppressed_warnings << " more warning(s) not shown\n";
   const auto e = cost::estimate_time(totals_of(*stats), *conditions);
   const bool measured = conditions->speed.measured;
+  std::optional<cost::MotionTime> motion;
+  if (lim.accel_m_s2) {
+    const cost::MotionParams mp{*lim.accel_m_s2 * units::kMmPerM, lim.junction_deviation_mm.value_or(0.0),
+                                lim.block_time_s.value_or(0.0)};
+    auto t = cost::time_moves(cutting_moves(moves, units::m_per_s_to_mm_per_s(e.v_on_set_m_s)), mp);
+    if (!t) return fail(make_error("field motion: " + t.error().message, profile->file));
+    motion = *t;
+  }
 
   if (o.json) {
     nlohmann::json j;
@@ -120,6 +162,12 @@ int run_estimate(const EstimateOptions& o) {
                       {"dwell_s", e.dwell_s},     {"feed_off_s", e.feed_off_s}, {"head_s", e.head_s},
                       {"total_s", e.total_s}};
     j["dwells"] = stats->dwells;
+    j["cut_time_at_programmed_feed_s"] = stats->cut_time_at_feed_s;
+    if (motion) {
+      j["motion"] = {{"cutting_s", motion->time_s},
+                     {"mean_cut_speed_m_s", motion->mean_speed_mm_s / units::kMmPerM},
+                     {"block_limited_moves", motion->block_limited}};
+    }
     j["warnings"] = nlohmann::json::array();
     for (const auto& w : conditions->warnings) j["warnings"].push_back(w);
     for (const auto& w : stats->warnings) j["warnings"].push_back(format(w));
@@ -145,7 +193,13 @@ int run_estimate(const EstimateOptions& o) {
             << fixed(e.pierce_s, 2) << " s\n"
             << "  outside eq. 10: dwell " << fixed(e.dwell_s, 2) << " s, beam-off feed " << fixed(e.feed_off_s, 2)
             << " s, head " << fixed(e.head_s, 2) << " s\n"
-            << "  total               " << fixed(e.total_s, 2) << " s\n"
+            << "  total               " << fixed(e.total_s, 2) << " s\n";
+  if (motion) {
+    std::cout << "  motion model: cutting " << fixed(motion->time_s, 2) << " s, mean cut speed "
+              << fixed(motion->mean_speed_mm_s / units::kMmPerM, 5) << " m/s, " << motion->block_limited
+              << " block-time-limited moves\n";
+  }
+  std::cout
             << "  cost, eq. 3         " << fixed(e.cost, 2) << ' ' << e.cost_unit << "\n";
   for (const auto& w : conditions->warnings) std::cout << "warning: " << w << '\n';
   return kOk;

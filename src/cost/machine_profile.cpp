@@ -153,14 +153,18 @@ Result<MachineProfile> parse_profile(const json& j, const std::string& path) {
   }
   if (const auto m = j.find("motion"); m != j.end() && !m->is_null()) {
     if (!m->is_object()) return make_error("field motion must be an object");
-    for (const char* key : {"accel_m_s2", "jerk_m_s3", "block_time_s"}) {
+    if (auto d = unknown_keys(*m, {"accel_m_s2", "jerk_m_s3", "block_time_s", "junction_deviation_mm"}, "motion");
+        !d.message.empty())
+      return d;
+    for (const std::string key : {"accel_m_s2", "jerk_m_s3", "block_time_s", "junction_deviation_mm"}) {
       if (!m->contains(key) || (*m)[key].is_null()) continue;
-      auto v = std::string(key) == "block_time_s" ? detail::non_negative(*m, key, "motion")
-                                                   : detail::positive(*m, key, "motion");
+      const bool may_be_zero = key == "block_time_s" || key == "junction_deviation_mm";
+      auto v = may_be_zero ? detail::non_negative(*m, key, "motion") : detail::positive(*m, key, "motion");
       if (!v) return v.error();
-      if (std::string(key) == "accel_m_s2") p.motion.accel_m_s2 = *v;
-      else if (std::string(key) == "jerk_m_s3") p.motion.jerk_m_s3 = *v;
-      else p.motion.block_time_s = *v;
+      if (key == "accel_m_s2") p.motion.accel_m_s2 = *v;
+      else if (key == "jerk_m_s3") p.motion.jerk_m_s3 = *v;
+      else if (key == "block_time_s") p.motion.block_time_s = *v;
+      else p.motion.junction_deviation_mm = *v;
     }
   }
   if (const auto d = j.find("default_job"); d != j.end() && !d->is_null()) {

@@ -33,6 +33,13 @@ struct Block {
 
 enum class Motion { none, rapid, line, cw, ccw };
 
+struct ArcGeometry {
+  double length = 0.0;  // [mm]
+  double radius = 0.0;  // [mm]
+  double cx = 0.0;      // centre [mm]
+  double cy = 0.0;
+};
+
 std::string num(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.6g", v);
@@ -220,6 +227,7 @@ class Reader {
           beam_on_ = true;
           ++st_.pierces;
           repierce_ = false;
+          new_cut_ = true;
         }
       } else if (opt_.dialect.switches_off(m)) {
         beam_on_ = false;
@@ -268,14 +276,17 @@ class Reader {
     if (auto d = check_range("X", nx); !d.message.empty()) return d;
     if (auto d = check_range("Y", ny); !d.message.empty()) return d;
     double length = 0.0;
+    ArcGeometry arc_geom;
     if (motion_ == Motion::rapid || motion_ == Motion::line) {
       length = std::hypot(nx - x_, ny - y_);
     } else {
       auto arc = arc_length(b, nx, ny);
       if (!arc.ok()) return arc.error();
-      length = *arc;
+      arc_geom = *arc;
+      length = arc_geom.length;
       ++st_.arc_moves;
     }
+    const std::size_t pierces_before = st_.pierces;
     if (motion_ == Motion::rapid) {
       if (length > 0.0) {
         st_.rapid_length_mm += length;
@@ -303,9 +314,39 @@ class Reader {
       if (feed_mm_min_ > 0.0) st_.feed_off_time_s += length / units::mm_per_min_to_m_per_s(feed_mm_min_) / units::kMmPerM;
       else st_.feed_off_length_no_feed_mm += length;
     }
+    const bool cut = beam_on_ && motion_ != Motion::rapid && length > 0.0;
+    if (opt_.moves && length > 0.0) record(nx, ny, length, arc_geom, cut && (pierces_before != st_.pierces || new_cut_));
+    if (cut) new_cut_ = false;
     x_ = nx;
     y_ = ny;
     return {};
+  }
+
+  void record(double nx, double ny, double length, const ArcGeometry& arc, bool pierce) {
+    Move m;
+    m.kind = motion_ == Motion::rapid ? Move::Kind::rapid
+             : motion_ == Motion::line ? Move::Kind::line
+             : motion_ == Motion::cw   ? Move::Kind::arc_cw
+                                       : Move::Kind::arc_ccw;
+    m.beam_on = beam_on_ && motion_ != Motion::rapid;
+    m.pierce = m.beam_on && pierce;
+    m.x0 = x_;
+    m.y0 = y_;
+    m.x1 = nx;
+    m.y1 = ny;
+    m.length_mm = length;
+    m.feed_mm_min = feed_mm_min_;
+    m.line = line_no_;
+    if (motion_ == Motion::rapid || motion_ == Motion::line) {
+      m.start_dir_rad = m.end_dir_rad = std::atan2(ny - y_, nx - x_);
+    } else {
+      // The tangent is the radius direction turned by +90° (counter-clockwise) or -90° (clockwise).
+      const double turn = motion_ == Motion::ccw ? 0.5 * std::numbers::pi : -0.5 * std::numbers::pi;
+      m.radius_mm = arc.radius;
+      m.start_dir_rad = std::atan2(y_ - arc.cy, x_ - arc.cx) + turn;
+      m.end_dir_rad = std::atan2(ny - arc.cy, nx - arc.cx) + turn;
+    }
+    opt_.moves->push_back(m);
   }
 
   double radius_tol_mm() const {
@@ -313,7 +354,7 @@ class Reader {
   }
 
   // Exact XY length of a G2/G3 move from (x_, y_) to (nx, ny).
-  Result<double> arc_length(const Block& b, double nx, double ny) const {
+  Result<ArcGeometry> arc_length(const Block& b, double nx, double ny) const {
     const bool cw = motion_ == Motion::cw;
     const double chord = std::hypot(nx - x_, ny - y_);
     const bool has_ij = b.has_word('I') || b.has_word('J');
@@ -329,7 +370,14 @@ class Reader {
       }
       const double half = std::asin(std::min(1.0, chord / (2.0 * ar)));
       const double sweep = r >= 0.0 ? 2.0 * half : kTwoPi - 2.0 * half;
-      return std::max(ar, chord / 2.0) * sweep;
+      const double radius = std::max(ar, chord / 2.0);
+      // Centre: left of the chord for a counter-clockwise arc shorter than 180°, mirrored for
+      // clockwise, and again for R < 0.
+      const double h = std::sqrt(std::max(0.0, radius * radius - chord * chord / 4.0));
+      const double side = (cw ? -1.0 : 1.0) * (r >= 0.0 ? 1.0 : -1.0);
+      const double ux = (nx - x_) / chord;
+      const double uy = (ny - y_) / chord;
+      return ArcGeometry{radius * sweep, radius, 0.5 * (x_ + nx) - side * h * uy, 0.5 * (y_ + ny) + side * h * ux};
     }
     if (!has_ij) return error("arc (G2/G3) without I/J or R");
     double cx = 0.0;
@@ -360,7 +408,7 @@ class Reader {
       sweep = std::fmod(sweep, kTwoPi);
       if (sweep < 0.0) sweep += kTwoPi;
     }
-    return 0.5 * (r0 + r1) * sweep;
+    return ArcGeometry{0.5 * (r0 + r1) * sweep, 0.5 * (r0 + r1), cx, cy};
   }
 
   std::string_view text_;
@@ -378,6 +426,7 @@ class Reader {
   bool beam_on_ = false;
   bool repierce_ = false;      // a rapid was made with the beam on: the next cut pierces again
   bool skip_motion_ = false;   // the current block holds an unknown G code
+  bool new_cut_ = false;       // a beam-on code was executed: the next recorded cut starts from a pierce
   double feed_mm_min_ = 0.0;   // 0 = not programmed yet
   double x_ = 0.0;             // [mm] current position; programs start at the origin
   double y_ = 0.0;             // [mm]

@@ -129,3 +129,31 @@ TEST(CliEstimate, MaterialAndThicknessGoTogether) {
 
 }  // namespace
 }  // namespace cutroute::cost
+
+namespace cutroute::cost {
+namespace {
+
+TEST(CliEstimate, MotionModelWhenTheProfileHasAcceleration) {
+  json j;
+  {
+    std::ifstream in(default_machine_profile_path());
+    j = json::parse(in);
+  }
+  j["speed_table"] = std::filesystem::absolute(
+      std::filesystem::path(default_machine_profile_path()).parent_path() / "../materials/bystar3015.json").string();
+  j["motion"] = {{"accel_m_s2", 1.0}, {"junction_deviation_mm", 0.0}, {"block_time_s", 0.0}};
+  const auto path = (std::filesystem::temp_directory_path() / "cutroute-cli-motion.json").string();
+  std::ofstream(path) << j.dump(1);
+  // square_abs_mm.nc: 100, 50, 100, 50 mm at F6000 (100 mm/s), stopping at each 90° corner
+  // (no deviation allowed) with a = 1000 mm/s^2: each side L/v + v/a.
+  const auto e = cli_json("estimate " + test::test_data("nc/square_abs_mm.nc") + " --machine " + path + " --json");
+  ASSERT_TRUE(e.contains("motion"));
+  EXPECT_NEAR(e["motion"]["cutting_s"].get<double>(), 2 * (1.0 + 0.1) + 2 * (0.5 + 0.1), 1e-9);
+  EXPECT_NEAR(e["motion"]["mean_cut_speed_m_s"].get<double>(), 0.3 / 3.4, 1e-12);
+  const auto plain = cli_json("estimate " + test::test_data("nc/square_abs_mm.nc") + " --json");
+  EXPECT_FALSE(plain.contains("motion"));
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace cutroute::cost

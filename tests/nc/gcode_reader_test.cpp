@@ -221,3 +221,43 @@ TEST(GcodeReader, WarningsAreCapped) {
 
 }  // namespace
 }  // namespace cutroute::nc
+
+namespace cutroute::nc {
+namespace {
+
+TEST(GcodeReaderMoves, RecordedMovesCarryTangentsRadiiAndPierces) {
+  std::vector<Move> moves;
+  ReadOptions opt;
+  opt.moves = &moves;
+  // A rapid, a pierce, a line east, a ccw quarter arc turning north, an R-form cw arc, a rapid
+  // with the beam on, a re-pierced line.
+  auto r = read_gcode(
+      "G21 G90\nG0 X10 Y0\nM3\nG0 Z1\nG1 X20 Y0 F600\nG3 X30 Y10 I0 J10\nG2 X40 Y20 R10\nG0 X50 Y20\nG1 X60 Y20\nM5\nM30\n",
+      "m.nc", opt);
+  ASSERT_TRUE(r.ok()) << format(r.error());
+  ASSERT_EQ(moves.size(), 6u);
+  const double pi = std::numbers::pi;
+  EXPECT_EQ(moves[0].kind, Move::Kind::rapid);
+  EXPECT_FALSE(moves[0].beam_on);
+  EXPECT_EQ(moves[1].kind, Move::Kind::line);
+  EXPECT_TRUE(moves[1].pierce);  // the Z-only block between M3 and the cut does not consume it
+  EXPECT_NEAR(moves[1].start_dir_rad, 0.0, 1e-12);
+  EXPECT_NEAR(moves[1].feed_mm_min, 600.0, 0.0);
+  EXPECT_EQ(moves[2].kind, Move::Kind::arc_ccw);
+  EXPECT_FALSE(moves[2].pierce);
+  EXPECT_NEAR(moves[2].radius_mm, 10.0, 1e-12);
+  EXPECT_NEAR(std::remainder(moves[2].start_dir_rad - 0.0, 2 * pi), 0.0, 1e-12);     // tangent east
+  EXPECT_NEAR(std::remainder(moves[2].end_dir_rad - pi / 2, 2 * pi), 0.0, 1e-12);    // tangent north
+  EXPECT_NEAR(moves[2].length_mm, 5.0 * pi, 1e-12);
+  // cw minor arc from (30,10) to (40,20), R 10: centre (40,10), from north-going to east-going
+  EXPECT_EQ(moves[3].kind, Move::Kind::arc_cw);
+  EXPECT_NEAR(std::remainder(moves[3].start_dir_rad - pi / 2, 2 * pi), 0.0, 1e-12);
+  EXPECT_NEAR(std::remainder(moves[3].end_dir_rad - 0.0, 2 * pi), 0.0, 1e-12);
+  EXPECT_EQ(moves[4].kind, Move::Kind::rapid);
+  EXPECT_TRUE(moves[5].pierce);  // re-pierce after the beam-on rapid
+  EXPECT_EQ(moves[5].line, 9u);
+  EXPECT_EQ(r->pierces, 2u);
+}
+
+}  // namespace
+}  // namespace cutroute::nc

@@ -30,11 +30,13 @@ struct Costs {
   double c_pt = 0.0;         // C_pt [unit per pierce]
 };
 
-// For a later motion model; not used by eq. 1/3/10.
+// The motion model's limits (cost/motion_model.hpp); not used by eq. 1/3/10. The motion
+// estimate is made only when accel_m_s2 is given.
 struct MotionLimits {
-  std::optional<double> accel_m_s2;        // path acceleration limit [m/s^2]
-  std::optional<double> jerk_m_s3;         // jerk limit [m/s^3]
-  std::optional<double> block_time_s;      // minimum time the controller spends on one block [s]
+  std::optional<double> accel_m_s2;            // path acceleration limit [m/s^2]
+  std::optional<double> jerk_m_s3;             // jerk limit [m/s^3] (read, not used yet)
+  std::optional<double> block_time_s;          // minimum time the controller spends on one block [s]
+  std::optional<double> junction_deviation_mm; // corner rounding allowance [mm]
 };
 
 struct DialectSpec {

@@ -22,6 +22,22 @@ namespace cutroute::nc {
 //   the program; comments ( ) and ;; '%' lines; block delete '/'; any letter case; LF, CRLF, CR.
 // Unknown words or codes: a warning with the line number (a block with an unknown G code is not
 // moved). Malformed numbers, arcs whose end is not on the circle, missing program end: an error.
+// One executed XY move, recorded when ReadOptions::moves is set (for motion models and tests).
+struct Move {
+  enum class Kind { rapid, line, arc_cw, arc_ccw };
+  Kind kind = Kind::line;
+  bool beam_on = false;       // a cutting move
+  bool pierce = false;        // the first cutting move after a pierce (the head starts from rest)
+  double x0 = 0, y0 = 0;      // start [mm]
+  double x1 = 0, y1 = 0;      // end [mm]
+  double length_mm = 0.0;     // [mm]
+  double radius_mm = 0.0;     // arcs only [mm]
+  double start_dir_rad = 0.0; // tangent direction at the start [rad]
+  double end_dir_rad = 0.0;   // tangent direction at the end [rad]
+  double feed_mm_min = 0.0;   // programmed F, 0 when none yet [mm/min]
+  std::size_t line = 0;       // 1-based source line
+};
+
 struct ReadOptions {
   Dialect dialect = Dialect{"rs274", {3, 4}, {5}, DwellUnit::seconds};
   // |start radius - end radius| above this is an error: in G21 programs [mm], in G20 programs
@@ -30,6 +46,9 @@ struct ReadOptions {
   double arc_radius_tol_inch = tol::kGcodeArcRadiusInch;
   // At most this many warnings are kept; the rest are only counted.
   std::size_t max_warnings = 50;
+  // When set, every XY move of non-zero length is appended here (one allocation per move: keep
+  // it unset when only totals are needed).
+  std::vector<Move>* moves = nullptr;
 };
 
 // Totals of one program. Lengths are XY path lengths in mm (arcs exact: radius × sweep; Z and

@@ -63,5 +63,23 @@ TEST(GcodeStatsCompare, HandWrittenPrograms) {
     compare(test::test_data(std::string("nc/") + f));
 }
 
+// Frames against a separate Python count of the docs/FRAMES.md rule (tests/nc/count_frames.py).
+TEST(GcodeStatsCompare, FramesAgainstAnIndependentCount) {
+  std::vector<std::string> files;
+  for (const auto& e : std::filesystem::directory_iterator(test::test_data("nc/dxf2gcode"))) files.push_back(e.path().string());
+  for (const char* f : {"square_abs_mm.nc", "square_inc_inch.nc", "arcs_ij.nc", "arcs_r.nc", "dwell_comments_crlf.nc",
+                        "cutter_comp_misc.nc", "m7m9_beam.nc"})
+    files.push_back(test::test_data(std::string("nc/") + f));
+  for (const auto& f : files) {
+    SCOPED_TRACE(f);
+    const auto out = test::run_command("/usr/bin/python3 " + std::string(CUTROUTE_TEST_DATA_DIR) +
+                                       "/../nc/count_frames.py '" + f + "'");
+    ASSERT_EQ(out.exit_code, 0) << out.err;
+    auto ours = read_gcode_file(f, ReadOptions{});
+    ASSERT_TRUE(ours.ok());
+    EXPECT_EQ(std::to_string(ours->frames) + "\n", out.out);
+  }
+}
+
 }  // namespace
 }  // namespace cutroute::nc

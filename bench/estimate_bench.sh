@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # End-to-end: writes a 1 000 000-block program and times `cutroute estimate` on it (< 1 s wanted).
-# Usage: bench/estimate_bench.sh [BUILD_DIR]   (default build)
+# Usage: bench/estimate_bench.sh [BUILD_DIR]   (default build). On a loaded machine compare the
+# user CPU time: wall time then includes waiting for a core.
 set -euo pipefail
 build=${1:-build}
 tmp=$(mktemp -d)
@@ -23,6 +24,6 @@ open(sys.argv[1], "w").write("\n".join(out) + "\n")
 PY
 echo "program: $(wc -l < "$tmp/big.nc") lines, $(du -h "$tmp/big.nc" | cut -f1)"
 for i in 1 2 3; do
-  /usr/bin/time -f "estimate: %e s wall, %M KiB max RSS" "$build/cutroute" estimate "$tmp/big.nc" --json > "$tmp/out.json"
+  /usr/bin/time -f "estimate: %e s wall, %U s user CPU, %M KiB max RSS" "$build/cutroute" estimate "$tmp/big.nc" --json > "$tmp/out.json"
 done
 /usr/bin/python3 -c "import json,sys; j=json.load(open(sys.argv[1])); print('frames', j['frames'], 'pierces', j['pierces'], 'L_on', round(j['cut_length_mm'],3))" "$tmp/out.json"

@@ -118,6 +118,12 @@ TEST(Estimate, InterpolatedConditions) {
   const auto c = conditions("AMg3M", 4, true);
   EXPECT_NEAR(c.pierce_time_s, 0.5 * (1.0 + 2.0), 1e-12);
   EXPECT_NEAR(c.v_set_m_s, 0.5 * (0.025 + 0.015), 1e-15);
+  EXPECT_NEAR(c.technology.kerf_mm, 0.5 * (0.2 + 0.25), 1e-15);  // default profile rows 3 and 5 mm
+  EXPECT_NEAR(c.technology.lead_in_mm, 0.5 * (3.0 + 4.0), 1e-15);
+  EXPECT_NEAR(c.technology.thickness_mm, 4.0, 0.0);
+  const auto exact = conditions("St10kp", 10);
+  EXPECT_NEAR(exact.technology.kerf_mm, 0.35, 0.0);
+  EXPECT_NEAR(exact.technology.pierce_time_s, 3.5, 0.0);
   EXPECT_GE(c.warnings.size(), 2u);
   EXPECT_FALSE(make_conditions(fx().profile, fx().table, "AMg3M", 4, false).ok());
 }

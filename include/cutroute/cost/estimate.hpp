@@ -33,6 +33,9 @@ struct CuttingConditions {
   double pierce_time_s = 0.0;     // t_pt [s]
   double rapid_speed_m_s = 0.0;   // V_off [m/s]
   double head_lift_lower_s = 0.0; // per pierce [s]
+  // The profile's technology row (kerf, lead-in/out, pierce time) for this material and
+  // thickness; with interpolation every number is the linear blend of the two neighbours.
+  CuttingParams technology;
   std::optional<Costs> costs;
   std::vector<std::string> warnings;
 

@@ -2,11 +2,14 @@
 // hand (the expected values are written next to each program in tests/data/nc/).
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <sstream>
+#include <string>
 
 #include <cutroute/nc/frames.hpp>
 #include <cutroute/nc/gcode_reader.hpp>
@@ -257,6 +260,85 @@ TEST(GcodeReaderMoves, RecordedMovesCarryTangentsRadiiAndPierces) {
   EXPECT_TRUE(moves[5].pierce);  // re-pierce after the beam-on rapid
   EXPECT_EQ(moves[5].line, 9u);
   EXPECT_EQ(r->pierces, 2u);
+}
+
+}  // namespace
+}  // namespace cutroute::nc
+
+namespace cutroute::nc {
+namespace {
+
+// Rewrites a program: X and I multiplied by fx, Y and J by fy; with swap_arcs G2 <-> G3 (a
+// mirror reverses the turning sense). Comments are left alone.
+std::string transform(const std::string& text, double fx, double fy, bool swap_arcs) {
+  std::string out;
+  std::size_t i = 0;
+  int depth = 0;
+  while (i < text.size()) {
+    const char c = text[i];
+    if (c == ';' && depth == 0) {  // comment to the end of the line
+      while (i < text.size() && text[i] != '\n') out += text[i++];
+      continue;
+    }
+    if (c == '(') ++depth;
+    if (c == ')') --depth;
+    const char u = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    const bool axis = depth == 0 && (u == 'X' || u == 'Y' || u == 'I' || u == 'J');
+    if (depth == 0 && u == 'G' && swap_arcs) {
+      std::size_t j = i + 1;
+      while (j < text.size() && text[j] == ' ') ++j;
+      if (j < text.size() && (text[j] == '2' || text[j] == '3') &&
+          (j + 1 >= text.size() || !(std::isdigit(static_cast<unsigned char>(text[j + 1])) || text[j + 1] == '.'))) {
+        out += 'G';
+        out += text[j] == '2' ? '3' : '2';
+        i = j + 1;
+        continue;
+      }
+    }
+    if (!axis) {
+      out += c;
+      ++i;
+      continue;
+    }
+    std::size_t j = i + 1;
+    while (j < text.size() && text[j] == ' ') ++j;
+    std::size_t k = j;
+    while (k < text.size() && (std::isdigit(static_cast<unsigned char>(text[k])) || text[k] == '.' || text[k] == '-' ||
+                               text[k] == '+'))
+      ++k;
+    const double v = std::stod(text.substr(j, k - j));
+    const double f = (u == 'X' || u == 'I') ? fx : fy;
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%c%.6f", u, v * f);
+    out += buf;
+    i = k;
+  }
+  return out;
+}
+
+// STYLE.md #14: the same programs rotated by 180° and mirrored keep lengths, pierces and frames.
+TEST(GcodeReaderTransforms, RotatedAndMirroredProgramsKeepTheirTotals) {
+  for (const char* rel : {"dxf2gcode/d2g_ATT00079.ngc", "dxf2gcode/deepnestsharp_part_6.ngc",
+                          "dxf2gcode/openscad_ellipse-arc-rot.ngc", "arcs_ij.nc", "arcs_r.nc", "square_inc_inch.nc"}) {
+    SCOPED_TRACE(rel);
+    const std::string text = slurp(test::test_data(std::string("nc/") + rel));
+    auto base = read_gcode(text, rel, ReadOptions{});
+    ASSERT_TRUE(base.ok());
+    const struct {
+      double fx, fy;
+      bool swap;
+    } cases[] = {{-1, -1, false}, {-1, 1, true}, {1, -1, true}};
+    for (const auto& c : cases) {
+      const std::string t = transform(text, c.fx, c.fy, c.swap);
+      ASSERT_NE(t, text);
+      auto r = read_gcode(t, rel, ReadOptions{});
+      ASSERT_TRUE(r.ok()) << format(r.error());
+      EXPECT_NEAR(r->cut_length_mm, base->cut_length_mm, 1e-9 * std::max(1.0, base->cut_length_mm));
+      EXPECT_NEAR(r->rapid_length_mm, base->rapid_length_mm, 1e-9 * std::max(1.0, base->rapid_length_mm));
+      EXPECT_EQ(r->pierces, base->pierces);
+      EXPECT_EQ(r->frames, base->frames);
+    }
+  }
 }
 
 }  // namespace

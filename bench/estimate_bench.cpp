@@ -74,7 +74,8 @@ void BM_ReadGcode1M(benchmark::State& state) {
   }
   state.counters["frames"] = static_cast<double>(frames);
   state.counters["MB"] = static_cast<double>(program.size()) / 1e6;
-  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(program.size()));
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) *
+                          static_cast<std::int64_t>(program.size()));
 }
 BENCHMARK(BM_ReadGcode1M)->Arg(1'000'000)->Unit(benchmark::kMillisecond);
 

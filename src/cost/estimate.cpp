@@ -26,7 +26,8 @@ SpeedAtFrames CuttingConditions::v_on_star(double n) const {
 }
 
 Result<CuttingConditions> make_conditions(const MachineProfile& profile, const SpeedTable& table,
-                                          const std::string& material, double thickness_mm, bool interpolate) {
+                                          const std::string& material, double thickness_mm,
+                                          bool interpolate) {
   auto q = find_speed(table, material, thickness_mm, interpolate);
   if (!q) return q.error();
   CuttingConditions c;
@@ -47,9 +48,12 @@ Result<CuttingConditions> make_conditions(const MachineProfile& profile, const S
     auto canon = table.resolve_material(p.material);
     if (!canon || *canon != c.material) continue;
     have += (have.empty() ? "" : ", ") + mm(p.thickness_mm);
-    if (std::abs(p.thickness_mm - thickness_mm) <= tol::kThicknessMm) exact = &p;
-    else if (p.thickness_mm < thickness_mm && (!below || p.thickness_mm > below->thickness_mm)) below = &p;
-    else if (p.thickness_mm > thickness_mm && (!above || p.thickness_mm < above->thickness_mm)) above = &p;
+    if (std::abs(p.thickness_mm - thickness_mm) <= tol::kThicknessMm)
+      exact = &p;
+    else if (p.thickness_mm < thickness_mm && (!below || p.thickness_mm > below->thickness_mm))
+      below = &p;
+    else if (p.thickness_mm > thickness_mm && (!above || p.thickness_mm < above->thickness_mm))
+      above = &p;
   }
   if (exact) {
     c.technology = *exact;
@@ -73,11 +77,12 @@ Result<CuttingConditions> make_conditions(const MachineProfile& profile, const S
       c.v_set_m_s = q->v_set_m_s();
     }
     c.technology.v_set_m_s = c.v_set_m_s;
-    c.warnings.push_back("pierce time, kerf and leads interpolated between the profile's " + mm(below->thickness_mm) + " and " +
-                         mm(above->thickness_mm) + " mm rows");
+    c.warnings.push_back("pierce time, kerf and leads interpolated between the profile's " +
+                         mm(below->thickness_mm) + " and " + mm(above->thickness_mm) + " mm rows");
   } else {
     return make_error("machine profile " + profile.file + " has no cutting row for " + c.material + " " +
-                      mm(thickness_mm) + " mm (it has " + (have.empty() ? std::string("none") : have + " mm") + ")");
+                      mm(thickness_mm) + " mm (it has " +
+                      (have.empty() ? std::string("none") : have + " mm") + ")");
   }
   return c;
 }

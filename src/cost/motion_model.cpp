@@ -24,7 +24,8 @@ double trapezoid_time(double len, double v0, double v1, double vmax, double a) {
 }  // namespace
 
 Result<MotionTime> time_moves(const std::vector<MotionMove>& moves, const MotionParams& p) {
-  if (!(p.accel_mm_s2 > 0.0) || !std::isfinite(p.accel_mm_s2)) return make_error("motion: acceleration must be > 0");
+  if (!(p.accel_mm_s2 > 0.0) || !std::isfinite(p.accel_mm_s2))
+    return make_error("motion: acceleration must be > 0");
   if (!(p.junction_deviation_mm >= 0.0)) return make_error("motion: junction deviation must be >= 0");
   if (!(p.block_time_s >= 0.0)) return make_error("motion: block time must be >= 0");
   const double a = p.accel_mm_s2;
@@ -33,7 +34,8 @@ Result<MotionTime> time_moves(const std::vector<MotionMove>& moves, const Motion
   std::vector<double> entry(n + 1, 0.0);  // entry[i]: speed at the start of move i; entry[n] = 0 (stop)
   for (std::size_t i = 0; i < n; ++i) {
     const auto& m = moves[i];
-    if (!(m.length_mm >= 0.0) || !(m.feed_mm_s > 0.0)) return make_error("motion: move lengths must be >= 0 and feeds > 0");
+    if (!(m.length_mm >= 0.0) || !(m.feed_mm_s > 0.0))
+      return make_error("motion: move lengths must be >= 0 and feeds > 0");
     vmax[i] = m.feed_mm_s;
     if (m.radius_mm > 0.0) vmax[i] = std::min(vmax[i], std::sqrt(a * m.radius_mm));
   }

@@ -28,7 +28,8 @@ json cli_json(const std::string& args) {
 
 TEST(CliSpeed, JsonFieldsAndPaperValue) {
   const auto j = cli_json("speed --material AMg3M --thickness 1 --frames 1962 --json");
-  for (const char* f : {"v_on_m_s", "v_on_mm_min", "v_set_m_s", "regime", "measured"}) EXPECT_TRUE(j.contains(f)) << f;
+  for (const char* f : {"v_on_m_s", "v_on_mm_min", "v_set_m_s", "regime", "measured"})
+    EXPECT_TRUE(j.contains(f)) << f;
   EXPECT_NEAR(j["v_on_m_s"].get<double>(), 0.04779, 0.000005);
   EXPECT_NEAR(j["v_on_mm_min"].get<double>(), j["v_on_m_s"].get<double>() * 60000.0, 1e-9);
   EXPECT_DOUBLE_EQ(j["v_set_m_s"].get<double>(), 0.1);
@@ -58,11 +59,13 @@ TEST(CliSpeed, Errors) {
 }
 
 TEST(CliEstimate, JsonFieldsMatchTheIssue) {
-  const auto j = cli_json("estimate " + test::test_data("nc/square_abs_mm.nc") + " --material AMg3M --thickness 1 --json");
+  const auto j = cli_json("estimate " + test::test_data("nc/square_abs_mm.nc") +
+                          " --material AMg3M --thickness 1 --json");
   for (const char* f : {"pierces", "cut_length_mm", "rapid_length_mm", "frames", "v_on_set_m_s", "v_on_m_s",
                         "t_cut_const_speed_s", "t_cut_s", "cost", "breakdown"})
     EXPECT_TRUE(j.contains(f)) << f;
-  for (const char* f : {"cutting_s", "rapid_s", "pierce_s", "dwell_s"}) EXPECT_TRUE(j["breakdown"].contains(f)) << f;
+  for (const char* f : {"cutting_s", "rapid_s", "pierce_s", "dwell_s"})
+    EXPECT_TRUE(j["breakdown"].contains(f)) << f;
   EXPECT_EQ(j["pierces"], 1);
   EXPECT_EQ(j["frames"], 10);
   EXPECT_NEAR(j["cut_length_mm"].get<double>(), 300.0, 1e-9);
@@ -97,11 +100,14 @@ TEST(CliEstimate, MachineProfileOptionAndErrors) {
   }
   j["rapid_speed_m_s"] = 0.5;
   j["dialect"] = "rs274-m7m9";
-  j["speed_table"] = std::filesystem::absolute(
-      std::filesystem::path(default_machine_profile_path()).parent_path() / "../materials/bystar3015.json").string();
+  j["speed_table"] =
+      std::filesystem::absolute(std::filesystem::path(default_machine_profile_path()).parent_path() /
+                                "../materials/bystar3015.json")
+          .string();
   const auto path = (std::filesystem::temp_directory_path() / "cutroute-cli-profile.json").string();
   std::ofstream(path) << j.dump(1);
-  const auto e = cli_json("estimate " + test::test_data("nc/m7m9_beam.nc") + " --machine " + path + " --json");
+  const auto e =
+      cli_json("estimate " + test::test_data("nc/m7m9_beam.nc") + " --machine " + path + " --json");
   EXPECT_EQ(e["pierces"], 2);
   EXPECT_NEAR(e["breakdown"]["rapid_s"].get<double>(), 0.020 / 0.5, 1e-12);
 
@@ -122,7 +128,8 @@ TEST(CliEstimate, MachineProfileOptionAndErrors) {
 
 TEST(CliEstimate, MaterialAndThicknessGoTogether) {
   EXPECT_EQ(cli("estimate " + test::test_data("nc/square_abs_mm.nc") + " --material AMg3M").exit_code, 1);
-  const auto r = cli("estimate " + test::test_data("nc/square_abs_mm.nc") + " --material AMg3M --thickness 7");
+  const auto r =
+      cli("estimate " + test::test_data("nc/square_abs_mm.nc") + " --material AMg3M --thickness 7");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("no row for AMg3M 7 mm"), std::string::npos) << r.err;
 }
@@ -139,14 +146,17 @@ TEST(CliEstimate, MotionModelWhenTheProfileHasAcceleration) {
     std::ifstream in(default_machine_profile_path());
     j = json::parse(in);
   }
-  j["speed_table"] = std::filesystem::absolute(
-      std::filesystem::path(default_machine_profile_path()).parent_path() / "../materials/bystar3015.json").string();
+  j["speed_table"] =
+      std::filesystem::absolute(std::filesystem::path(default_machine_profile_path()).parent_path() /
+                                "../materials/bystar3015.json")
+          .string();
   j["motion"] = {{"accel_m_s2", 1.0}, {"junction_deviation_mm", 0.0}, {"block_time_s", 0.0}};
   const auto path = (std::filesystem::temp_directory_path() / "cutroute-cli-motion.json").string();
   std::ofstream(path) << j.dump(1);
   // square_abs_mm.nc: 100, 50, 100, 50 mm at F6000 (100 mm/s), stopping at each 90° corner
   // (no deviation allowed) with a = 1000 mm/s^2: each side L/v + v/a.
-  const auto e = cli_json("estimate " + test::test_data("nc/square_abs_mm.nc") + " --machine " + path + " --json");
+  const auto e =
+      cli_json("estimate " + test::test_data("nc/square_abs_mm.nc") + " --machine " + path + " --json");
   ASSERT_TRUE(e.contains("motion"));
   EXPECT_NEAR(e["motion"]["cutting_s"].get<double>(), 2 * (1.0 + 0.1) + 2 * (0.5 + 0.1), 1e-9);
   EXPECT_NEAR(e["motion"]["mean_cut_speed_m_s"].get<double>(), 0.3 / 3.4, 1e-12);

@@ -107,7 +107,8 @@ TEST(Estimate, ProfileSetSpeedScalesTheTable) {
 
 TEST(Estimate, ConditionsNeedAProfileRow) {
   MachineProfile p = fx().profile;
-  std::erase_if(p.cutting, [](const CuttingParams& c) { return c.material == "AMg3M" && c.thickness_mm == 2; });
+  std::erase_if(p.cutting,
+                [](const CuttingParams& c) { return c.material == "AMg3M" && c.thickness_mm == 2; });
   auto c = make_conditions(p, fx().table, "AMg3M", 2, false);
   ASSERT_FALSE(c.ok());
   EXPECT_NE(c.error().message.find("no cutting row for AMg3M 2 mm"), std::string::npos) << c.error().message;

@@ -50,30 +50,49 @@ TEST(MachineProfile, InvalidProfilesNameTheField) {
   const Mutation cases[] = {
       {"no_rapid", [](json& j) { j.erase("rapid_speed_m_s"); }, "field rapid_speed_m_s is missing"},
       {"zero_rapid", [](json& j) { j["rapid_speed_m_s"] = 0; }, "field rapid_speed_m_s must be > 0"},
-      {"text_rapid", [](json& j) { j["rapid_speed_m_s"] = "fast"; }, "field rapid_speed_m_s must be a number"},
+      {"text_rapid", [](json& j) { j["rapid_speed_m_s"] = "fast"; },
+       "field rapid_speed_m_s must be a number"},
       {"misspelt", [](json& j) { j["rapid_speed"] = 1; }, "unknown field rapid_speed"},
-      {"neg_pierce", [](json& j) { j["cutting"][2]["pierce_time_s"] = -1; }, "field cutting[2].pierce_time_s must be >= 0"},
+      {"neg_pierce", [](json& j) { j["cutting"][2]["pierce_time_s"] = -1; },
+       "field cutting[2].pierce_time_s must be >= 0"},
       {"no_kerf", [](json& j) { j["cutting"][0].erase("kerf_mm"); }, "field cutting[0].kerf_mm is missing"},
       {"bad_cut_key", [](json& j) { j["cutting"][1]["speed"] = 1; }, "unknown field cutting[1].speed"},
-      {"no_cutting", [](json& j) { j["cutting"] = json::array(); }, "field cutting must be a non-empty array"},
+      {"no_cutting", [](json& j) { j["cutting"] = json::array(); },
+       "field cutting must be a non-empty array"},
       {"neg_head", [](json& j) { j["head_lift_lower_s"] = -0.1; }, "field head_lift_lower_s must be >= 0"},
-      {"dialect_code", [](json& j) { j["dialect"] = {{"name", "x"}, {"beam_on", {"X3"}}, {"beam_off", {"M5"}}}; },
+      {"dialect_code",
+       [](json& j) {
+         j["dialect"] = {{"name", "x"}, {"beam_on", {"X3"}}, {"beam_off", {"M5"}}};
+       },
        "field dialect.beam_on[0] must be an M code"},
-      {"dialect_half", [](json& j) { j["dialect"] = {{"name", "x"}, {"beam_on", {"M3"}}}; },
+      {"dialect_half",
+       [](json& j) {
+         j["dialect"] = {{"name", "x"}, {"beam_on", {"M3"}}};
+       },
        "dialect.beam_on and dialect.beam_off must be given together"},
-      {"dialect_unit", [](json& j) { j["dialect"] = {{"name", "rs274"}, {"dwell_p_unit", "min"}}; },
+      {"dialect_unit",
+       [](json& j) {
+         j["dialect"] = {{"name", "rs274"}, {"dwell_p_unit", "min"}};
+       },
        "field dialect.dwell_p_unit"},
-      {"costs_half", [](json& j) { j["costs"] = {{"unit", "EUR"}, {"c_on_per_m", 1}, {"c_off_per_m", 0.1}}; },
+      {"costs_half",
+       [](json& j) {
+         j["costs"] = {{"unit", "EUR"}, {"c_on_per_m", 1}, {"c_off_per_m", 0.1}};
+       },
        "field costs.c_pt is missing"},
       {"motion_neg", [](json& j) { j["motion"]["accel_m_s2"] = -2; }, "field motion.accel_m_s2 must be > 0"},
-      {"v_set_neg", [](json& j) { j["cutting"][0]["v_set_m_s"] = -0.1; }, "field cutting[0].v_set_m_s must be > 0"},
-      {"job_thickness", [](json& j) { j["default_job"]["thickness_mm"] = 0; }, "field default_job.thickness_mm must be > 0"},
+      {"v_set_neg", [](json& j) { j["cutting"][0]["v_set_m_s"] = -0.1; },
+       "field cutting[0].v_set_m_s must be > 0"},
+      {"job_thickness", [](json& j) { j["default_job"]["thickness_mm"] = 0; },
+       "field default_job.thickness_mm must be > 0"},
       {"no_table", [](json& j) { j.erase("speed_table"); }, "field speed_table is missing"},
   };
   for (const auto& c : cases) {
     json j = default_json();
     c.apply(j);
-    const auto path = (std::filesystem::temp_directory_path() / (std::string("cutroute-profile-") + c.name + ".json")).string();
+    const auto path =
+        (std::filesystem::temp_directory_path() / (std::string("cutroute-profile-") + c.name + ".json"))
+            .string();
     std::ofstream(path) << j.dump(1);
     auto p = load_machine_profile(path);
     ASSERT_FALSE(p.ok()) << c.name;

@@ -109,11 +109,8 @@ struct Exception {
   double above_pct;
 };
 constexpr Exception kDiscontinuous[] = {
-    {"St10kp", 3, 2.441, 1.618},
-    {"St10kp", 3.5, 4.667, 1.585},
-    {"St10kp", 3.9, 4.667, 1.585},
-    {"St10kp", 4, 1.992, 99},
-    {"AMg3M", 1.5, -1.561, 99},
+    {"St10kp", 3, 2.441, 1.618}, {"St10kp", 3.5, 4.667, 1.585}, {"St10kp", 3.9, 4.667, 1.585},
+    {"St10kp", 4, 1.992, 99},    {"AMg3M", 1.5, -1.561, 99},
 };
 
 TEST(SpeedTable, ContinuousAtN0OnBothSidesWithin1_5PercentExceptThePaperOwnRoundingCases) {
@@ -132,10 +129,14 @@ TEST(SpeedTable, ContinuousAtN0OnBothSidesWithin1_5PercentExceptThePaperOwnRound
         want_above = e.above_pct;
       }
     }
-    if (want_below == 99) EXPECT_LE(std::abs(below), 1.5);
-    else EXPECT_NEAR(below, want_below, 0.01);
-    if (want_above == 99) EXPECT_LE(std::abs(above), 1.5);
-    else EXPECT_NEAR(above, want_above, 0.01);
+    if (want_below == 99)
+      EXPECT_LE(std::abs(below), 1.5);
+    else
+      EXPECT_NEAR(below, want_below, 0.01);
+    if (want_above == 99)
+      EXPECT_LE(std::abs(above), 1.5);
+    else
+      EXPECT_NEAR(above, want_above, 0.01);
   }
 }
 

@@ -106,7 +106,7 @@ TEST(GcodeReader, BeamOffFeedAndRapidWithBeamOn) {
   EXPECT_NEAR(s.rapid_length_mm, 40.0 + std::hypot(90.0, 80.0), kLenTol);
   EXPECT_NEAR(s.feed_off_length_mm, 50.0, kLenTol);
   EXPECT_NEAR(s.feed_off_time_s, 5.0, 1e-12);  // 50 mm at F600
-  EXPECT_EQ(s.pierces, 2u);                     // M3, then a re-pierce after the G0 with the beam on
+  EXPECT_EQ(s.pierces, 2u);                    // M3, then a re-pierce after the G0 with the beam on
   EXPECT_EQ(s.beam_on_rapids, 1u);
   EXPECT_EQ(s.frames, 10u);
   ASSERT_EQ(s.warnings.size(), 1u);
@@ -235,7 +235,8 @@ TEST(GcodeReaderMoves, RecordedMovesCarryTangentsRadiiAndPierces) {
   // A rapid, a pierce, a line east, a ccw quarter arc turning north, an R-form cw arc, a rapid
   // with the beam on, a re-pierced line.
   auto r = read_gcode(
-      "G21 G90\nG0 X10 Y0\nM3\nG0 Z1\nG1 X20 Y0 F600\nG3 X30 Y10 I0 J10\nG2 X40 Y20 R10\nG0 X50 Y20\nG1 X60 Y20\nM5\nM30\n",
+      "G21 G90\nG0 X10 Y0\nM3\nG0 Z1\nG1 X20 Y0 F600\nG3 X30 Y10 I0 J10\nG2 X40 Y20 R10\nG0 X50 Y20\nG1 X60 "
+      "Y20\nM5\nM30\n",
       "m.nc", opt);
   ASSERT_TRUE(r.ok()) << format(r.error());
   ASSERT_EQ(moves.size(), 6u);
@@ -249,8 +250,8 @@ TEST(GcodeReaderMoves, RecordedMovesCarryTangentsRadiiAndPierces) {
   EXPECT_EQ(moves[2].kind, Move::Kind::arc_ccw);
   EXPECT_FALSE(moves[2].pierce);
   EXPECT_NEAR(moves[2].radius_mm, 10.0, 1e-12);
-  EXPECT_NEAR(std::remainder(moves[2].start_dir_rad - 0.0, 2 * pi), 0.0, 1e-12);     // tangent east
-  EXPECT_NEAR(std::remainder(moves[2].end_dir_rad - pi / 2, 2 * pi), 0.0, 1e-12);    // tangent north
+  EXPECT_NEAR(std::remainder(moves[2].start_dir_rad - 0.0, 2 * pi), 0.0, 1e-12);   // tangent east
+  EXPECT_NEAR(std::remainder(moves[2].end_dir_rad - pi / 2, 2 * pi), 0.0, 1e-12);  // tangent north
   EXPECT_NEAR(moves[2].length_mm, 5.0 * pi, 1e-12);
   // cw minor arc from (30,10) to (40,20), R 10: centre (40,10), from north-going to east-going
   EXPECT_EQ(moves[3].kind, Move::Kind::arc_cw);
@@ -288,7 +289,8 @@ std::string transform(const std::string& text, double fx, double fy, bool swap_a
       std::size_t j = i + 1;
       while (j < text.size() && text[j] == ' ') ++j;
       if (j < text.size() && (text[j] == '2' || text[j] == '3') &&
-          (j + 1 >= text.size() || !(std::isdigit(static_cast<unsigned char>(text[j + 1])) || text[j + 1] == '.'))) {
+          (j + 1 >= text.size() ||
+           !(std::isdigit(static_cast<unsigned char>(text[j + 1])) || text[j + 1] == '.'))) {
         out += 'G';
         out += text[j] == '2' ? '3' : '2';
         i = j + 1;
@@ -303,8 +305,8 @@ std::string transform(const std::string& text, double fx, double fy, bool swap_a
     std::size_t j = i + 1;
     while (j < text.size() && text[j] == ' ') ++j;
     std::size_t k = j;
-    while (k < text.size() && (std::isdigit(static_cast<unsigned char>(text[k])) || text[k] == '.' || text[k] == '-' ||
-                               text[k] == '+'))
+    while (k < text.size() && (std::isdigit(static_cast<unsigned char>(text[k])) || text[k] == '.' ||
+                               text[k] == '-' || text[k] == '+'))
       ++k;
     const double v = std::stod(text.substr(j, k - j));
     const double f = (u == 'X' || u == 'I') ? fx : fy;
@@ -318,8 +320,9 @@ std::string transform(const std::string& text, double fx, double fy, bool swap_a
 
 // STYLE.md #14: the same programs rotated by 180° and mirrored keep lengths, pierces and frames.
 TEST(GcodeReaderTransforms, RotatedAndMirroredProgramsKeepTheirTotals) {
-  for (const char* rel : {"dxf2gcode/d2g_ATT00079.ngc", "dxf2gcode/deepnestsharp_part_6.ngc",
-                          "dxf2gcode/openscad_ellipse-arc-rot.ngc", "arcs_ij.nc", "arcs_r.nc", "square_inc_inch.nc"}) {
+  for (const char* rel :
+       {"dxf2gcode/d2g_ATT00079.ngc", "dxf2gcode/deepnestsharp_part_6.ngc",
+        "dxf2gcode/openscad_ellipse-arc-rot.ngc", "arcs_ij.nc", "arcs_r.nc", "square_inc_inch.nc"}) {
     SCOPED_TRACE(rel);
     const std::string text = slurp(test::test_data(std::string("nc/") + rel));
     auto base = read_gcode(text, rel, ReadOptions{});

@@ -11,12 +11,12 @@ namespace cutroute::cost {
 
 // One programmed move as the motion model sees it.
 struct MotionMove {
-  double length_mm = 0.0;     // path length [mm]
-  double feed_mm_s = 0.0;     // programmed speed for this move [mm/s], > 0
-  double radius_mm = 0.0;     // arc radius [mm]; 0 for a straight move
-  double turn_rad = 0.0;      // direction change from the previous move's end tangent to this
-                              // move's start tangent [rad, 0..pi]; ignored when it starts from rest
-  bool from_rest = false;     // the head stands still before this move (after a pierce or a stop)
+  double length_mm = 0.0;  // path length [mm]
+  double feed_mm_s = 0.0;  // programmed speed for this move [mm/s], > 0
+  double radius_mm = 0.0;  // arc radius [mm]; 0 for a straight move
+  double turn_rad = 0.0;   // direction change from the previous move's end tangent to this
+                           // move's start tangent [rad, 0..pi]; ignored when it starts from rest
+  bool from_rest = false;  // the head stands still before this move (after a pierce or a stop)
 };
 
 // Controller limits. Junction speed: the "junction deviation" rule used by GRBL-type planners,
@@ -24,9 +24,9 @@ struct MotionMove {
 // v^2 <= a * r (centripetal acceleration). block_time_s is the least time a block can take
 // (block processing/look-ahead rate); it is what makes many short blocks slow.
 struct MotionParams {
-  double accel_mm_s2 = 0.0;           // path and centripetal acceleration limit [mm/s^2], > 0
-  double junction_deviation_mm = 0.0; // corner rounding allowance [mm], >= 0 (0: stop at every corner)
-  double block_time_s = 0.0;          // minimum time per block [s], >= 0
+  double accel_mm_s2 = 0.0;            // path and centripetal acceleration limit [mm/s^2], > 0
+  double junction_deviation_mm = 0.0;  // corner rounding allowance [mm], >= 0 (0: stop at every corner)
+  double block_time_s = 0.0;           // minimum time per block [s], >= 0
 };
 
 struct MotionTime {

@@ -1,12 +1,17 @@
 // cutroute estimate: cutting time (eq. 1 and eq. 10) and cost (eq. 3) of a G-code program.
 #include <charconv>
+#include <cmath>
 #include <iostream>
+#include <numbers>
+#include <optional>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include <cutroute/core/units.hpp>
 #include <cutroute/cost/estimate.hpp>
 #include <cutroute/cost/machine_profile.hpp>
+#include <cutroute/cost/motion_model.hpp>
 #include <cutroute/cost/speed_table.hpp>
 #include <cutroute/nc/dialect.hpp>
 #include <cutroute/nc/gcode_reader.hpp>
@@ -45,7 +50,8 @@ Result<nc::Dialect> dialect_of(const cost::MachineProfile& p, const std::string&
     return b;
   }
   auto m = nc::make_dialect(d.name, d.beam_on, d.beam_off,
-                            d.dwell_p_unit == "ms" ? nc::DwellUnit::milliseconds : nc::DwellUnit::seconds, "dialect");
+                            d.dwell_p_unit == "ms" ? nc::DwellUnit::milliseconds : nc::DwellUnit::seconds,
+                            "dialect");
   if (!m) return make_error("field " + m.error().message, p.file);
   return m;
 }
@@ -63,12 +69,39 @@ cost::ProgramTotals totals_of(const nc::ProgramStats& s) {
   return t;
 }
 
+// The cutting moves as the motion model sees them: a move starts from rest after a pierce or
+// after anything that is not a cut; the turn is the angle between consecutive tangents.
+std::vector<cost::MotionMove> cutting_moves(const std::vector<nc::Move>& moves, double v_set_mm_s) {
+  std::vector<cost::MotionMove> out;
+  out.reserve(moves.size());
+  const nc::Move* prev = nullptr;
+  for (const auto& m : moves) {
+    if (!m.beam_on) {
+      prev = nullptr;
+      continue;
+    }
+    cost::MotionMove c;
+    c.length_mm = m.length_mm;
+    c.feed_mm_s = m.feed_mm_min > 0.0 ? m.feed_mm_min / 60.0 : v_set_mm_s;
+    c.radius_mm = m.radius_mm;
+    c.from_rest = m.pierce || prev == nullptr;
+    if (prev) {
+      double d = std::remainder(m.start_dir_rad - prev->end_dir_rad, 2.0 * std::numbers::pi);
+      c.turn_rad = std::abs(d);
+    }
+    out.push_back(c);
+    prev = &m;
+  }
+  return out;
+}
+
 int run_estimate(const EstimateOptions& o) {
   if (o.material.empty() != (o.thickness_mm <= 0.0)) {
     std::cerr << "cutroute: error: --material and --thickness go together\n";
     return kUsageError;
   }
-  auto profile = cost::load_machine_profile(o.machine.empty() ? cost::default_machine_profile_path() : o.machine);
+  auto profile =
+      cost::load_machine_profile(o.machine.empty() ? cost::default_machine_profile_path() : o.machine);
   if (!profile) return fail(profile.error());
   auto table = cost::load_speed_table(profile->speed_table);
   if (!table) return fail(table.error());
@@ -76,8 +109,9 @@ int run_estimate(const EstimateOptions& o) {
   double thickness = o.thickness_mm;
   if (material.empty()) {
     if (!profile->default_material || !profile->default_thickness_mm) {
-      return fail(make_error("no material given: use --material M --thickness T (the profile has no default_job)",
-                             profile->file));
+      return fail(
+          make_error("no material given: use --material M --thickness T (the profile has no default_job)",
+                     profile->file));
     }
     material = *profile->default_material;
     thickness = *profile->default_thickness_mm;
@@ -88,13 +122,25 @@ int run_estimate(const EstimateOptions& o) {
   if (!dialect) return fail(dialect.error());
   nc::ReadOptions ro;
   ro.dialect = *dialect;
+  std::vector<nc::Move> moves;
+  const auto& lim = profile->motion;
+  if (lim.accel_m_s2) ro.moves = &moves;
   auto stats = nc::read_gcode_file(o.program, ro);
   if (!stats) return fail(stats.error());
   for (const auto& w : stats->warnings) std::cerr << "cutroute: " << format(w) << '\n';
   if (stats->suppressed_warnings > 0)
-    std::cerr << "cutroute: " << o.program << ": " << stats->suppressed_warnings << " more warning(s) not shown\n";
+    std::cerr << "cutroute: " << o.program << ": " << stats->suppressed_warnings
+              << " more warning(s) not shown\n";
   const auto e = cost::estimate_time(totals_of(*stats), *conditions);
   const bool measured = conditions->speed.measured;
+  std::optional<cost::MotionTime> motion;
+  if (lim.accel_m_s2) {
+    const cost::MotionParams mp{*lim.accel_m_s2 * units::kMmPerM, lim.junction_deviation_mm.value_or(0.0),
+                                lim.block_time_s.value_or(0.0)};
+    auto t = cost::time_moves(cutting_moves(moves, units::m_per_s_to_mm_per_s(e.v_on_set_m_s)), mp);
+    if (!t) return fail(make_error("field motion: " + t.error().message, profile->file));
+    motion = *t;
+  }
 
   if (o.json) {
     nlohmann::json j;
@@ -116,18 +162,24 @@ int run_estimate(const EstimateOptions& o) {
     j["t_cut_s"] = e.t_cut_s;
     j["cost"] = e.cost;
     j["cost_unit"] = e.cost_unit;
-    j["breakdown"] = {{"cutting_s", e.cutting_s}, {"rapid_s", e.rapid_s},   {"pierce_s", e.pierce_s},
+    j["breakdown"] = {{"cutting_s", e.cutting_s}, {"rapid_s", e.rapid_s},       {"pierce_s", e.pierce_s},
                       {"dwell_s", e.dwell_s},     {"feed_off_s", e.feed_off_s}, {"head_s", e.head_s},
                       {"total_s", e.total_s}};
     j["dwells"] = stats->dwells;
+    j["cut_time_at_programmed_feed_s"] = stats->cut_time_at_feed_s;
+    if (motion) {
+      j["motion"] = {{"cutting_s", motion->time_s},
+                     {"mean_cut_speed_m_s", motion->mean_speed_mm_s / units::kMmPerM},
+                     {"block_limited_moves", motion->block_limited}};
+    }
     j["warnings"] = nlohmann::json::array();
     for (const auto& w : conditions->warnings) j["warnings"].push_back(w);
     for (const auto& w : stats->warnings) j["warnings"].push_back(format(w));
     std::cout << j.dump(2) << '\n';
     return kOk;
   }
-  std::cout << o.program << ": " << conditions->material << ' ' << fixed(thickness, 2) << " mm on " << profile->name
-            << "\n"
+  std::cout << o.program << ": " << conditions->material << ' ' << fixed(thickness, 2) << " mm on "
+            << profile->name << "\n"
             << "  frames n            " << stats->frames << "\n"
             << "  pierces N_pt        " << stats->pierces << "\n"
             << "  cut length L_on     " << fixed(stats->cut_length_mm, 3) << " mm\n"
@@ -143,10 +195,15 @@ int run_estimate(const EstimateOptions& o) {
             << "  T_cut, eq. 10 (V_on*(n))   " << fixed(e.t_cut_s, 2) << " s\n"
             << "    cutting " << fixed(e.cutting_s, 2) << " s, rapid " << fixed(e.rapid_s, 2) << " s, pierce "
             << fixed(e.pierce_s, 2) << " s\n"
-            << "  outside eq. 10: dwell " << fixed(e.dwell_s, 2) << " s, beam-off feed " << fixed(e.feed_off_s, 2)
-            << " s, head " << fixed(e.head_s, 2) << " s\n"
-            << "  total               " << fixed(e.total_s, 2) << " s\n"
-            << "  cost, eq. 3         " << fixed(e.cost, 2) << ' ' << e.cost_unit << "\n";
+            << "  outside eq. 10: dwell " << fixed(e.dwell_s, 2) << " s, beam-off feed "
+            << fixed(e.feed_off_s, 2) << " s, head " << fixed(e.head_s, 2) << " s\n"
+            << "  total               " << fixed(e.total_s, 2) << " s\n";
+  if (motion) {
+    std::cout << "  motion model: cutting " << fixed(motion->time_s, 2) << " s, mean cut speed "
+              << fixed(motion->mean_speed_mm_s / units::kMmPerM, 5) << " m/s, " << motion->block_limited
+              << " block-time-limited moves\n";
+  }
+  std::cout << "  cost, eq. 3         " << fixed(e.cost, 2) << ' ' << e.cost_unit << "\n";
   for (const auto& w : conditions->warnings) std::cout << "warning: " << w << '\n';
   return kOk;
 }
@@ -155,12 +212,14 @@ int run_estimate(const EstimateOptions& o) {
 
 void add_estimate(CLI::App& root, Commands& out) {
   auto opt = std::make_shared<EstimateOptions>();
-  auto* app = root.add_subcommand("estimate", "Cutting time (eq. 1, eq. 10) and cost (eq. 3) of a G-code program");
+  auto* app =
+      root.add_subcommand("estimate", "Cutting time (eq. 1, eq. 10) and cost (eq. 3) of a G-code program");
   app->add_option("program", opt->program, "G-code program (.nc, .ngc)")->required();
   app->add_option("--material", opt->material, "Material or alias (default: the profile's default_job)");
   app->add_option("--thickness", opt->thickness_mm, "Sheet thickness [mm]")->check(CLI::PositiveNumber);
   app->add_option("--machine", opt->machine, "Machine profile JSON (default: data/machines/bystar3015.json)");
-  app->add_option("--dialect", opt->dialect, "Built-in dialect overriding the profile's (rs274, rs274-m7m9, fanuc-ms)");
+  app->add_option("--dialect", opt->dialect,
+                  "Built-in dialect overriding the profile's (rs274, rs274-m7m9, fanuc-ms)");
   app->add_flag("--interpolate", opt->interpolate, "Blend the two neighbouring thicknesses linearly");
   app->add_flag("--json", opt->json, "Print JSON");
   out.push_back({app, [opt] { return run_estimate(*opt); }});

@@ -51,10 +51,10 @@ int run_speed(const SpeedOptions& o) {
     j["warnings"] = q->warnings;
     std::cout << j.dump(2) << '\n';
   } else {
-    std::cout << q->material << ' ' << fixed(o.thickness_mm, 2) << " mm, n = " << o.frames << " frames (n0 = "
-              << fixed(n0, 0) << "): " << cost::to_string(s.regime) << " regime\n"
-              << "V_on*(n)  " << fixed(s.v_m_s, 5) << " m/s  " << fixed(units::m_per_s_to_mm_per_min(s.v_m_s), 1)
-              << " mm/min\n"
+    std::cout << q->material << ' ' << fixed(o.thickness_mm, 2) << " mm, n = " << o.frames
+              << " frames (n0 = " << fixed(n0, 0) << "): " << cost::to_string(s.regime) << " regime\n"
+              << "V_on*(n)  " << fixed(s.v_m_s, 5) << " m/s  "
+              << fixed(units::m_per_s_to_mm_per_min(s.v_m_s), 1) << " mm/min\n"
               << "set speed " << fixed(q->v_set_m_s(), 5) << " m/s  "
               << fixed(units::m_per_s_to_mm_per_min(q->v_set_m_s()), 1) << " mm/min\n"
               << "Table 1 row: " << (q->measured ? "measured" : "extrapolated by the authors (not measured)")
@@ -70,8 +70,12 @@ void add_speed(CLI::App& root, Commands& out) {
   auto opt = std::make_shared<SpeedOptions>();
   auto* app = root.add_subcommand("speed", "Real cutting speed V_on*(n) from Table 1 (ByStar 3015)");
   app->add_option("--material", opt->material, "Material or alias (AMg3M, 5754, St10kp, ...)")->required();
-  app->add_option("--thickness", opt->thickness_mm, "Sheet thickness [mm]")->required()->check(CLI::PositiveNumber);
-  app->add_option("--frames", opt->frames, "Frames (blocks) of the NC program, n")->required()->check(CLI::NonNegativeNumber);
+  app->add_option("--thickness", opt->thickness_mm, "Sheet thickness [mm]")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  app->add_option("--frames", opt->frames, "Frames (blocks) of the NC program, n")
+      ->required()
+      ->check(CLI::NonNegativeNumber);
   app->add_flag("--interpolate", opt->interpolate, "Blend the two neighbouring thicknesses linearly");
   app->add_option("--table", opt->table, "Speed table JSON (default: data/materials/bystar3015.json)");
   app->add_flag("--json", opt->json, "Print JSON");

@@ -26,7 +26,8 @@ SpeedAtFrames CuttingConditions::v_on_star(double n) const {
 }
 
 Result<CuttingConditions> make_conditions(const MachineProfile& profile, const SpeedTable& table,
-                                          const std::string& material, double thickness_mm, bool interpolate) {
+                                          const std::string& material, double thickness_mm,
+                                          bool interpolate) {
   auto q = find_speed(table, material, thickness_mm, interpolate);
   if (!q) return q.error();
   CuttingConditions c;
@@ -47,16 +48,27 @@ Result<CuttingConditions> make_conditions(const MachineProfile& profile, const S
     auto canon = table.resolve_material(p.material);
     if (!canon || *canon != c.material) continue;
     have += (have.empty() ? "" : ", ") + mm(p.thickness_mm);
-    if (std::abs(p.thickness_mm - thickness_mm) <= tol::kThicknessMm) exact = &p;
-    else if (p.thickness_mm < thickness_mm && (!below || p.thickness_mm > below->thickness_mm)) below = &p;
-    else if (p.thickness_mm > thickness_mm && (!above || p.thickness_mm < above->thickness_mm)) above = &p;
+    if (std::abs(p.thickness_mm - thickness_mm) <= tol::kThicknessMm)
+      exact = &p;
+    else if (p.thickness_mm < thickness_mm && (!below || p.thickness_mm > below->thickness_mm))
+      below = &p;
+    else if (p.thickness_mm > thickness_mm && (!above || p.thickness_mm < above->thickness_mm))
+      above = &p;
   }
   if (exact) {
+    c.technology = *exact;
     c.pierce_time_s = exact->pierce_time_s;
     c.v_set_m_s = exact->v_set_m_s ? *exact->v_set_m_s : q->v_set_m_s();
   } else if (interpolate && below && above) {
     const double w = (thickness_mm - below->thickness_mm) / (above->thickness_mm - below->thickness_mm);
-    c.pierce_time_s = (1.0 - w) * below->pierce_time_s + w * above->pierce_time_s;
+    const auto blend = [w](double lo, double hi) { return (1.0 - w) * lo + w * hi; };
+    c.technology.material = below->material;
+    c.technology.thickness_mm = thickness_mm;
+    c.technology.pierce_time_s = blend(below->pierce_time_s, above->pierce_time_s);
+    c.technology.kerf_mm = blend(below->kerf_mm, above->kerf_mm);
+    c.technology.lead_in_mm = blend(below->lead_in_mm, above->lead_in_mm);
+    c.technology.lead_out_mm = blend(below->lead_out_mm, above->lead_out_mm);
+    c.pierce_time_s = c.technology.pierce_time_s;
     if (below->v_set_m_s || above->v_set_m_s) {
       // The profile overrides a set speed: blend the overrides, falling back to the table per side.
       c.v_set_m_s = (1.0 - w) * (below->v_set_m_s ? *below->v_set_m_s : q->lower.v_set_m_s) +
@@ -64,11 +76,13 @@ Result<CuttingConditions> make_conditions(const MachineProfile& profile, const S
     } else {
       c.v_set_m_s = q->v_set_m_s();
     }
-    c.warnings.push_back("pierce time interpolated between the profile's " + mm(below->thickness_mm) + " and " +
-                         mm(above->thickness_mm) + " mm rows");
+    c.technology.v_set_m_s = c.v_set_m_s;
+    c.warnings.push_back("pierce time, kerf and leads interpolated between the profile's " +
+                         mm(below->thickness_mm) + " and " + mm(above->thickness_mm) + " mm rows");
   } else {
     return make_error("machine profile " + profile.file + " has no cutting row for " + c.material + " " +
-                      mm(thickness_mm) + " mm (it has " + (have.empty() ? std::string("none") : have + " mm") + ")");
+                      mm(thickness_mm) + " mm (it has " +
+                      (have.empty() ? std::string("none") : have + " mm") + ")");
   }
   return c;
 }

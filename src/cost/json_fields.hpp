@@ -17,7 +17,9 @@ using nlohmann::json;
 inline std::string field(const std::string& parent, const std::string& key) {
   return parent.empty() ? key : parent + "." + key;
 }
-inline std::string item(const std::string& parent, std::size_t i) { return parent + "[" + std::to_string(i) + "]"; }
+inline std::string item(const std::string& parent, std::size_t i) {
+  return parent + "[" + std::to_string(i) + "]";
+}
 
 // Parses a file; the error names the file and, for syntax errors, the byte offset.
 inline Result<json> parse_json_file(const std::string& path) {
@@ -32,8 +34,8 @@ inline Result<json> parse_json_file(const std::string& path) {
 }
 
 // A finite number at obj[key]; `required` false returns `fallback` when absent or null.
-inline Result<double> number(const json& obj, const std::string& key, const std::string& path, bool required = true,
-                             double fallback = 0.0) {
+inline Result<double> number(const json& obj, const std::string& key, const std::string& path,
+                             bool required = true, double fallback = 0.0) {
   const auto it = obj.find(key);
   if (it == obj.end() || it->is_null()) {
     if (required) return make_error("field " + field(path, key) + " is missing");
@@ -45,11 +47,12 @@ inline Result<double> number(const json& obj, const std::string& key, const std:
   return v;
 }
 
-inline Result<double> positive(const json& obj, const std::string& key, const std::string& path, bool required = true,
-                               double fallback = 0.0) {
+inline Result<double> positive(const json& obj, const std::string& key, const std::string& path,
+                               bool required = true, double fallback = 0.0) {
   auto v = number(obj, key, path, required, fallback);
   if (!v) return v;
-  if (*v <= 0.0 && (required || obj.contains(key))) return make_error("field " + field(path, key) + " must be > 0");
+  if (*v <= 0.0 && (required || obj.contains(key)))
+    return make_error("field " + field(path, key) + " must be > 0");
   return v;
 }
 
@@ -72,8 +75,8 @@ inline Result<std::string> string(const json& obj, const std::string& key, const
   return it->get<std::string>();
 }
 
-inline Result<bool> boolean(const json& obj, const std::string& key, const std::string& path, bool required = true,
-                            bool fallback = false) {
+inline Result<bool> boolean(const json& obj, const std::string& key, const std::string& path,
+                            bool required = true, bool fallback = false) {
   const auto it = obj.find(key);
   if (it == obj.end() || it->is_null()) {
     if (required) return make_error("field " + field(path, key) + " is missing");

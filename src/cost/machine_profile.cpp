@@ -22,12 +22,12 @@ Diagnostic unknown_keys(const json& obj, std::initializer_list<const char*> know
   return {};
 }
 
-
 Result<std::vector<int>> m_codes(const json& obj, const std::string& key, const std::string& path) {
   std::vector<int> out;
   const auto it = obj.find(key);
   if (it == obj.end() || it->is_null()) return out;
-  if (!it->is_array()) return make_error("field " + detail::field(path, key) + " must be an array like [\"M3\", \"M4\"]");
+  if (!it->is_array())
+    return make_error("field " + detail::field(path, key) + " must be an array like [\"M3\", \"M4\"]");
   for (std::size_t i = 0; i < it->size(); ++i) {
     const json& v = (*it)[i];
     const std::string f = detail::item(detail::field(path, key), i);
@@ -37,7 +37,8 @@ Result<std::vector<int>> m_codes(const json& obj, const std::string& key, const 
       return make_error("field " + f + " must be an M code like \"M3\", not \"" + s + "\"");
     int m = 0;
     for (std::size_t k = 1; k < s.size(); ++k) {
-      if (s[k] < '0' || s[k] > '9') return make_error("field " + f + " must be an M code like \"M3\", not \"" + s + "\"");
+      if (s[k] < '0' || s[k] > '9')
+        return make_error("field " + f + " must be an M code like \"M3\", not \"" + s + "\"");
       m = m * 10 + (s[k] - '0');
     }
     out.push_back(m);
@@ -70,15 +71,17 @@ Result<DialectSpec> parse_dialect(const json& j) {
     return make_error("fields dialect.beam_on and dialect.beam_off must be given together");
   auto unit = detail::string(*it, "dwell_p_unit", "dialect", false);
   if (!unit) return unit.error();
-  if (!unit->empty() && *unit != "s" && *unit != "ms") return make_error("field dialect.dwell_p_unit must be \"s\" or \"ms\"");
+  if (!unit->empty() && *unit != "s" && *unit != "ms")
+    return make_error("field dialect.dwell_p_unit must be \"s\" or \"ms\"");
   d.dwell_p_unit = *unit;
   return d;
 }
 
 Result<CuttingParams> parse_cutting(const json& c, const std::string& path) {
   if (!c.is_object()) return make_error("field " + path + " must be an object");
-  if (auto d = unknown_keys(c, {"material", "thickness_mm", "v_set_m_s", "pierce_time_s", "kerf_mm", "lead_in_mm",
-                                "lead_out_mm", "note"},
+  if (auto d = unknown_keys(c,
+                            {"material", "thickness_mm", "v_set_m_s", "pierce_time_s", "kerf_mm",
+                             "lead_in_mm", "lead_out_mm", "note"},
                             path);
       !d.message.empty())
     return d;
@@ -110,8 +113,9 @@ Result<CuttingParams> parse_cutting(const json& c, const std::string& path) {
 }
 
 Result<MachineProfile> parse_profile(const json& j, const std::string& path) {
-  if (auto d = unknown_keys(j, {"format", "name", "notes", "sources", "speed_table", "rapid_speed_m_s",
-                                "head_lift_lower_s", "dialect", "costs", "motion", "default_job", "cutting"},
+  if (auto d = unknown_keys(j,
+                            {"format", "name", "notes", "sources", "speed_table", "rapid_speed_m_s",
+                             "head_lift_lower_s", "dialect", "costs", "motion", "default_job", "cutting"},
                             "");
       !d.message.empty())
     return d;
@@ -153,14 +157,23 @@ Result<MachineProfile> parse_profile(const json& j, const std::string& path) {
   }
   if (const auto m = j.find("motion"); m != j.end() && !m->is_null()) {
     if (!m->is_object()) return make_error("field motion must be an object");
-    for (const char* key : {"accel_m_s2", "jerk_m_s3", "block_time_s"}) {
+    if (auto d =
+            unknown_keys(*m, {"accel_m_s2", "jerk_m_s3", "block_time_s", "junction_deviation_mm"}, "motion");
+        !d.message.empty())
+      return d;
+    for (const std::string key : {"accel_m_s2", "jerk_m_s3", "block_time_s", "junction_deviation_mm"}) {
       if (!m->contains(key) || (*m)[key].is_null()) continue;
-      auto v = std::string(key) == "block_time_s" ? detail::non_negative(*m, key, "motion")
-                                                   : detail::positive(*m, key, "motion");
+      const bool may_be_zero = key == "block_time_s" || key == "junction_deviation_mm";
+      auto v = may_be_zero ? detail::non_negative(*m, key, "motion") : detail::positive(*m, key, "motion");
       if (!v) return v.error();
-      if (std::string(key) == "accel_m_s2") p.motion.accel_m_s2 = *v;
-      else if (std::string(key) == "jerk_m_s3") p.motion.jerk_m_s3 = *v;
-      else p.motion.block_time_s = *v;
+      if (key == "accel_m_s2")
+        p.motion.accel_m_s2 = *v;
+      else if (key == "jerk_m_s3")
+        p.motion.jerk_m_s3 = *v;
+      else if (key == "block_time_s")
+        p.motion.block_time_s = *v;
+      else
+        p.motion.junction_deviation_mm = *v;
     }
   }
   if (const auto d = j.find("default_job"); d != j.end() && !d->is_null()) {

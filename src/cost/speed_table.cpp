@@ -33,20 +33,23 @@ Result<SpeedRow> parse_row(const json& r, const std::string& path, const std::st
   row.material = material;
   const auto n0 = detail::positive(r, "n0", path);
   if (!n0) return n0.error();
-  if (*n0 != std::floor(*n0)) return make_error("field " + detail::field(path, "n0") + " must be a whole number");
+  if (*n0 != std::floor(*n0))
+    return make_error("field " + detail::field(path, "n0") + " must be a whole number");
   row.n0 = static_cast<int>(*n0);
   const auto cubic = r.find("cubic");
   if (cubic == r.end() || !cubic->is_array() || cubic->size() != 4)
     return make_error("field " + detail::field(path, "cubic") + " must be an array [a, b, c, d]");
   for (std::size_t i = 0; i < 4; ++i) {
-    if (!(*cubic)[i].is_number()) return make_error("field " + detail::item(detail::field(path, "cubic"), i) + " must be a number");
+    if (!(*cubic)[i].is_number())
+      return make_error("field " + detail::item(detail::field(path, "cubic"), i) + " must be a number");
     row.cubic[i] = (*cubic)[i].get<double>();
   }
   const auto v_set = detail::positive(r, "v_set_m_s", path);
   if (!v_set) return v_set.error();
   row.v_set_m_s = *v_set;
   const auto power = r.find("power");
-  if (power == r.end() || !power->is_object()) return make_error("field " + detail::field(path, "power") + " must be an object {k, e}");
+  if (power == r.end() || !power->is_object())
+    return make_error("field " + detail::field(path, "power") + " must be an object {k, e}");
   const auto k = detail::positive(*power, "k", detail::field(path, "power"));
   if (!k) return k.error();
   const auto e = detail::number(*power, "e", detail::field(path, "power"));
@@ -63,9 +66,12 @@ Result<SpeedRow> parse_row(const json& r, const std::string& path, const std::st
 
 const char* to_string(Regime r) {
   switch (r) {
-    case Regime::cubic: return "cubic";
-    case Regime::set: return "set";
-    case Regime::power: return "power";
+    case Regime::cubic:
+      return "cubic";
+    case Regime::set:
+      return "set";
+    case Regime::power:
+      return "power";
   }
   return "set";
 }
@@ -136,7 +142,8 @@ Result<SpeedTable> load_speed_table(const std::string& path) {
     if (const auto al = m.find("aliases"); al != m.end()) {
       if (!al->is_array()) return make_error("field " + mp + ".aliases must be an array of strings", path);
       for (std::size_t k = 0; k < al->size(); ++k) {
-        if (!(*al)[k].is_string()) return make_error("field " + detail::item(mp + ".aliases", k) + " must be a string", path);
+        if (!(*al)[k].is_string())
+          return make_error("field " + detail::item(mp + ".aliases", k) + " must be a string", path);
         e.aliases.push_back((*al)[k].get<std::string>());
       }
     }
@@ -145,8 +152,10 @@ Result<SpeedTable> load_speed_table(const std::string& path) {
       names.push_back(other.name);
       for (const auto& n : names) {
         if (lower(n) == lower(e.name) ||
-            std::any_of(e.aliases.begin(), e.aliases.end(), [&](const std::string& a) { return lower(a) == lower(n); }))
-          return make_error("field " + mp + ": name or alias '" + n + "' is already used by " + other.name, path);
+            std::any_of(e.aliases.begin(), e.aliases.end(),
+                        [&](const std::string& a) { return lower(a) == lower(n); }))
+          return make_error("field " + mp + ": name or alias '" + n + "' is already used by " + other.name,
+                            path);
       }
     }
     const auto rows = m.find("rows");
@@ -158,7 +167,8 @@ Result<SpeedTable> load_speed_table(const std::string& path) {
       if (!row) return detail::in_file(row.error(), path);
       const auto th = (*rows)[r].find("thickness_mm");
       if (th == (*rows)[r].end() || !th->is_array() || th->empty())
-        return make_error("field " + rp + ".thickness_mm must be a non-empty array of thicknesses [mm]", path);
+        return make_error("field " + rp + ".thickness_mm must be a non-empty array of thicknesses [mm]",
+                          path);
       for (std::size_t k = 0; k < th->size(); ++k) {
         if (!(*th)[k].is_number() || !((*th)[k].get<double>() > 0.0))
           return make_error("field " + detail::item(rp + ".thickness_mm", k) + " must be a number > 0", path);
@@ -167,8 +177,9 @@ Result<SpeedTable> load_speed_table(const std::string& path) {
         for (const auto& existing : t.rows) {
           if (existing.material == copy.material &&
               std::abs(existing.thickness_mm - copy.thickness_mm) <= tol::kThicknessMm)
-            return make_error("field " + rp + ": thickness " + mm(copy.thickness_mm) + " mm of " + copy.material +
-                                  " appears twice", path);
+            return make_error("field " + rp + ": thickness " + mm(copy.thickness_mm) + " mm of " +
+                                  copy.material + " appears twice",
+                              path);
         }
         t.rows.push_back(copy);
       }
@@ -181,9 +192,7 @@ Result<SpeedTable> load_speed_table(const std::string& path) {
   return t;
 }
 
-double SpeedQuery::v_set_m_s() const {
-  return (1.0 - weight) * lower.v_set_m_s + weight * upper.v_set_m_s;
-}
+double SpeedQuery::v_set_m_s() const { return (1.0 - weight) * lower.v_set_m_s + weight * upper.v_set_m_s; }
 
 SpeedAtFrames SpeedQuery::at(double n) const {
   const auto a = v_on_star(lower, n);
@@ -217,9 +226,12 @@ Result<SpeedQuery> find_speed(const SpeedTable& table, const std::string& materi
   std::string list;
   for (double t : table.thicknesses(q.material)) list += (list.empty() ? "" : ", ") + mm(t);
   if (!interpolate || !below || !above) {
-    std::string msg = "no row for " + q.material + " " + mm(thickness_mm) + " mm; the table has " + list + " mm";
-    if (below && above) msg += " (--interpolate blends the two neighbouring rows)";
-    else if (interpolate) msg += " (outside the table: not extrapolated)";
+    std::string msg =
+        "no row for " + q.material + " " + mm(thickness_mm) + " mm; the table has " + list + " mm";
+    if (below && above)
+      msg += " (--interpolate blends the two neighbouring rows)";
+    else if (interpolate)
+      msg += " (outside the table: not extrapolated)";
     return make_error(msg);
   }
   q.lower = *below;
@@ -227,9 +239,10 @@ Result<SpeedQuery> find_speed(const SpeedTable& table, const std::string& materi
   q.weight = (thickness_mm - below->thickness_mm) / (above->thickness_mm - below->thickness_mm);
   q.interpolated = true;
   q.measured = below->measured && above->measured;
-  q.warnings.push_back("interpolated linearly between " + q.material + " " + mm(below->thickness_mm) + " mm and " +
-                       mm(above->thickness_mm) + " mm: not a row of Table 1");
-  if (!q.measured) q.warnings.push_back("a neighbouring row is the authors' extrapolation, not a measurement");
+  q.warnings.push_back("interpolated linearly between " + q.material + " " + mm(below->thickness_mm) +
+                       " mm and " + mm(above->thickness_mm) + " mm: not a row of Table 1");
+  if (!q.measured)
+    q.warnings.push_back("a neighbouring row is the authors' extrapolation, not a measurement");
   return q;
 }
 

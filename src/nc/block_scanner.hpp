@@ -9,9 +9,9 @@
 namespace cutroute::nc::detail {
 
 struct Word {
-  char letter = 0;        // upper case
-  double value = 0.0;     // as written (no unit conversion)
-  std::size_t column = 0; // 1-based column of the letter, for messages
+  char letter = 0;         // upper case
+  double value = 0.0;      // as written (no unit conversion)
+  std::size_t column = 0;  // 1-based column of the letter, for messages
 };
 
 enum class ScanError { none, unclosed_comment, missing_number, malformed_number, unsupported_character };
@@ -63,7 +63,10 @@ ScanResult scan_block(std::string_view line, OnWord&& on_word) {
   if (p < end && *p == '/') ++p;  // block delete: the block is still part of the program
   while (p < end) {
     const char c = *p;
-    if (is_blank(c)) { ++p; continue; }
+    if (is_blank(c)) {
+      ++p;
+      continue;
+    }
     if (c == ';') break;
     if (c == '(') {
       const char* q = p + 1;
@@ -98,7 +101,10 @@ ScanResult scan_block(std::string_view line, OnWord&& on_word) {
     int digits = 0;
     int dots = 0;
     while (p < end && (is_digit(*p) || *p == '.')) {
-      if (*p == '.') ++dots; else ++digits;
+      if (*p == '.')
+        ++dots;
+      else
+        ++digits;
       ++p;
     }
     if (digits == 0) {
@@ -110,8 +116,10 @@ ScanResult scan_block(std::string_view line, OnWord&& on_word) {
       return r;
     }
     // "1e5" is an exponent, which RS274 numbers do not have; it is not the words 1 and E5.
-    const bool exponent = p + 1 < end && (*p == 'e' || *p == 'E') && (is_digit(p[1]) || p[1] == '+' || p[1] == '-');
-    const bool bad_follower = exponent || (p < end && !(is_alpha(*p) || is_blank(*p) || *p == '(' || *p == ';'));
+    const bool exponent =
+        p + 1 < end && (*p == 'e' || *p == 'E') && (is_digit(p[1]) || p[1] == '+' || p[1] == '-');
+    const bool bad_follower =
+        exponent || (p < end && !(is_alpha(*p) || is_blank(*p) || *p == '(' || *p == ';'));
     if (dots > 1 || bad_follower) {
       r.error = ScanError::malformed_number;
       r.column = w.column;

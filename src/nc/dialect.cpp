@@ -4,7 +4,9 @@
 
 namespace cutroute::nc {
 
-bool Dialect::switches_on(int m) const { return std::find(beam_on.begin(), beam_on.end(), m) != beam_on.end(); }
+bool Dialect::switches_on(int m) const {
+  return std::find(beam_on.begin(), beam_on.end(), m) != beam_on.end();
+}
 bool Dialect::switches_off(int m) const {
   return std::find(beam_off.begin(), beam_off.end(), m) != beam_off.end();
 }
@@ -25,12 +27,14 @@ Result<Dialect> make_dialect(std::string name, std::vector<int> on, std::vector<
   if (on.empty()) return make_error(field + ".beam_on: at least one M code is needed");
   const auto reserved = [](int m) { return m == 0 || m == 1 || m == 2 || m == 30 || m == 6; };
   for (int m : on) {
-    if (m < 0 || reserved(m)) return make_error(field + ".beam_on: M" + std::to_string(m) + " cannot switch the beam");
+    if (m < 0 || reserved(m))
+      return make_error(field + ".beam_on: M" + std::to_string(m) + " cannot switch the beam");
     if (std::find(off.begin(), off.end(), m) != off.end())
       return make_error(field + ": M" + std::to_string(m) + " is in both beam_on and beam_off");
   }
   for (int m : off)
-    if (m < 0 || reserved(m)) return make_error(field + ".beam_off: M" + std::to_string(m) + " cannot switch the beam");
+    if (m < 0 || reserved(m))
+      return make_error(field + ".beam_off: M" + std::to_string(m) + " cannot switch the beam");
   return Dialect{std::move(name), std::move(on), std::move(off), unit};
 }
 

@@ -33,6 +33,13 @@ struct Block {
 
 enum class Motion { none, rapid, line, cw, ccw };
 
+struct ArcGeometry {
+  double length = 0.0;  // [mm]
+  double radius = 0.0;  // [mm]
+  double cx = 0.0;      // centre [mm]
+  double cy = 0.0;
+};
+
 std::string num(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.6g", v);
@@ -41,16 +48,34 @@ std::string num(double v) {
 
 std::string g_name(int tenths) {
   char buf[32];
-  if (tenths % 10 != 0) std::snprintf(buf, sizeof buf, "G%d.%d", tenths / 10, tenths % 10);
-  else std::snprintf(buf, sizeof buf, "G%d", tenths / 10);
+  if (tenths % 10 != 0)
+    std::snprintf(buf, sizeof buf, "G%d.%d", tenths / 10, tenths % 10);
+  else
+    std::snprintf(buf, sizeof buf, "G%d", tenths / 10);
   return buf;
 }
 
 // Letters the reader understands; the others are warned about once per line.
 bool known_letter(char c) {
   switch (c) {
-    case 'G': case 'M': case 'N': case 'O': case 'X': case 'Y': case 'Z': case 'I': case 'J': case 'K':
-    case 'R': case 'F': case 'S': case 'T': case 'P': case 'D': case 'H': case 'Q':
+    case 'G':
+    case 'M':
+    case 'N':
+    case 'O':
+    case 'X':
+    case 'Y':
+    case 'Z':
+    case 'I':
+    case 'J':
+    case 'K':
+    case 'R':
+    case 'F':
+    case 'S':
+    case 'T':
+    case 'P':
+    case 'D':
+    case 'H':
+    case 'Q':
       return true;
     default:
       return false;
@@ -60,8 +85,22 @@ bool known_letter(char c) {
 // G codes accepted without an effect on lengths or time (see gcode_reader.hpp).
 bool inert_g(int t) {
   switch (t) {
-    case 170: case 400: case 410: case 420: case 490: case 540: case 550: case 560: case 570: case 580:
-    case 590: case 610: case 611: case 640: case 800: case 940:
+    case 170:
+    case 400:
+    case 410:
+    case 420:
+    case 490:
+    case 540:
+    case 550:
+    case 560:
+    case 570:
+    case 580:
+    case 590:
+    case 610:
+    case 611:
+    case 640:
+    case 800:
+    case 940:
       return true;
     default:
       return false;
@@ -98,7 +137,9 @@ class Reader {
   }
 
  private:
-  Diagnostic error(std::string msg) const { return make_error(std::move(msg), file_, static_cast<long>(line_no_)); }
+  Diagnostic error(std::string msg) const {
+    return make_error(std::move(msg), file_, static_cast<long>(line_no_));
+  }
 
   void warn(std::size_t line, std::string msg) {
     if (st_.warnings.size() < opt_.max_warnings) {
@@ -148,7 +189,8 @@ class Reader {
         }
         b.has[i] = true;
         b.val[i] = w.value;
-        if (!known_letter(w.letter)) warn(line_no_, std::string("unknown word ") + w.letter + num(w.value) + " ignored");
+        if (!known_letter(w.letter))
+          warn(line_no_, std::string("unknown word ") + w.letter + num(w.value) + " ignored");
       }
     });
     if (scan.error != detail::ScanError::none) return scan_error(scan);
@@ -166,16 +208,21 @@ class Reader {
   Diagnostic scan_error(const detail::ScanResult& s) const {
     const std::string col = " (column " + std::to_string(s.column) + ")";
     switch (s.error) {
-      case detail::ScanError::unclosed_comment: return error("comment '(' is not closed on its line" + col);
-      case detail::ScanError::missing_number: return error(std::string("word ") + s.letter + " has no number" + col);
-      case detail::ScanError::malformed_number: return error(std::string("malformed number after ") + s.letter + col);
+      case detail::ScanError::unclosed_comment:
+        return error("comment '(' is not closed on its line" + col);
+      case detail::ScanError::missing_number:
+        return error(std::string("word ") + s.letter + " has no number" + col);
+      case detail::ScanError::malformed_number:
+        return error(std::string("malformed number after ") + s.letter + col);
       case detail::ScanError::unsupported_character: {
-        std::string c = (s.character >= 32 && s.character < 127) ? std::string(1, s.character)
-                                                                 : "\\x" + std::to_string(static_cast<unsigned char>(s.character));
+        std::string c = (s.character >= 32 && s.character < 127)
+                            ? std::string(1, s.character)
+                            : "\\x" + std::to_string(static_cast<unsigned char>(s.character));
         return error("unsupported character '" + c + "'" + col +
                      ": parameters, expressions and other extensions are not read");
       }
-      case detail::ScanError::none: break;
+      case detail::ScanError::none:
+        break;
     }
     return {};
   }
@@ -188,19 +235,43 @@ class Reader {
     for (std::size_t k = 0; k < b.ng; ++k) {
       const int g = b.g[k];
       switch (g) {
-        case 0: motion_ = Motion::rapid; break;
-        case 10: motion_ = Motion::line; break;
-        case 20: motion_ = Motion::cw; break;
-        case 30: motion_ = Motion::ccw; break;
-        case 40: dwell = true; break;
-        case 180: case 190:
+        case 0:
+          motion_ = Motion::rapid;
+          break;
+        case 10:
+          motion_ = Motion::line;
+          break;
+        case 20:
+          motion_ = Motion::cw;
+          break;
+        case 30:
+          motion_ = Motion::ccw;
+          break;
+        case 40:
+          dwell = true;
+          break;
+        case 180:
+        case 190:
           return error(g_name(g) + ": only the XY plane (G17) is supported");
-        case 200: scale_ = units::kMmPerInch; st_.inch = true; break;
-        case 210: scale_ = 1.0; break;
-        case 900: absolute_ = true; break;
-        case 910: absolute_ = false; break;
-        case 901: arc_absolute_ = true; break;
-        case 911: arc_absolute_ = false; break;
+        case 200:
+          scale_ = units::kMmPerInch;
+          st_.inch = true;
+          break;
+        case 210:
+          scale_ = 1.0;
+          break;
+        case 900:
+          absolute_ = true;
+          break;
+        case 910:
+          absolute_ = false;
+          break;
+        case 901:
+          arc_absolute_ = true;
+          break;
+        case 911:
+          arc_absolute_ = false;
+          break;
         default:
           if (!inert_g(g)) {
             warn(line_no_, "unknown word " + g_name(g) + " ignored; the block's axis words are not executed");
@@ -220,6 +291,7 @@ class Reader {
           beam_on_ = true;
           ++st_.pierces;
           repierce_ = false;
+          new_cut_ = true;
         }
       } else if (opt_.dialect.switches_off(m)) {
         beam_on_ = false;
@@ -268,21 +340,25 @@ class Reader {
     if (auto d = check_range("X", nx); !d.message.empty()) return d;
     if (auto d = check_range("Y", ny); !d.message.empty()) return d;
     double length = 0.0;
+    ArcGeometry arc_geom;
     if (motion_ == Motion::rapid || motion_ == Motion::line) {
       length = std::hypot(nx - x_, ny - y_);
     } else {
       auto arc = arc_length(b, nx, ny);
       if (!arc.ok()) return arc.error();
-      length = *arc;
+      arc_geom = *arc;
+      length = arc_geom.length;
       ++st_.arc_moves;
     }
+    const std::size_t pierces_before = st_.pierces;
     if (motion_ == Motion::rapid) {
       if (length > 0.0) {
         st_.rapid_length_mm += length;
         ++st_.rapid_moves;
         if (beam_on_) {
           if (st_.beam_on_rapids == 0)
-            warn(line_no_, "rapid move (G0) with the beam on: counted as travel; the next cut counts as a new pierce");
+            warn(line_no_,
+                 "rapid move (G0) with the beam on: counted as travel; the next cut counts as a new pierce");
           ++st_.beam_on_rapids;
           repierce_ = true;
         }
@@ -295,17 +371,52 @@ class Reader {
         }
         st_.cut_length_mm += length;
         ++st_.cut_moves;
-        if (feed_mm_min_ > 0.0) st_.cut_time_at_feed_s += length / units::mm_per_min_to_m_per_s(feed_mm_min_) / units::kMmPerM;
-        else st_.cut_length_no_feed_mm += length;
+        if (feed_mm_min_ > 0.0)
+          st_.cut_time_at_feed_s += length / units::mm_per_min_to_m_per_s(feed_mm_min_) / units::kMmPerM;
+        else
+          st_.cut_length_no_feed_mm += length;
       }
     } else {
       st_.feed_off_length_mm += length;
-      if (feed_mm_min_ > 0.0) st_.feed_off_time_s += length / units::mm_per_min_to_m_per_s(feed_mm_min_) / units::kMmPerM;
-      else st_.feed_off_length_no_feed_mm += length;
+      if (feed_mm_min_ > 0.0)
+        st_.feed_off_time_s += length / units::mm_per_min_to_m_per_s(feed_mm_min_) / units::kMmPerM;
+      else
+        st_.feed_off_length_no_feed_mm += length;
     }
+    const bool cut = beam_on_ && motion_ != Motion::rapid && length > 0.0;
+    if (opt_.moves && length > 0.0)
+      record(nx, ny, length, arc_geom, cut && (pierces_before != st_.pierces || new_cut_));
+    if (cut) new_cut_ = false;
     x_ = nx;
     y_ = ny;
     return {};
+  }
+
+  void record(double nx, double ny, double length, const ArcGeometry& arc, bool pierce) {
+    Move m;
+    m.kind = motion_ == Motion::rapid  ? Move::Kind::rapid
+             : motion_ == Motion::line ? Move::Kind::line
+             : motion_ == Motion::cw   ? Move::Kind::arc_cw
+                                       : Move::Kind::arc_ccw;
+    m.beam_on = beam_on_ && motion_ != Motion::rapid;
+    m.pierce = m.beam_on && pierce;
+    m.x0 = x_;
+    m.y0 = y_;
+    m.x1 = nx;
+    m.y1 = ny;
+    m.length_mm = length;
+    m.feed_mm_min = feed_mm_min_;
+    m.line = line_no_;
+    if (motion_ == Motion::rapid || motion_ == Motion::line) {
+      m.start_dir_rad = m.end_dir_rad = std::atan2(ny - y_, nx - x_);
+    } else {
+      // The tangent is the radius direction turned by +90° (counter-clockwise) or -90° (clockwise).
+      const double turn = motion_ == Motion::ccw ? 0.5 * std::numbers::pi : -0.5 * std::numbers::pi;
+      m.radius_mm = arc.radius;
+      m.start_dir_rad = std::atan2(y_ - arc.cy, x_ - arc.cx) + turn;
+      m.end_dir_rad = std::atan2(ny - arc.cy, nx - arc.cx) + turn;
+    }
+    opt_.moves->push_back(m);
   }
 
   double radius_tol_mm() const {
@@ -313,7 +424,7 @@ class Reader {
   }
 
   // Exact XY length of a G2/G3 move from (x_, y_) to (nx, ny).
-  Result<double> arc_length(const Block& b, double nx, double ny) const {
+  Result<ArcGeometry> arc_length(const Block& b, double nx, double ny) const {
     const bool cw = motion_ == Motion::cw;
     const double chord = std::hypot(nx - x_, ny - y_);
     const bool has_ij = b.has_word('I') || b.has_word('J');
@@ -321,15 +432,24 @@ class Reader {
       if (has_ij) return error("arc with both R and I/J");
       const double r = b.word('R') * scale_;
       const double ar = std::abs(r);
-      if (chord <= tol::kSamePointMm) return error("R-form arc whose end equals its start (a full circle needs I/J)");
+      if (chord <= tol::kSamePointMm)
+        return error("R-form arc whose end equals its start (a full circle needs I/J)");
       if (ar <= tol::kSamePointMm) return error("arc radius R" + num(b.word('R')) + " is zero");
       if (ar < chord / 2.0 - radius_tol_mm()) {
-        return error("arc radius R" + num(b.word('R')) + " is shorter than half the chord (" + num(chord / 2.0) +
-                     " mm)");
+        return error("arc radius R" + num(b.word('R')) + " is shorter than half the chord (" +
+                     num(chord / 2.0) + " mm)");
       }
       const double half = std::asin(std::min(1.0, chord / (2.0 * ar)));
       const double sweep = r >= 0.0 ? 2.0 * half : kTwoPi - 2.0 * half;
-      return std::max(ar, chord / 2.0) * sweep;
+      const double radius = std::max(ar, chord / 2.0);
+      // Centre: left of the chord for a counter-clockwise arc shorter than 180°, mirrored for
+      // clockwise, and again for R < 0.
+      const double h = std::sqrt(std::max(0.0, radius * radius - chord * chord / 4.0));
+      const double side = (cw ? -1.0 : 1.0) * (r >= 0.0 ? 1.0 : -1.0);
+      const double ux = (nx - x_) / chord;
+      const double uy = (ny - y_) / chord;
+      return ArcGeometry{radius * sweep, radius, 0.5 * (x_ + nx) - side * h * uy,
+                         0.5 * (y_ + ny) + side * h * ux};
     }
     if (!has_ij) return error("arc (G2/G3) without I/J or R");
     double cx = 0.0;
@@ -342,7 +462,8 @@ class Reader {
       cx = x_ + (b.has_word('I') ? b.word('I') * scale_ : 0.0);
       cy = y_ + (b.has_word('J') ? b.word('J') * scale_ : 0.0);
     }
-    if (auto d = check_range("arc centre", std::max(std::abs(cx), std::abs(cy))); !d.message.empty()) return d;
+    if (auto d = check_range("arc centre", std::max(std::abs(cx), std::abs(cy))); !d.message.empty())
+      return d;
     const double r0 = std::hypot(x_ - cx, y_ - cy);
     const double r1 = std::hypot(nx - cx, ny - cy);
     if (r0 <= tol::kSamePointMm) return error("arc centre equals its start point (zero radius)");
@@ -360,7 +481,7 @@ class Reader {
       sweep = std::fmod(sweep, kTwoPi);
       if (sweep < 0.0) sweep += kTwoPi;
     }
-    return 0.5 * (r0 + r1) * sweep;
+    return ArcGeometry{0.5 * (r0 + r1) * sweep, 0.5 * (r0 + r1), cx, cy};
   }
 
   std::string_view text_;
@@ -376,16 +497,18 @@ class Reader {
   bool absolute_ = true;       // G90
   bool arc_absolute_ = false;  // G90.1
   bool beam_on_ = false;
-  bool repierce_ = false;      // a rapid was made with the beam on: the next cut pierces again
-  bool skip_motion_ = false;   // the current block holds an unknown G code
-  double feed_mm_min_ = 0.0;   // 0 = not programmed yet
-  double x_ = 0.0;             // [mm] current position; programs start at the origin
-  double y_ = 0.0;             // [mm]
+  bool repierce_ = false;     // a rapid was made with the beam on: the next cut pierces again
+  bool skip_motion_ = false;  // the current block holds an unknown G code
+  bool new_cut_ = false;      // a beam-on code was executed: the next recorded cut starts from a pierce
+  double feed_mm_min_ = 0.0;  // 0 = not programmed yet
+  double x_ = 0.0;            // [mm] current position; programs start at the origin
+  double y_ = 0.0;            // [mm]
 };
 
 }  // namespace
 
-Result<ProgramStats> read_gcode(std::string_view program, const std::string& file, const ReadOptions& options) {
+Result<ProgramStats> read_gcode(std::string_view program, const std::string& file,
+                                const ReadOptions& options) {
   return Reader(program, file, options).run();
 }
 

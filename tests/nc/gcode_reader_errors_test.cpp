@@ -76,7 +76,7 @@ TEST(BrokenProgramInline, AbsurdCoordinatesAndEmptyInput) {
   EXPECT_NE(empty.error().message.find("no program end"), std::string::npos);
   EXPECT_FALSE(read_gcode("G1 X1 F-5\nM30\n", "a.nc", ReadOptions{}).ok());
   EXPECT_FALSE(read_gcode("G0 X0\nG2 X0 Y0 R5\nM30\n", "a.nc", ReadOptions{}).ok());  // R full circle
-  EXPECT_FALSE(read_gcode("G0 X0\nG2 X5 I0 J0\nM30\n", "a.nc", ReadOptions{}).ok());   // zero radius
+  EXPECT_FALSE(read_gcode("G0 X0\nG2 X5 I0 J0\nM30\n", "a.nc", ReadOptions{}).ok());  // zero radius
   EXPECT_FALSE(read_gcode("G90.1\nG0 X5\nG2 X-5 I0\nM30\n", "a.nc", ReadOptions{}).ok());
   EXPECT_FALSE(read_gcode("G0 X5\nG2 X-5 R5 I-5\nM30\n", "a.nc", ReadOptions{}).ok());
   const std::string binary("G0 X1\n\x01\x02\xff\nM30\n", 15);

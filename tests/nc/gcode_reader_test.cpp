@@ -2,11 +2,14 @@
 // hand (the expected values are written next to each program in tests/data/nc/).
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <sstream>
+#include <string>
 
 #include <cutroute/nc/frames.hpp>
 #include <cutroute/nc/gcode_reader.hpp>
@@ -103,7 +106,7 @@ TEST(GcodeReader, BeamOffFeedAndRapidWithBeamOn) {
   EXPECT_NEAR(s.rapid_length_mm, 40.0 + std::hypot(90.0, 80.0), kLenTol);
   EXPECT_NEAR(s.feed_off_length_mm, 50.0, kLenTol);
   EXPECT_NEAR(s.feed_off_time_s, 5.0, 1e-12);  // 50 mm at F600
-  EXPECT_EQ(s.pierces, 2u);                     // M3, then a re-pierce after the G0 with the beam on
+  EXPECT_EQ(s.pierces, 2u);                    // M3, then a re-pierce after the G0 with the beam on
   EXPECT_EQ(s.beam_on_rapids, 1u);
   EXPECT_EQ(s.frames, 10u);
   ASSERT_EQ(s.warnings.size(), 1u);
@@ -217,6 +220,128 @@ TEST(GcodeReader, WarningsAreCapped) {
   ASSERT_TRUE(r.ok());
   EXPECT_EQ(r->warnings.size(), 10u);
   EXPECT_EQ(r->suppressed_warnings, 70u);
+}
+
+}  // namespace
+}  // namespace cutroute::nc
+
+namespace cutroute::nc {
+namespace {
+
+TEST(GcodeReaderMoves, RecordedMovesCarryTangentsRadiiAndPierces) {
+  std::vector<Move> moves;
+  ReadOptions opt;
+  opt.moves = &moves;
+  // A rapid, a pierce, a line east, a ccw quarter arc turning north, an R-form cw arc, a rapid
+  // with the beam on, a re-pierced line.
+  auto r = read_gcode(
+      "G21 G90\nG0 X10 Y0\nM3\nG0 Z1\nG1 X20 Y0 F600\nG3 X30 Y10 I0 J10\nG2 X40 Y20 R10\nG0 X50 Y20\nG1 X60 "
+      "Y20\nM5\nM30\n",
+      "m.nc", opt);
+  ASSERT_TRUE(r.ok()) << format(r.error());
+  ASSERT_EQ(moves.size(), 6u);
+  const double pi = std::numbers::pi;
+  EXPECT_EQ(moves[0].kind, Move::Kind::rapid);
+  EXPECT_FALSE(moves[0].beam_on);
+  EXPECT_EQ(moves[1].kind, Move::Kind::line);
+  EXPECT_TRUE(moves[1].pierce);  // the Z-only block between M3 and the cut does not consume it
+  EXPECT_NEAR(moves[1].start_dir_rad, 0.0, 1e-12);
+  EXPECT_NEAR(moves[1].feed_mm_min, 600.0, 0.0);
+  EXPECT_EQ(moves[2].kind, Move::Kind::arc_ccw);
+  EXPECT_FALSE(moves[2].pierce);
+  EXPECT_NEAR(moves[2].radius_mm, 10.0, 1e-12);
+  EXPECT_NEAR(std::remainder(moves[2].start_dir_rad - 0.0, 2 * pi), 0.0, 1e-12);   // tangent east
+  EXPECT_NEAR(std::remainder(moves[2].end_dir_rad - pi / 2, 2 * pi), 0.0, 1e-12);  // tangent north
+  EXPECT_NEAR(moves[2].length_mm, 5.0 * pi, 1e-12);
+  // cw minor arc from (30,10) to (40,20), R 10: centre (40,10), from north-going to east-going
+  EXPECT_EQ(moves[3].kind, Move::Kind::arc_cw);
+  EXPECT_NEAR(std::remainder(moves[3].start_dir_rad - pi / 2, 2 * pi), 0.0, 1e-12);
+  EXPECT_NEAR(std::remainder(moves[3].end_dir_rad - 0.0, 2 * pi), 0.0, 1e-12);
+  EXPECT_EQ(moves[4].kind, Move::Kind::rapid);
+  EXPECT_TRUE(moves[5].pierce);  // re-pierce after the beam-on rapid
+  EXPECT_EQ(moves[5].line, 9u);
+  EXPECT_EQ(r->pierces, 2u);
+}
+
+}  // namespace
+}  // namespace cutroute::nc
+
+namespace cutroute::nc {
+namespace {
+
+// Rewrites a program: X and I multiplied by fx, Y and J by fy; with swap_arcs G2 <-> G3 (a
+// mirror reverses the turning sense). Comments are left alone.
+std::string transform(const std::string& text, double fx, double fy, bool swap_arcs) {
+  std::string out;
+  std::size_t i = 0;
+  int depth = 0;
+  while (i < text.size()) {
+    const char c = text[i];
+    if (c == ';' && depth == 0) {  // comment to the end of the line
+      while (i < text.size() && text[i] != '\n') out += text[i++];
+      continue;
+    }
+    if (c == '(') ++depth;
+    if (c == ')') --depth;
+    const char u = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    const bool axis = depth == 0 && (u == 'X' || u == 'Y' || u == 'I' || u == 'J');
+    if (depth == 0 && u == 'G' && swap_arcs) {
+      std::size_t j = i + 1;
+      while (j < text.size() && text[j] == ' ') ++j;
+      if (j < text.size() && (text[j] == '2' || text[j] == '3') &&
+          (j + 1 >= text.size() ||
+           !(std::isdigit(static_cast<unsigned char>(text[j + 1])) || text[j + 1] == '.'))) {
+        out += 'G';
+        out += text[j] == '2' ? '3' : '2';
+        i = j + 1;
+        continue;
+      }
+    }
+    if (!axis) {
+      out += c;
+      ++i;
+      continue;
+    }
+    std::size_t j = i + 1;
+    while (j < text.size() && text[j] == ' ') ++j;
+    std::size_t k = j;
+    while (k < text.size() && (std::isdigit(static_cast<unsigned char>(text[k])) || text[k] == '.' ||
+                               text[k] == '-' || text[k] == '+'))
+      ++k;
+    const double v = std::stod(text.substr(j, k - j));
+    const double f = (u == 'X' || u == 'I') ? fx : fy;
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%c%.6f", u, v * f);
+    out += buf;
+    i = k;
+  }
+  return out;
+}
+
+// STYLE.md #14: the same programs rotated by 180° and mirrored keep lengths, pierces and frames.
+TEST(GcodeReaderTransforms, RotatedAndMirroredProgramsKeepTheirTotals) {
+  for (const char* rel :
+       {"dxf2gcode/d2g_ATT00079.ngc", "dxf2gcode/deepnestsharp_part_6.ngc",
+        "dxf2gcode/openscad_ellipse-arc-rot.ngc", "arcs_ij.nc", "arcs_r.nc", "square_inc_inch.nc"}) {
+    SCOPED_TRACE(rel);
+    const std::string text = slurp(test::test_data(std::string("nc/") + rel));
+    auto base = read_gcode(text, rel, ReadOptions{});
+    ASSERT_TRUE(base.ok());
+    const struct {
+      double fx, fy;
+      bool swap;
+    } cases[] = {{-1, -1, false}, {-1, 1, true}, {1, -1, true}};
+    for (const auto& c : cases) {
+      const std::string t = transform(text, c.fx, c.fy, c.swap);
+      ASSERT_NE(t, text);
+      auto r = read_gcode(t, rel, ReadOptions{});
+      ASSERT_TRUE(r.ok()) << format(r.error());
+      EXPECT_NEAR(r->cut_length_mm, base->cut_length_mm, 1e-9 * std::max(1.0, base->cut_length_mm));
+      EXPECT_NEAR(r->rapid_length_mm, base->rapid_length_mm, 1e-9 * std::max(1.0, base->rapid_length_mm));
+      EXPECT_EQ(r->pierces, base->pierces);
+      EXPECT_EQ(r->frames, base->frames);
+    }
+  }
 }
 
 }  // namespace

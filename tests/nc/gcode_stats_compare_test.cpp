@@ -23,8 +23,8 @@ bool close(double ours, double theirs) {
 }
 
 nlohmann::json gcode_stats(const std::string& path) {
-  const auto out = test::run_command("/usr/bin/python3 " + test::shared("tools/gcode_stats.py") + " --json '" +
-                                     path + "'");
+  const auto out = test::run_command("/usr/bin/python3 " + test::shared("tools/gcode_stats.py") +
+                                     " --json '" + path + "'");
   EXPECT_EQ(out.exit_code, 0) << out.err;
   auto j = nlohmann::json::parse(out.out, nullptr, false);
   if (j.is_discarded() || !j.is_array() || j.empty()) {
@@ -58,9 +58,28 @@ TEST(GcodeStatsCompare, Dxf2gcodePrograms) {
 // (gcode_stats executes the unknown G12 block) and m7m9_beam.nc (gcode_stats always treats M3
 // as beam on); their hand-computed values are checked in gcode_reader_test.cpp.
 TEST(GcodeStatsCompare, HandWrittenPrograms) {
-  for (const char* f : {"square_abs_mm.nc", "square_inc_inch.nc", "arcs_ij.nc", "arcs_absolute_centre.nc", "arcs_r.nc",
-                        "dwell_comments_crlf.nc", "beam_off_feed.nc"})
+  for (const char* f : {"square_abs_mm.nc", "square_inc_inch.nc", "arcs_ij.nc", "arcs_absolute_centre.nc",
+                        "arcs_r.nc", "dwell_comments_crlf.nc", "beam_off_feed.nc"})
     compare(test::test_data(std::string("nc/") + f));
+}
+
+// Frames against a separate Python count of the docs/FRAMES.md rule (tests/nc/count_frames.py).
+TEST(GcodeStatsCompare, FramesAgainstAnIndependentCount) {
+  std::vector<std::string> files;
+  for (const auto& e : std::filesystem::directory_iterator(test::test_data("nc/dxf2gcode")))
+    files.push_back(e.path().string());
+  for (const char* f : {"square_abs_mm.nc", "square_inc_inch.nc", "arcs_ij.nc", "arcs_r.nc",
+                        "dwell_comments_crlf.nc", "cutter_comp_misc.nc", "m7m9_beam.nc"})
+    files.push_back(test::test_data(std::string("nc/") + f));
+  for (const auto& f : files) {
+    SCOPED_TRACE(f);
+    const auto out = test::run_command("/usr/bin/python3 " + std::string(CUTROUTE_TEST_DATA_DIR) +
+                                       "/../nc/count_frames.py '" + f + "'");
+    ASSERT_EQ(out.exit_code, 0) << out.err;
+    auto ours = read_gcode_file(f, ReadOptions{});
+    ASSERT_TRUE(ours.ok());
+    EXPECT_EQ(std::to_string(ours->frames) + "\n", out.out);
+  }
 }
 
 }  // namespace

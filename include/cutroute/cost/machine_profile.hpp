@@ -30,25 +30,27 @@ struct Costs {
   double c_pt = 0.0;         // C_pt [unit per pierce]
 };
 
-// For a later motion model; not used by eq. 1/3/10.
+// The motion model's limits (cost/motion_model.hpp); not used by eq. 1/3/10. The motion
+// estimate is made only when accel_m_s2 is given.
 struct MotionLimits {
-  std::optional<double> accel_m_s2;        // path acceleration limit [m/s^2]
-  std::optional<double> jerk_m_s3;         // jerk limit [m/s^3]
-  std::optional<double> block_time_s;      // minimum time the controller spends on one block [s]
+  std::optional<double> accel_m_s2;             // path acceleration limit [m/s^2]
+  std::optional<double> jerk_m_s3;              // jerk limit [m/s^3] (read, not used yet)
+  std::optional<double> block_time_s;           // minimum time the controller spends on one block [s]
+  std::optional<double> junction_deviation_mm;  // corner rounding allowance [mm]
 };
 
 struct DialectSpec {
-  std::string name;                  // built-in name, or the custom dialect's name
-  std::vector<int> beam_on;          // empty = the built-in dialect's codes
+  std::string name;          // built-in name, or the custom dialect's name
+  std::vector<int> beam_on;  // empty = the built-in dialect's codes
   std::vector<int> beam_off;
-  std::string dwell_p_unit;          // "s" or "ms"; empty = the built-in dialect's
+  std::string dwell_p_unit;  // "s" or "ms"; empty = the built-in dialect's
 };
 
 struct MachineProfile {
-  std::string file;              // where it was read from
+  std::string file;  // where it was read from
   std::string name;
-  std::string speed_table;       // absolute path of the Table 1 data file
-  double rapid_speed_m_s = 0.0;  // V_off [m/s]
+  std::string speed_table;         // absolute path of the Table 1 data file
+  double rapid_speed_m_s = 0.0;    // V_off [m/s]
   double head_lift_lower_s = 0.0;  // per pierce: lift after the cut + lower before the pierce [s]
   DialectSpec dialect;
   std::optional<Costs> costs;

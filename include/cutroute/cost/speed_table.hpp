@@ -12,14 +12,14 @@ namespace cutroute::cost {
 
 // One row of Table 1 (a row printed for "3.5, 3.9 mm" becomes two rows).
 struct SpeedRow {
-  std::string material;          // canonical name, e.g. "AMg3M"
-  double thickness_mm = 0.0;     // [mm]
-  int n0 = 0;                    // threshold number of frames [frames]
-  std::array<double, 4> cubic{}; // a, b, c, d of a n^3 + b n^2 + c n + d [m/s with n in frames]
-  double v_set_m_s = 0.0;        // programmed ("set") speed, the value at n = n0 [m/s]
-  double power_k = 0.0;          // k of k n^e [m/s]
-  double power_e = 0.0;          // e of k n^e [dimensionless]
-  bool measured = true;          // false: the authors' extrapolation, not a measurement
+  std::string material;           // canonical name, e.g. "AMg3M"
+  double thickness_mm = 0.0;      // [mm]
+  int n0 = 0;                     // threshold number of frames [frames]
+  std::array<double, 4> cubic{};  // a, b, c, d of a n^3 + b n^2 + c n + d [m/s with n in frames]
+  double v_set_m_s = 0.0;         // programmed ("set") speed, the value at n = n0 [m/s]
+  double power_k = 0.0;           // k of k n^e [m/s]
+  double power_e = 0.0;           // e of k n^e [dimensionless]
+  bool measured = true;           // false: the authors' extrapolation, not a measurement
 };
 
 enum class Regime { cubic, set, power };
@@ -40,10 +40,10 @@ struct MaterialEntry {
 };
 
 struct SpeedTable {
-  std::string source;                  // citation from the data file
+  std::string source;  // citation from the data file
   std::string machine;
   std::vector<MaterialEntry> materials;
-  std::vector<SpeedRow> rows;          // sorted by material, then thickness
+  std::vector<SpeedRow> rows;  // sorted by material, then thickness
 
   // Canonical material name for a name or alias (case-insensitive), or an error listing them.
   Result<std::string> resolve_material(const std::string& name) const;
@@ -64,11 +64,11 @@ struct SpeedQuery {
   SpeedRow upper;             // == lower unless interpolated
   double weight = 0.0;        // share of `upper` in [0, 1]
   bool interpolated = false;
-  bool measured = true;       // every row used is a measurement
+  bool measured = true;  // every row used is a measurement
   std::vector<std::string> warnings;
 
-  double v_set_m_s() const;        // [m/s]
-  SpeedAtFrames at(double n) const; // regime: of the nearer row when interpolated
+  double v_set_m_s() const;          // [m/s]
+  SpeedAtFrames at(double n) const;  // regime: of the nearer row when interpolated
 };
 
 // Errors: unknown material (lists the materials and aliases), unknown thickness (lists the

@@ -22,6 +22,22 @@ namespace cutroute::nc {
 //   the program; comments ( ) and ;; '%' lines; block delete '/'; any letter case; LF, CRLF, CR.
 // Unknown words or codes: a warning with the line number (a block with an unknown G code is not
 // moved). Malformed numbers, arcs whose end is not on the circle, missing program end: an error.
+// One executed XY move, recorded when ReadOptions::moves is set (for motion models and tests).
+struct Move {
+  enum class Kind { rapid, line, arc_cw, arc_ccw };
+  Kind kind = Kind::line;
+  bool beam_on = false;        // a cutting move
+  bool pierce = false;         // the first cutting move after a pierce (the head starts from rest)
+  double x0 = 0, y0 = 0;       // start [mm]
+  double x1 = 0, y1 = 0;       // end [mm]
+  double length_mm = 0.0;      // [mm]
+  double radius_mm = 0.0;      // arcs only [mm]
+  double start_dir_rad = 0.0;  // tangent direction at the start [rad]
+  double end_dir_rad = 0.0;    // tangent direction at the end [rad]
+  double feed_mm_min = 0.0;    // programmed F, 0 when none yet [mm/min]
+  std::size_t line = 0;        // 1-based source line
+};
+
 struct ReadOptions {
   Dialect dialect = Dialect{"rs274", {3, 4}, {5}, DwellUnit::seconds};
   // |start radius - end radius| above this is an error: in G21 programs [mm], in G20 programs
@@ -30,36 +46,40 @@ struct ReadOptions {
   double arc_radius_tol_inch = tol::kGcodeArcRadiusInch;
   // At most this many warnings are kept; the rest are only counted.
   std::size_t max_warnings = 50;
+  // When set, every XY move of non-zero length is appended here (one allocation per move: keep
+  // it unset when only totals are needed).
+  std::vector<Move>* moves = nullptr;
 };
 
 // Totals of one program. Lengths are XY path lengths in mm (arcs exact: radius × sweep; Z and
 // helical components are not counted); inch programs are converted.
 struct ProgramStats {
-  std::size_t lines = 0;        // physical lines read, up to the program end
-  std::size_t frames = 0;       // blocks by the frames.hpp definition (Table 1's n)
-  std::size_t pierces = 0;      // beam-on events: off -> on by a dialect code, plus a re-start of
-                                // cutting after a rapid made with the beam still on
-  double cut_length_mm = 0.0;   // L_on: G1/G2/G3 moves with the beam on [mm]
-  double rapid_length_mm = 0.0; // L_off: G0 moves, beam on or off [mm]
-  double feed_off_length_mm = 0.0;  // G1/G2/G3 moves with the beam off (not L_on, not L_off) [mm]
-  double feed_off_time_s = 0.0;     // those moves at their programmed F (moves with a known F) [s]
+  std::size_t lines = 0;                    // physical lines read, up to the program end
+  std::size_t frames = 0;                   // blocks by the frames.hpp definition (Table 1's n)
+  std::size_t pierces = 0;                  // beam-on events: off -> on by a dialect code, plus a re-start of
+                                            // cutting after a rapid made with the beam still on
+  double cut_length_mm = 0.0;               // L_on: G1/G2/G3 moves with the beam on [mm]
+  double rapid_length_mm = 0.0;             // L_off: G0 moves, beam on or off [mm]
+  double feed_off_length_mm = 0.0;          // G1/G2/G3 moves with the beam off (not L_on, not L_off) [mm]
+  double feed_off_time_s = 0.0;             // those moves at their programmed F (moves with a known F) [s]
   double feed_off_length_no_feed_mm = 0.0;  // those moves made before any F was programmed [mm]
-  double cut_time_at_feed_s = 0.0;  // L_on at the programmed F, for information [s]
-  double cut_length_no_feed_mm = 0.0;  // cutting length before any F was programmed [mm]
-  double dwell_s = 0.0;         // sum of G4 dwells [s]
+  double cut_time_at_feed_s = 0.0;          // L_on at the programmed F, for information [s]
+  double cut_length_no_feed_mm = 0.0;       // cutting length before any F was programmed [mm]
+  double dwell_s = 0.0;                     // sum of G4 dwells [s]
   std::size_t dwells = 0;
-  std::size_t rapid_moves = 0;  // G0 blocks with XY motion
-  std::size_t cut_moves = 0;    // G1/G2/G3 blocks with XY motion and the beam on
-  std::size_t arc_moves = 0;    // G2/G3 blocks (beam on or off)
+  std::size_t rapid_moves = 0;     // G0 blocks with XY motion
+  std::size_t cut_moves = 0;       // G1/G2/G3 blocks with XY motion and the beam on
+  std::size_t arc_moves = 0;       // G2/G3 blocks (beam on or off)
   std::size_t beam_on_rapids = 0;  // G0 moves made while the beam was switched on
-  bool inch = false;            // G20 was used somewhere
-  Diagnostics warnings;         // at most ReadOptions::max_warnings
+  bool inch = false;               // G20 was used somewhere
+  Diagnostics warnings;            // at most ReadOptions::max_warnings
   std::size_t suppressed_warnings = 0;
 };
 
 // Reads a program held in memory. `file` names the source in diagnostics. The error (first
 // problem found) carries file and 1-based line.
-Result<ProgramStats> read_gcode(std::string_view program, const std::string& file, const ReadOptions& options);
+Result<ProgramStats> read_gcode(std::string_view program, const std::string& file,
+                                const ReadOptions& options);
 
 // Reads the file into one buffer, then read_gcode().
 Result<ProgramStats> read_gcode_file(const std::string& path, const ReadOptions& options);

@@ -1,0 +1,169 @@
+// `cutroute speed` and `cutroute estimate` end to end: JSON field names, exit codes, messages.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include <cutroute/cost/machine_profile.hpp>
+
+#include "support/paths.hpp"
+
+namespace cutroute::cost {
+namespace {
+
+using nlohmann::json;
+
+test::CommandOutput cli(const std::string& args) { return test::run_command(test::cli_path() + " " + args); }
+
+json cli_json(const std::string& args) {
+  const auto r = cli(args);
+  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
+  auto j = json::parse(r.out, nullptr, false);
+  EXPECT_FALSE(j.is_discarded()) << r.out;
+  return j;
+}
+
+TEST(CliSpeed, JsonFieldsAndPaperValue) {
+  const auto j = cli_json("speed --material AMg3M --thickness 1 --frames 1962 --json");
+  for (const char* f : {"v_on_m_s", "v_on_mm_min", "v_set_m_s", "regime", "measured"})
+    EXPECT_TRUE(j.contains(f)) << f;
+  EXPECT_NEAR(j["v_on_m_s"].get<double>(), 0.04779, 0.000005);
+  EXPECT_NEAR(j["v_on_mm_min"].get<double>(), j["v_on_m_s"].get<double>() * 60000.0, 1e-9);
+  EXPECT_DOUBLE_EQ(j["v_set_m_s"].get<double>(), 0.1);
+  EXPECT_EQ(j["regime"], "power");
+  EXPECT_EQ(j["measured"], true);
+}
+
+TEST(CliSpeed, TextOutputAndExtrapolatedRow) {
+  const auto r = cli("speed --material St10 --thickness 8 --frames 120");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("cubic regime"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("extrapolated"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("mm/min"), std::string::npos);
+}
+
+TEST(CliSpeed, Errors) {
+  auto r = cli("speed --material Copper --thickness 1 --frames 10");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("AMg3M"), std::string::npos) << r.err;
+  r = cli("speed --material AMg3M --thickness 4 --frames 10");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("1, 1.5, 2, 3, 5"), std::string::npos) << r.err;
+  const auto j = cli_json("speed --material AMg3M --thickness 4 --frames 10 --interpolate --json");
+  EXPECT_EQ(j["warnings"].size(), 1u);
+  r = cli("speed --material AMg3M --thickness 1");  // --frames missing
+  EXPECT_EQ(r.exit_code, 1);
+}
+
+TEST(CliEstimate, JsonFieldsMatchTheIssue) {
+  const auto j = cli_json("estimate " + test::test_data("nc/square_abs_mm.nc") +
+                          " --material AMg3M --thickness 1 --json");
+  for (const char* f : {"pierces", "cut_length_mm", "rapid_length_mm", "frames", "v_on_set_m_s", "v_on_m_s",
+                        "t_cut_const_speed_s", "t_cut_s", "cost", "breakdown"})
+    EXPECT_TRUE(j.contains(f)) << f;
+  for (const char* f : {"cutting_s", "rapid_s", "pierce_s", "dwell_s"})
+    EXPECT_TRUE(j["breakdown"].contains(f)) << f;
+  EXPECT_EQ(j["pierces"], 1);
+  EXPECT_EQ(j["frames"], 10);
+  EXPECT_NEAR(j["cut_length_mm"].get<double>(), 300.0, 1e-9);
+  // n = 10 < n0 = 70: the cubic, faster than set
+  const double v = -4e-12 * 1000 + 3e-8 * 100 - 9e-5 * 10 + 0.105;
+  EXPECT_NEAR(j["v_on_m_s"].get<double>(), v, 1e-15);
+  EXPECT_NEAR(j["t_cut_s"].get<double>(), 0.3 / v + std::sqrt(800.0) / 1000.0 / 1.0 + 0.3, 1e-9);
+  EXPECT_NEAR(j["t_cut_const_speed_s"].get<double>(), 3.0 + std::sqrt(800.0) / 1000.0 + 0.3, 1e-9);
+}
+
+TEST(CliEstimate, DwellInBreakdown) {
+  const auto j = cli_json("estimate " + test::test_data("nc/dwell_comments_crlf.nc") + " --json");
+  EXPECT_NEAR(j["breakdown"]["dwell_s"].get<double>(), 1.75, 1e-12);
+  EXPECT_NEAR(j["breakdown"]["total_s"].get<double>(), j["t_cut_s"].get<double>() + 1.75, 1e-9);
+}
+
+TEST(CliEstimate, BrokenProgramExitsTwoWithLine) {
+  const std::string f = test::test_data("nc/bad/arc_radius_mismatch.nc");
+  const auto r = cli("estimate " + f);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(f + ":4: error: arc end is not on its circle"), std::string::npos) << r.err;
+  const auto w = cli("estimate " + test::test_data("nc/cutter_comp_misc.nc"));
+  EXPECT_EQ(w.exit_code, 0);
+  EXPECT_NE(w.err.find("cutter_comp_misc.nc:14: warning: unknown word G12"), std::string::npos) << w.err;
+}
+
+TEST(CliEstimate, MachineProfileOptionAndErrors) {
+  json j;
+  {
+    std::ifstream in(default_machine_profile_path());
+    j = json::parse(in);
+  }
+  j["rapid_speed_m_s"] = 0.5;
+  j["dialect"] = "rs274-m7m9";
+  j["speed_table"] =
+      std::filesystem::absolute(std::filesystem::path(default_machine_profile_path()).parent_path() /
+                                "../materials/bystar3015.json")
+          .string();
+  const auto path = (std::filesystem::temp_directory_path() / "cutroute-cli-profile.json").string();
+  std::ofstream(path) << j.dump(1);
+  const auto e =
+      cli_json("estimate " + test::test_data("nc/m7m9_beam.nc") + " --machine " + path + " --json");
+  EXPECT_EQ(e["pierces"], 2);
+  EXPECT_NEAR(e["breakdown"]["rapid_s"].get<double>(), 0.020 / 0.5, 1e-12);
+
+  j["cutting"][3]["pierce_time_s"] = "long";
+  std::ofstream(path) << j.dump(1);
+  const auto bad = cli("estimate " + test::test_data("nc/square_abs_mm.nc") + " --machine " + path);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("cutting[3].pierce_time_s must be a number"), std::string::npos) << bad.err;
+
+  j["cutting"][3]["pierce_time_s"] = 1;
+  j["dialect"] = "sinumerik";
+  std::ofstream(path) << j.dump(1);
+  const auto d = cli("estimate " + test::test_data("nc/square_abs_mm.nc") + " --machine " + path);
+  EXPECT_EQ(d.exit_code, 2);
+  EXPECT_NE(d.err.find("field dialect: unknown G-code dialect 'sinumerik'"), std::string::npos) << d.err;
+  std::filesystem::remove(path);
+}
+
+TEST(CliEstimate, MaterialAndThicknessGoTogether) {
+  EXPECT_EQ(cli("estimate " + test::test_data("nc/square_abs_mm.nc") + " --material AMg3M").exit_code, 1);
+  const auto r =
+      cli("estimate " + test::test_data("nc/square_abs_mm.nc") + " --material AMg3M --thickness 7");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no row for AMg3M 7 mm"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace cutroute::cost
+
+namespace cutroute::cost {
+namespace {
+
+TEST(CliEstimate, MotionModelWhenTheProfileHasAcceleration) {
+  json j;
+  {
+    std::ifstream in(default_machine_profile_path());
+    j = json::parse(in);
+  }
+  j["speed_table"] =
+      std::filesystem::absolute(std::filesystem::path(default_machine_profile_path()).parent_path() /
+                                "../materials/bystar3015.json")
+          .string();
+  j["motion"] = {{"accel_m_s2", 1.0}, {"junction_deviation_mm", 0.0}, {"block_time_s", 0.0}};
+  const auto path = (std::filesystem::temp_directory_path() / "cutroute-cli-motion.json").string();
+  std::ofstream(path) << j.dump(1);
+  // square_abs_mm.nc: 100, 50, 100, 50 mm at F6000 (100 mm/s), stopping at each 90° corner
+  // (no deviation allowed) with a = 1000 mm/s^2: each side L/v + v/a.
+  const auto e =
+      cli_json("estimate " + test::test_data("nc/square_abs_mm.nc") + " --machine " + path + " --json");
+  ASSERT_TRUE(e.contains("motion"));
+  EXPECT_NEAR(e["motion"]["cutting_s"].get<double>(), 2 * (1.0 + 0.1) + 2 * (0.5 + 0.1), 1e-9);
+  EXPECT_NEAR(e["motion"]["mean_cut_speed_m_s"].get<double>(), 0.3 / 3.4, 1e-12);
+  const auto plain = cli_json("estimate " + test::test_data("nc/square_abs_mm.nc") + " --json");
+  EXPECT_FALSE(plain.contains("motion"));
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace cutroute::cost

@@ -185,6 +185,11 @@ UnitsDecision decide_units(std::optional<int> insunits, std::optional<int> measu
     d.units_in_file = detail::insunits_name(*insunits);
     d.source = "$INSUNITS";
     d.mm_per_unit = *detail::insunits_mm(*insunits);
+  } else if (insunits && *insunits == 0) {
+    // $INSUNITS 0 says "unitless" explicitly: the drawing's numbers are millimetres for a
+    // cutting machine (the foundation issue: unitless files read as mm). $MEASUREMENT, a
+    // drafting default for linetype scales, is only consulted when $INSUNITS is absent.
+    d.source = "$INSUNITS";
   } else if (measurement && (*measurement == 0 || *measurement == 1)) {
     d.units_in_file = *measurement == 0 ? "in" : "mm";
     d.source = "$MEASUREMENT";

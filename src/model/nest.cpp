@@ -70,9 +70,10 @@ std::string format_point(Vec2 p) {
   return out;
 }
 
-Diagnostic diagnostic_for(Severity severity, std::string message, const SourceContour& s) {
+Diagnostic diagnostic_for(Severity severity, std::string message, const SourceContour& s, const char* code) {
   Diagnostic d;
   d.severity = severity;
+  d.code = code;
   d.message = std::move(message);
   d.line = s.line;
   d.handle = s.handle;
@@ -138,7 +139,11 @@ Prepared prepare(std::vector<SourceContour> contours, Nest& nest) {
     const double a = c.closed && finite_contour(c) ? geometry::signed_area(c) : 0.0;
     if (!c.closed || c.vertices.empty() || !finite_contour(c) || !(geometry::length(c) > 0.0)) {
       const char* why = !c.closed ? "is not closed" : (!finite_contour(c) ? "has a non-finite coordinate" : "has no length");
-      nest.diagnostics.push_back(diagnostic_for(Severity::error, describe(s, i) + " " + why + "; left out of the nest", s));
+      // A closed contour of no length is a point: nothing to cut, so only a warning.
+      const bool pointlike = c.closed && finite_contour(c);
+      nest.diagnostics.push_back(diagnostic_for(pointlike ? Severity::warning : Severity::error,
+                                                describe(s, i) + " " + why + "; left out of the nest", s,
+                                                pointlike ? "nest.degenerate" : "nest.invalid"));
       ++nest.dropped_invalid;
       continue;
     }
@@ -150,10 +155,11 @@ Prepared prepare(std::vector<SourceContour> contours, Nest& nest) {
       const std::size_t kept = it->second;
       if (cycles[kept] == cycle) {
         const std::size_t first_input = prep.input_index[kept];
+        // The same outline drawn twice (two layers, two passes): cut once, and say so.
         nest.diagnostics.push_back(diagnostic_for(
-            Severity::error,
+            Severity::warning,
             describe(s, i) + " duplicates " + describe(nest.contours[cid(kept)].source, first_input) + "; the copy is left out",
-            s));
+            s, "nest.duplicate"));
         ++nest.dropped_duplicates;
         duplicate = true;
         break;
@@ -162,7 +168,7 @@ Prepared prepare(std::vector<SourceContour> contours, Nest& nest) {
     if (duplicate) continue;
     if (geometry::orientation(c) == geometry::Orientation::degenerate) {
       // Still cut (a slot traced there and back, a figure 8), but it can hold nothing.
-      nest.diagnostics.push_back(diagnostic_for(Severity::warning, describe(s, i) + " encloses no area", s));
+      nest.diagnostics.push_back(diagnostic_for(Severity::warning, describe(s, i) + " encloses no area", s, "nest.no_area"));
     }
     NestContour nc;
     nc.area_mm2 = std::abs(a);
@@ -298,14 +304,16 @@ Tree build_tree(const Nest& nest, const Prepared& prep, std::optional<std::size_
             message += format_mm(std::max(s_in_b.depth, b_in_s.depth));
             message += " mm";
           }
-          tree.report(diagnostic_for(Severity::error, std::move(message), ci.source));
+          tree.report(diagnostic_for(Severity::error, std::move(message), ci.source, "nest.crossing"));
           continue;
         }
+        // Parts placed edge to edge can still be cut one after the other (the shared edge twice,
+        // or once with common-line cutting): a warning, not an error.
         if (contact.overlaps > 0) {
-          tree.report(
-              diagnostic_for(Severity::error, pair + " share a boundary stretch (common edge)" + where, ci.source));
+          tree.report(diagnostic_for(Severity::warning, pair + " share a boundary stretch (common edge)" + where,
+                                     ci.source, "nest.common_edge"));
         } else {
-          tree.report(diagnostic_for(Severity::warning, pair + " touch" + where, ci.source));
+          tree.report(diagnostic_for(Severity::warning, pair + " touch" + where, ci.source, "nest.touch"));
         }
         // Touching from inside still nests: every decisive sample of the smaller is inside.
         if (!box_inside || s_in_b.inside == 0) continue;
@@ -396,7 +404,7 @@ void warn_touching_sheet(Nest& nest, const Prepared& prep, std::size_t sheet, do
       nest.diagnostics.push_back(diagnostic_for(
           Severity::warning,
           describe(nest.contours[cid(i)].source, prep.input_index[i]) + " touches or crosses the sheet border",
-          nest.contours[cid(i)].source));
+          nest.contours[cid(i)].source, "nest.sheet_touch"));
     }
   }
 }
@@ -424,6 +432,7 @@ Nest build_nest(std::vector<SourceContour> contours, const NestOptions& options)
   if (tree.unlisted_errors + tree.unlisted_warnings > 0) {
     Diagnostic d;
     d.severity = tree.unlisted_errors > 0 ? Severity::error : Severity::warning;
+    d.code = tree.unlisted_errors > 0 ? "nest.crossing" : "nest.touch";
     d.message = std::to_string(tree.unlisted_errors) + " more pairs of contours cross or overlap and " +
                 std::to_string(tree.unlisted_warnings) + " more touch (not listed)";
     nest.diagnostics.push_back(std::move(d));

@@ -54,11 +54,12 @@ const CorpusCase kCorpus[] = {
     {"vrs_Lv6_15264_part.dxf", {{"ARC", 18}, {"CIRCLE", 10}, {"LINE", 64}, {"TEXT", 4}}, "mm", "$INSUNITS", 7982, LengthRule::arcs_flattened},
     {"vrs_Lv8_11612_part.dxf", {{"ARC", 42}, {"CIRCLE", 7}, {"LINE", 93}, {"TEXT", 8}}, "mm", "$INSUNITS", 8892, LengthRule::rounded},
     {"vrs_Lv8_07921_part.dxf", {{"ARC", 37}, {"LINE", 30}, {"TEXT", 1}}, "mm", "$INSUNITS", 1300, LengthRule::arcs_flattened},
-    // README: "unitless, $MEASUREMENT 0": $INSUNITS is 0, so the $MEASUREMENT rule makes it inch
-    // (as dxf2gcode does).
-    {"deepnestsharp_part_6.dxf", {{"ARC", 9}, {"CIRCLE", 7}, {"LINE", 2}}, "in", "$MEASUREMENT", 1045, LengthRule::rounded},
-    // README: "unitless"; the header also holds $MEASUREMENT 0 (line 882), hence inch.
-    {"deepnestsharp_part_11.dxf", {{"ARC", 32}, {"CIRCLE", 1}, {"LINE", 28}}, "in", "$MEASUREMENT", 479, LengthRule::arcs_flattened},
+    // README: "unitless, $MEASUREMENT 0": $INSUNITS is 0, i.e. unitless, which reads as mm
+    // (dxf2gcode takes $MEASUREMENT 0 and makes it inch); $MEASUREMENT only counts when
+    // $INSUNITS is absent.
+    {"deepnestsharp_part_6.dxf", {{"ARC", 9}, {"CIRCLE", 7}, {"LINE", 2}}, "unitless", "$INSUNITS", 1045, LengthRule::rounded},
+    // README: "unitless"; $INSUNITS 0 (the header's $MEASUREMENT 0 at line 882 does not apply).
+    {"deepnestsharp_part_11.dxf", {{"ARC", 32}, {"CIRCLE", 1}, {"LINE", 28}}, "unitless", "$INSUNITS", 479, LengthRule::arcs_flattened},
     // README: CIRCLE 1, INSERT 1 (expands to 8 LINEs).
     {"jyo_waterjet_Part3-2.dxf", {{"CIRCLE", 1}, {"INSERT", 1}, {"LINE", 8}}, "in", "$INSUNITS", 63.4, LengthRule::rounded},
     {"bryanduxbury_odometer_drum_complete_gear.dxf", {{"LINE", 844}}, "unitless", "default", 2503, LengthRule::rounded},

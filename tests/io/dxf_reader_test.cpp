@@ -336,9 +336,10 @@ TEST(DxfReader, UnitsRules) {
       {6, {}, {}, "m", "$INSUNITS", 1000.0},
       {1, 1, {}, "in", "$INSUNITS", 25.4},
       {2, {}, {}, "ft", "$INSUNITS", 304.8},
-      {0, 0, {}, "in", "$MEASUREMENT", 25.4},   // unitless $INSUNITS: $MEASUREMENT decides
+      {0, 0, {}, "unitless", "$INSUNITS", 1.0},  // $INSUNITS 0 says unitless: mm, $MEASUREMENT unused
+      {{}, 0, {}, "in", "$MEASUREMENT", 25.4},   // no $INSUNITS: $MEASUREMENT decides
       {{}, 1, {}, "mm", "$MEASUREMENT", 1.0},
-      {0, {}, {}, "unitless", "default", 1.0},
+      {0, {}, {}, "unitless", "$INSUNITS", 1.0},
       {{}, {}, {}, "unitless", "default", 1.0},
       {1, {}, "mm", "in", "option", 1.0},        // the option overrides the scale only
       {{}, {}, "ft", "unitless", "option", 304.8},

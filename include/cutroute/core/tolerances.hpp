@@ -32,4 +32,8 @@ inline constexpr double kConstraintSlackRel = 1e-9;
 // Relative termination width of golden-section searches [dimensionless].
 inline constexpr double kGoldenSectionRel = 1e-10;
 
+// Relative width to which a feasibility boundary in vc is bisected between two grid samples
+// [dimensionless]; well below kConstraintSlackRel so that boundary points count as active.
+inline constexpr double kBoundaryBisectRel = 1e-14;
+
 }  // namespace cutroute::tol

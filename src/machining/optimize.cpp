@@ -84,22 +84,24 @@ PointEval refine(const Problem& p, int set, const SearchBox& box, const Surface&
   const int ny = static_cast<int>(grid.f.size());
   const double step = ny > 1 ? std::pow(box.f[1] / box.f[0], 1.0 / (ny - 1)) : 1.0;
   const double s = step * step;
-  const double a = std::log(std::max(box.f[0], start.f / s));
-  const double b = std::log(std::min(box.f[1], start.f * s));
-  const auto score = [&](double u) {
-    const FeedOptimum fo = best_vc_at_feed(p, set, std::exp(u), grid.vc);
+  // Bracket ends as exact values: exp(log(f_Ra)) may land an ulp outside the roughness limit.
+  const double fa = std::max(box.f[0], start.f / s);
+  const double fb = std::min(box.f[1], start.f * s);
+  const auto score_f = [&](double f) {
+    const FeedOptimum fo = best_vc_at_feed(p, set, f, grid.vc);
     evals += static_cast<long>(grid.vc.size()) + 150;
     return fo.feasible ? fo.CT : kInf;
   };
-  double best_u = b > a ? detail::golden_min(score, a, b) : a;
+  const auto score = [&](double u) { return score_f(std::exp(u)); };
+  double best_f = fb > fa ? std::exp(detail::golden_min(score, std::log(fa), std::log(fb))) : fa;
   // The optimum often sits on the bracket end (f = f_Ra); the golden section only approaches it.
-  double best_ct = score(best_u);
-  for (double u : {a, b, std::log(start.f)}) {
-    const double ct = score(u);
-    if (ct < best_ct) best_ct = ct, best_u = u;
+  double best_ct = score_f(best_f);
+  for (double f : {fa, fb, start.f}) {
+    const double ct = score_f(f);
+    if (ct < best_ct) best_ct = ct, best_f = f;
   }
   PointEval out = start;
-  const FeedOptimum fo = best_vc_at_feed(p, set, std::exp(best_u), grid.vc);
+  const FeedOptimum fo = best_vc_at_feed(p, set, best_f, grid.vc);
   if (fo.feasible && fo.CT <= start.cost.total) out = evaluate(p, fo.vc, fo.f, set);
   return out;
 }
@@ -225,7 +227,8 @@ FeedOptimum best_vc_at_feed(const Problem& p, int set, double f, const std::vect
   FeedOptimum out;
   out.f = f;
   out.set = set;
-  const auto ok_at = [&](double u) { return evaluate(p, std::exp(u), f, set).feasible(); };
+  // Boundaries are bisected onto g <= 0 (not the slack) so that the answer is strictly feasible.
+  const auto ok_at = [&](double u) { return evaluate(p, std::exp(u), f, set).max_violation() <= 0.0; };
   const auto ct_at = [&](double u) { return evaluate(p, std::exp(u), f, set).cost.total; };
   const std::size_t n = vc_grid.size();
   std::vector<char> ok(n);
@@ -250,7 +253,7 @@ FeedOptimum best_vc_at_feed(const Problem& p, int set, double f, const std::vect
       const double c = ct_at(e);
       if (c < ct) ct = c, u = e;
     }
-    if (!ok_at(u)) {  // golden-section points are interior, but keep the promise of feasibility
+    if (!evaluate(p, std::exp(u), f, set).feasible()) {  // keep the promise of feasibility
       u = ct_at(lo) <= ct_at(hi) ? lo : hi;
       ct = ct_at(u);
     }
@@ -423,9 +426,20 @@ Fig5Result optimize_fig5(const Problem& p, int grid_vc, int grid_f) {
     r.f = cands[k].f;
     r.CT = cands[k].ct;
     r.set = cands[k].set;
+    const auto range = life_feed_range(p, r.set);
+    const double f_lo = std::max(p.search.f_min, range[0]), f_hi = std::min(p.search.f_max, range[1]);
+    r.vc_step = std::pow(p.search.vc_max / p.search.vc_min, 1.0 / std::max(1, grid_vc - 1));
+    r.f_step = std::pow(f_hi / f_lo, 1.0 / std::max(1, grid_f - 1));
     break;
   }
   return r;
+}
+
+bool fig5_agrees(const OptimizeResult& r, const Fig5Result& f5) {
+  if (!r.solution || !f5.found) return !r.solution && !f5.found;
+  const double slack = 1.0 + 1e-12;
+  return std::abs(std::log(f5.vc / r.solution->vc)) <= std::log(f5.vc_step) * slack &&
+         std::abs(std::log(f5.f / r.solution->f)) <= std::log(f5.f_step) * slack;
 }
 
 std::vector<AccuracyCostPoint> cost_of_accuracy(const Problem& p, const std::vector<double>& K_TZ_mm,

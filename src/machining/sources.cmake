@@ -6,4 +6,6 @@ set(CUTROUTE_MACHINING_SOURCES
   optimize.cpp
   problem.cpp
   problem_json.cpp
+  report.cpp
+  report_svg.cpp
   validate.cpp)

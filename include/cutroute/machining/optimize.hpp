@@ -119,8 +119,15 @@ struct Fig5Result {
   double f = 0.0;           // [mm/rev]
   double CT = 0.0;          // [CU/part]
   int set = 0;
+  double vc_step = 1.0;     // ratio between neighbouring grid speeds (one grid cell) [-]
+  double f_step = 1.0;      // ratio between neighbouring grid feeds [-]
 };
+// The grid covers the raw box [vc_min, vc_max] × [f_min, f_max] (∩ the set's feed range): in the seed,
+// power and roughness cut the search region as constraints, not as bounds.
 Fig5Result optimize_fig5(const Problem& p, int grid_vc, int grid_f);
+
+// True when the Fig. 5 answer lies within one of its grid cells of the optimum, in vc and in f.
+bool fig5_agrees(const OptimizeResult& r, const Fig5Result& f5);
 
 // Cost of accuracy: CT*(K_TZ) over a list of K_TZ values (the Pareto front, 5.4).
 struct AccuracyCostPoint {

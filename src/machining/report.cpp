@@ -135,8 +135,11 @@ json report_json(const RunOutput& out) {
                              {"candidates", f.candidates},
                              {"vc_m_min", num(f.vc)},
                              {"f_mm_rev", num(f.f)},
-                             {"ct_cu", num(f.CT)},
-                             {"agrees_within_one_cell", fig5_agrees(r, f)}};
+                             {"ct_cu", num(f.CT)}};
+    const Fig5Agreement a = fig5_agreement(p, r, f);
+    j["fig5_cross_check"]["distance_cells"] = {a.cells_vc, a.cells_f};
+    j["fig5_cross_check"]["within_one_cell"] = a.within_one_cell;
+    j["fig5_cross_check"]["within_one_cell_cost"] = a.within_one_cell_cost;
   }
   if (!out.sweep.empty()) {
     json s = json::array();

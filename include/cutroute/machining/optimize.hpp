@@ -119,6 +119,8 @@ struct Fig5Result {
   double f = 0.0;           // [mm/rev]
   double CT = 0.0;          // [CU/part]
   int set = 0;
+  double vc_lo = 0.0;       // first grid speed [m/min]
+  double f_lo = 0.0;        // first grid feed [mm/rev]
   double vc_step = 1.0;     // ratio between neighbouring grid speeds (one grid cell) [-]
   double f_step = 1.0;      // ratio between neighbouring grid feeds [-]
 };
@@ -126,8 +128,17 @@ struct Fig5Result {
 // power and roughness cut the search region as constraints, not as bounds.
 Fig5Result optimize_fig5(const Problem& p, int grid_vc, int grid_f);
 
-// True when the Fig. 5 answer lies within one of its grid cells of the optimum, in vc and in f.
-bool fig5_agrees(const OptimizeResult& r, const Fig5Result& f5);
+// How the Fig. 5 answer compares with the optimum.
+struct Fig5Agreement {
+  bool within_one_cell = false;  // |ln(vc5/vc*)| <= ln(vc step) and |ln(f5/f*)| <= ln(f step)
+  // CT* <= CT5 <= the dearest feasible corner of the Fig. 5 grid cell that holds the optimum: the
+  // grid answer costs no more than one cell's worth. This form also holds when the cost is flat
+  // along a diagonal active constraint and the cheapest grid point sits several cells away.
+  bool within_one_cell_cost = false;
+  double cells_vc = 0.0;         // distance in grid cells along vc [-]
+  double cells_f = 0.0;          // distance in grid cells along f [-]
+};
+Fig5Agreement fig5_agreement(const Problem& p, const OptimizeResult& r, const Fig5Result& f5);
 
 // Cost of accuracy: CT*(K_TZ) over a list of K_TZ values (the Pareto front, 5.4).
 struct AccuracyCostPoint {

@@ -10,6 +10,8 @@
 #include <cutroute/core/version.hpp>
 #include <cutroute/machining/problem_json.hpp>
 
+#include "support/paths.hpp"
+
 namespace cutroute::test {
 
 inline std::string machining_example_path(const std::string& file) {

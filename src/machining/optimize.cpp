@@ -85,8 +85,7 @@ PointEval refine(const Problem& p, int set, const SearchBox& box, const Surface&
   const double step = ny > 1 ? std::pow(box.f[1] / box.f[0], 1.0 / (ny - 1)) : 1.0;
   const double s = step * step;
   const auto score_f = [&](double f) {
-    const FeedOptimum fo = best_vc_at_feed(p, set, f, grid.vc);
-    evals += static_cast<long>(grid.vc.size()) + 150;
+    const FeedOptimum fo = best_vc_at_feed(p, set, f, grid.vc, &evals);
     return fo.feasible ? fo.CT : kInf;
   };
   const auto score = [&](double u) { return score_f(std::exp(u)); };
@@ -238,18 +237,24 @@ SearchBox search_box(const Problem& p, int set) {
   return b;
 }
 
-FeedOptimum best_vc_at_feed(const Problem& p, int set, double f, const std::vector<double>& vc_grid) {
+FeedOptimum best_vc_at_feed(const Problem& p, int set, double f, const std::vector<double>& vc_grid,
+                            long* evals) {
+  long count = 0;
+  const auto eval = [&](double vc) {
+    ++count;
+    return evaluate(p, vc, f, set);
+  };
   FeedOptimum out;
   out.f = f;
   out.set = set;
   // Boundaries are bisected onto g <= 0 (not the slack) so that the answer is strictly feasible.
-  const auto ok_at = [&](double u) { return evaluate(p, std::exp(u), f, set).max_violation() <= 0.0; };
-  const auto ct_at = [&](double u) { return evaluate(p, std::exp(u), f, set).cost.total; };
+  const auto ok_at = [&](double u) { return eval(std::exp(u)).max_violation() <= 0.0; };
+  const auto ct_at = [&](double u) { return eval(std::exp(u)).cost.total; };
   const std::size_t n = vc_grid.size();
   std::vector<char> ok(n);
   std::vector<double> viol(n);
   for (std::size_t i = 0; i < n; ++i) {
-    viol[i] = evaluate(p, vc_grid[i], f, set).max_violation();
+    viol[i] = eval(vc_grid[i]).max_violation();
     ok[i] = viol[i] <= tol::kConstraintSlackRel ? 1 : 0;
   }
   // Feasible vc-intervals [lo, hi] in u = ln vc. Monotone constraints give one run of feasible samples;
@@ -276,7 +281,7 @@ FeedOptimum best_vc_at_feed(const Problem& p, int set, double f, const std::vect
     const std::size_t k = static_cast<std::size_t>(std::min_element(viol.begin(), viol.end()) - viol.begin());
     const double ua = std::log(vc_grid[k == 0 ? 0 : k - 1]);
     const double ub = std::log(vc_grid[std::min(n - 1, k + 1)]);
-    const auto worst = [&](double u) { return evaluate(p, std::exp(u), f, set).max_violation(); };
+    const auto worst = [&](double u) { return eval(std::exp(u)).max_violation(); };
     const double u0 = detail::golden_min(worst, ua, ub, tol::kBoundaryBisectRel);
     if (worst(u0) <= 0.0) {
       const double lo = u0 > ua && !ok_at(ua) ? detail::bisect_boundary(ok_at, ua, u0) : ua;
@@ -293,12 +298,13 @@ FeedOptimum best_vc_at_feed(const Problem& p, int set, double f, const std::vect
       const double c = ct_at(e);
       if (c < ct) ct = c, u = e;
     }
-    if (!evaluate(p, std::exp(u), f, set).feasible()) {  // keep the promise of feasibility
+    if (!eval(std::exp(u)).feasible()) {  // keep the promise of feasibility
       u = ct_at(lo) <= ct_at(hi) ? lo : hi;
       ct = ct_at(u);
     }
     if (ct < best_ct) best_ct = ct, best_u = u;
   }
+  if (evals) *evals += count;
   if (best_ct == kInf) return out;
   const PointEval e = evaluate(p, std::exp(best_u), f, set);
   out.feasible = true;
@@ -392,7 +398,7 @@ OptimizeResult optimize(const Problem& p, const OptimizeParams& params) {
     const SearchBox box{r.vc_bounds, r.f_bounds};
     const std::vector<double> vcg = log_grid(box.vc[0], box.vc[1], nx);
     for (double f : log_grid(box.f[0], box.f[1], params.valley_points)) {
-      r.valley.push_back(best_vc_at_feed(p, r.set, f, vcg));
+      r.valley.push_back(best_vc_at_feed(p, r.set, f, vcg, &r.evaluations));
     }
   }
   // Near-optimal contours CT = CT*(1 + δ) on the grid, mapped to (vc, Vf).

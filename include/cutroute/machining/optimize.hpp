@@ -107,7 +107,9 @@ SearchBox search_box(const Problem& p, int set);
 std::vector<double> log_grid(double lo, double hi, int n);
 
 // The constrained optimum over vc at fixed f, searching the vc grid `vc_grid` of `set`.
-FeedOptimum best_vc_at_feed(const Problem& p, int set, double f, const std::vector<double>& vc_grid);
+// `evals`, when given, is increased by the number of point evaluations spent.
+FeedOptimum best_vc_at_feed(const Problem& p, int set, double f, const std::vector<double>& vc_grid,
+                            long* evals = nullptr);
 
 // The seed's two-stage search (Fig. 5): grid points feasible for all but accuracy, sorted by CT, and
 // the first one that also meets accuracy.

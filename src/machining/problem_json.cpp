@@ -309,30 +309,75 @@ Problem read(const json& root) {
 
 }  // namespace
 
-Result<Problem> read_problem_json(std::string_view text, const std::string& file) {
-  json root;
+namespace {
+
+// One problem object (already parsed) -> Problem, with `prefix` in front of every path.
+Result<Problem> read_one(const json& root, const std::string& file, const std::string& prefix) {
   try {
-    root = json::parse(text.begin(), text.end());
+    Problem p = read(root);
+    const auto problems = validate(p);
+    if (!problems.empty()) {
+      std::string msg = prefix + problems.front();
+      if (problems.size() > 1) {
+        msg += " (and " + std::to_string(problems.size() - 1) + " more: " + prefix + problems[1] +
+               (problems.size() > 2 ? ", ..." : "") + ")";
+      }
+      return make_error(msg, file);
+    }
+    return p;
+  } catch (const FieldError& e) {
+    return make_error(prefix + e.what(), file);
+  } catch (const json::exception& e) {
+    return make_error(prefix + "invalid problem: " + e.what(), file);
+  }
+}
+
+Result<json> parse(std::string_view text, const std::string& file) {
+  try {
+    return json::parse(text.begin(), text.end());
   } catch (const json::parse_error& e) {
     // Byte offset -> 1-based line for the diagnostic.
     const std::size_t upto = std::min<std::size_t>(e.byte, text.size());
     const long line = 1 + static_cast<long>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(upto), '\n'));
     return make_error(std::string("invalid JSON: ") + e.what(), file, line);
   }
-  try {
-    Problem p = read(root);
-    const auto problems = validate(p);
-    if (!problems.empty()) {
-      std::string msg = problems.front();
-      if (problems.size() > 1) msg += " (and " + std::to_string(problems.size() - 1) + " more: " + problems[1] + (problems.size() > 2 ? ", ..." : "") + ")";
-      return make_error(msg, file);
+}
+
+}  // namespace
+
+Result<Transitions> read_transitions_json(std::string_view text, const std::string& file) {
+  auto root = parse(text, file);
+  if (!root) return root.error();
+  Transitions t;
+  if (root->is_object() && root->contains("transitions")) {
+    t.is_list = true;
+    try {
+      Obj top(*root, "");
+      t.name = top.str("name", "");
+      const json& list = top.raw("transitions");
+      if (!list.is_array() || list.empty()) throw FieldError("transitions: expected a non-empty array of problems");
+      top.finish();
+      for (std::size_t i = 0; i < list.size(); ++i) {
+        auto p = read_one(list[i], file, "transitions[" + std::to_string(i) + "].");
+        if (!p) return p.error();
+        t.items.push_back(std::move(p).value());
+      }
+    } catch (const FieldError& e) {
+      return make_error(e.what(), file);
     }
-    return p;
-  } catch (const FieldError& e) {
-    return make_error(e.what(), file);
-  } catch (const json::exception& e) {
-    return make_error(std::string("invalid problem: ") + e.what(), file);
+    return t;
   }
+  auto p = read_one(*root, file, "");
+  if (!p) return p.error();
+  t.name = p->name;
+  t.items.push_back(std::move(p).value());
+  return t;
+}
+
+Result<Problem> read_problem_json(std::string_view text, const std::string& file) {
+  auto root = parse(text, file);
+  if (!root) return root.error();
+  return read_one(*root, file, "");
 }
 
 }  // namespace cutroute::machining

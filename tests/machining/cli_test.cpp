@@ -89,3 +89,22 @@ TEST(MachiningCli, InfeasibleIsAnAnswer) {
 
 }  // namespace
 }  // namespace cutroute::machining
+
+namespace cutroute::machining {
+namespace {
+
+TEST(MachiningCli, TransitionsSumTheirCost) {
+  const auto r = run(test::machining_example_path("boring-two-transitions-E2-E1.json") + " --json --no-fig5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json j = json::parse(r.out);
+  ASSERT_EQ(j["transitions"].size(), 2u);
+  const double a = j["transitions"][0]["cost"]["total_cu"].get<double>();
+  const double b = j["transitions"][1]["cost"]["total_cu"].get<double>();
+  EXPECT_NEAR(j["total_cost_cu"].get<double>(), a + b, 1e-15);
+  EXPECT_NEAR(a, 1.2388572, 1.2388572 * 1e-7);               // E2 as it stands
+  EXPECT_NEAR(b, 1.2497633 - 1.1, 1e-7);                       // E1 without the fixed share
+  EXPECT_NEAR(j["transitions"][1]["vc_m_min"].get<double>() / 332.44714, 1.0, 1e-5);
+}
+
+}  // namespace
+}  // namespace cutroute::machining

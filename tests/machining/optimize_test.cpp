@@ -302,3 +302,43 @@ TEST(MachiningOptimizer, NloptBackEnd) {
 
 }  // namespace
 }  // namespace cutroute::machining
+
+namespace cutroute::machining {
+namespace {
+
+TEST(MachiningOptimizer, LongOverhangWarns) {
+  Problem p = test::load_machining_example(test::kE2);
+  EXPECT_EQ(optimize(p).status, Status::optimal);  // L_o/d = 4 exactly: at the limit, no warning
+  p.accuracy->bar.L_o = 120;                        // L_o/d = 4.8 > 4 for a steel bar
+  p.accuracy->K_TZ = 0.02;
+  const OptimizeResult r = optimize(p);
+  EXPECT_EQ(r.status, Status::warning);
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_NE(r.warnings.back().find("L_o/d"), std::string::npos) << r.warnings.back();
+  p.accuracy->bar.E = 580000;  // carbide bar: the limit is 6
+  EXPECT_EQ(optimize(p).status, Status::optimal);
+}
+
+TEST(MachiningOptimizer, ListedOrderRateMapChangesOnlyThePairing) {
+  Problem p = test::load_machining_example(test::kE0);
+  p.econ.rates = {0.25, 0.35, 0.04, 0.02, 0.06};
+  p.econ.rate_map = RateMap::listed_order;
+  const OptimizeResult r = optimize(p);
+  ASSERT_TRUE(r.solution);
+  // Cutting is charged at r1 = 0.6: Gilbert with r1 in place of r30.
+  const double T = gilbert_tool_life(0.25, 0.68, 2.0, 3.0, 0.60);
+  EXPECT_NEAR(r.solution->T / T, 1.0, 1e-6);
+  EXPECT_NEAR(r.solution->cost.fixed, 1.0 * 0.72 + 0.5, 1e-12);
+}
+
+TEST(MachiningOptimizer, ToolLifeWindowIsAHardConstraint) {
+  Problem p = test::load_machining_example(test::kE1);
+  p.search.T_min = 30.0;  // the economic T* = 22.3 is not allowed: vc drops until T = 30
+  const OptimizeResult r = optimize(p);
+  ASSERT_TRUE(r.solution);
+  EXPECT_NEAR(r.solution->T, 30.0, 30.0 * 1e-9);
+  EXPECT_NE(std::find(r.active.begin(), r.active.end(), "tool_life_min"), r.active.end());
+}
+
+}  // namespace
+}  // namespace cutroute::machining

@@ -139,3 +139,33 @@ TEST(MachiningJson, NotAnObject) {
 
 }  // namespace
 }  // namespace cutroute::machining
+
+namespace cutroute::machining {
+namespace {
+
+TEST(MachiningJson, TransitionsForm) {
+  std::ifstream in(test::machining_example_path("boring-two-transitions-E2-E1.json"));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  auto t = read_transitions_json(ss.str());
+  ASSERT_TRUE(t) << t.error().message;
+  EXPECT_TRUE(t->is_list);
+  ASSERT_EQ(t->items.size(), 2u);
+  EXPECT_DOUBLE_EQ(t->items[0].op.ap, 1.5);
+  EXPECT_DOUBLE_EQ(t->items[1].econ.t_load, 0.0);
+  // A single problem reads as one transition.
+  auto one = read_transitions_json(example_json(test::kE1).dump());
+  ASSERT_TRUE(one);
+  EXPECT_FALSE(one->is_list);
+  EXPECT_EQ(one->items.size(), 1u);
+  // Errors carry the transition's index in the path.
+  nlohmann::json j = nlohmann::json::parse(ss.str());
+  j["transitions"][1]["operation"].erase("D");
+  auto bad = read_transitions_json(j.dump());
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().message.find("transitions[1].operation.D"), std::string::npos) << bad.error().message;
+  EXPECT_FALSE(read_transitions_json(R"({"transitions": []})"));
+}
+
+}  // namespace
+}  // namespace cutroute::machining

@@ -222,6 +222,15 @@ std::string report_svg(const RunOutput& out) {
   s += "<text transform=\"translate(" + fmt_fixed(kLeft - 62, 2) + "," + fmt_fixed(kTop + kPlotH / 2, 2) +
        ") rotate(-90)\" text-anchor=\"middle\" font-size=\"14\">feed speed Vf = f·n [mm/min] (log)</text>\n";
 
+  // Caption: the grid box, whose upper feed edge is often the roughness limit f_Ra.
+  const double f_Ra = feed_for_ra(p.quality.Ra_max, p.tool.r_eps, p.quality.k_Ra);
+  const bool top_is_fRa = std::abs(g.f.back() / f_Ra - 1.0) < 1e-12;
+  s += "<text x=\"" + fmt_fixed(kLeft, 2) + "\" y=\"" + fmt_fixed(kHeight - 12, 2) + "\" font-size=\"11\" fill=\"#444\">" +
+       esc("grid " + std::to_string(nx) + " x " + std::to_string(ny) + ": vc in [" + fmt(g.vc.front(), 5) + ", " +
+           fmt(g.vc.back(), 5) + "] m/min, f in [" + fmt(g.f.front(), 5) + ", " + fmt(g.f.back(), 5) + "] mm/rev" +
+           (top_is_fRa ? " (upper edge f = f_Ra: the roughness limit)" : "")) +
+       "</text>\n";
+
   // Legend: colour bar and line keys.
   const double lx = kLeft + kPlotW + 30, ly = kTop;
   s += "<text x=\"" + fmt_fixed(lx, 2) + "\" y=\"" + fmt_fixed(ly + 4, 2) + "\" font-weight=\"bold\">CT [CU/part]</text>\n";

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include <cutroute/machining/optimize.hpp>
+#include <cutroute/machining/problem.hpp>
 
 #include "machining/format.hpp"
 

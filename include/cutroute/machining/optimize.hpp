@@ -92,9 +92,6 @@ struct OptimizeResult {
   long evaluations = 0;                  // point evaluations spent [-]
 };
 
-// Checks a programmatically built problem; one readable message per defect, empty when valid.
-std::vector<std::string> validate(const Problem& p);
-
 OptimizeResult optimize(const Problem& p, const OptimizeParams& params = {});
 
 // Search box of tool-life set `set` ([lo, hi] pairs; lo > hi when empty).

@@ -174,6 +174,10 @@ struct PointEval {
 // Simpson cubature over n_phi angles (reported optimum, cross-checks).
 enum class AccuracyMethod { closed_form, cubature };
 
+// Checks every validity rule of the schema (docs/MACHINING-SCHEMA.md); one readable message per
+// defect, each naming the field by its JSON path; empty when valid.
+std::vector<std::string> validate(const Problem& p);
+
 // Evaluates cost, forces, power, roughness, accuracy and every constraint at (vc, f) using tool-life
 // set `set` (index into life.sets; ignored for Taylor).
 PointEval evaluate(const Problem& p, double vc, double f, int set = 0,

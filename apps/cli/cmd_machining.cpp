@@ -68,8 +68,10 @@ int run_machining(const MachiningOptions& o) {
     if (parts->is_list) text_out += "--- transition " + std::to_string(k + 1) + "\n";
     text_out += machining::report_text(out);
     if (results[k].solution) total += results[k].solution->cost.total;
-    if (results[k].status == machining::Status::infeasible) status = "infeasible";
-    else if (results[k].status == machining::Status::warning && status == "optimal") status = "warning";
+    if (results[k].status == machining::Status::infeasible)
+      status = "infeasible";
+    else if (results[k].status == machining::Status::warning && status == "optimal")
+      status = "warning";
   }
   if (o.json) {
     if (!parts->is_list) {
@@ -86,8 +88,9 @@ int run_machining(const MachiningOptions& o) {
   } else {
     std::cout << text_out;
     if (parts->is_list) {
-      std::cout << "--- part: status " << status << ", total CT = "
-                << (status == "infeasible" ? std::string("n/a") : std::to_string(total)) << " CU\n";
+      std::cout << "--- part: status " << status
+                << ", total CT = " << (status == "infeasible" ? std::string("n/a") : std::to_string(total))
+                << " CU\n";
     }
   }
   // An infeasible problem is an answer, not an input error: exit 0 with status "infeasible".
@@ -98,10 +101,12 @@ int run_machining(const MachiningOptions& o) {
 
 void add_machining(CLI::App& root, Commands& out) {
   auto opts = std::make_shared<MachiningOptions>();
-  auto* app = root.add_subcommand("machining", "optimise cutting speed and feed of a boring transition (MACHINING.md)");
+  auto* app = root.add_subcommand("machining",
+                                  "optimise cutting speed and feed of a boring transition (MACHINING.md)");
   app->add_option("problem", opts->problem, "problem file (JSON, see docs/MACHINING-SCHEMA.md)")->required();
   app->add_flag("--json", opts->json, "print the full report as JSON");
-  app->add_option("--svg", opts->svg, "write the cost map (feasible region, valley, near-optimal contours) as SVG");
+  app->add_option("--svg", opts->svg,
+                  "write the cost map (feasible region, valley, near-optimal contours) as SVG");
   app->add_option("--csv", opts->csv, "write the valley and the grid as CSV");
   app->add_option("--method", opts->method, "grid (grid + golden section, the reference) or nlopt (COBYLA)")
       ->check(CLI::IsMember({"grid", "nlopt"}));

@@ -68,7 +68,12 @@ RhoMoments rho_moments_naive(double r, double sigma_A, double phi_deg, const Cub
   const auto rho = [&](double a, double y) { return std::sqrt(r * r + 2.0 * r * a * y * c + a * a * y * y); };
   RhoMoments out;
   out.mean = expect(rho, sigma_A, p);
-  out.mean_sq = expect([&](double a, double y) { const double q = rho(a, y); return q * q; }, sigma_A, p);
+  out.mean_sq = expect(
+      [&](double a, double y) {
+        const double q = rho(a, y);
+        return q * q;
+      },
+      sigma_A, p);
   out.mean_dev = out.mean - r;
   out.var = std::max(0.0, out.mean_sq - out.mean * out.mean);
   return out;
@@ -84,10 +89,10 @@ double max_rho_variance(double r, double sigma_A, int n_phi, const CubatureParam
 
 double z_two_sided(double P) {
   // Inverse of Φ at q = (1 + P)/2 (upper half, q >= 0.5), Acklam's rational approximation.
-  static constexpr double a[] = {-3.969683028665376e+01, 2.209460984245205e+02, -2.759285104469687e+02,
+  static constexpr double a[] = {-3.969683028665376e+01, 2.209460984245205e+02,  -2.759285104469687e+02,
                                  1.383577518672690e+02,  -3.066479806614716e+01, 2.506628277459239e+00};
   static constexpr double b[] = {-5.447609879822406e+01, 1.615858368580409e+02, -1.556989798598866e+02,
-                                 6.680131188771972e+01,  -1.328068155288572e+01};
+                                 6.680131188771972e+01, -1.328068155288572e+01};
   static constexpr double c[] = {-7.784894002430293e-03, -3.223964580411365e-01, -2.400758277161838e+00,
                                  -2.549732539343734e+00, 4.374664141464968e+00,  2.938163982698783e+00};
   static constexpr double d[] = {7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e+00,

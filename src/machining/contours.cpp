@@ -28,24 +28,30 @@ std::vector<IsoLine> iso_lines(const std::vector<double>& z, int nx, int ny, dou
       const double v0 = at(i, j);
       const double v1 = vertical ? at(i, j + 1) : at(i + 1, j);
       const double t = (level - v0) / (v1 - v0);
-      point[key] = vertical ? std::array<double, 2>{double(i), j + t} : std::array<double, 2>{i + t, double(j)};
+      point[key] =
+          vertical ? std::array<double, 2>{double(i), j + t} : std::array<double, 2>{i + t, double(j)};
     }
     return key;
   };
   for (int j = 0; j + 1 < ny; ++j) {
     for (int i = 0; i + 1 < nx; ++i) {
       const double c[4] = {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)};
-      if (!(std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]) && std::isfinite(c[3]))) continue;
+      if (!(std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]) && std::isfinite(c[3])))
+        continue;
       int idx = 0;
       for (int q = 0; q < 4; ++q) idx |= (c[q] > level ? 1 : 0) << q;
       if (idx == 0 || idx == 15) continue;
       // Edges: e0 bottom (c0-c1), e1 right (c1-c2), e2 top (c3-c2), e3 left (c0-c3).
       const auto e = [&](int k) {
         switch (k) {
-          case 0: return crossing(0, i, j);
-          case 1: return crossing(1, i + 1, j);
-          case 2: return crossing(0, i, j + 1);
-          default: return crossing(1, i, j);
+          case 0:
+            return crossing(0, i, j);
+          case 1:
+            return crossing(1, i + 1, j);
+          case 2:
+            return crossing(0, i, j + 1);
+          default:
+            return crossing(1, i, j);
         }
       };
       const bool centre_above = (c[0] + c[1] + c[2] + c[3]) / 4.0 > level;
@@ -91,9 +97,12 @@ std::vector<IsoLine> iso_lines(const std::vector<double>& z, int nx, int ny, dou
       if (used[s0]) continue;
       std::int64_t start = segs[s0].a;
       if (pass == 0) {
-        if (touch[segs[s0].a].size() == 1) start = segs[s0].a;
-        else if (touch[segs[s0].b].size() == 1) start = segs[s0].b;
-        else continue;
+        if (touch[segs[s0].a].size() == 1)
+          start = segs[s0].a;
+        else if (touch[segs[s0].b].size() == 1)
+          start = segs[s0].b;
+        else
+          continue;
       }
       IsoLine line;
       line.pts.push_back(point[start]);

@@ -45,7 +45,8 @@ double constraint(const std::vector<double>& x, std::vector<double>& /*grad*/, v
 
 }  // namespace
 
-PointEval cobyla_refine(const Problem& p, int set, const SearchBox& box, const PointEval& start, long& evals) {
+PointEval cobyla_refine(const Problem& p, int set, const SearchBox& box, const PointEval& start,
+                        long& evals) {
   Ctx ctx{&p, set, &evals};
   nlopt::opt opt(nlopt::LN_COBYLA, 2);
   opt.set_lower_bounds({std::log(box.vc[0]), std::log(box.f[0])});
@@ -73,7 +74,9 @@ PointEval cobyla_refine(const Problem& p, int set, const SearchBox& box, const P
   return start;
 }
 #else
-PointEval cobyla_refine(const Problem&, int, const SearchBox&, const PointEval& start, long&) { return start; }
+PointEval cobyla_refine(const Problem&, int, const SearchBox&, const PointEval& start, long&) {
+  return start;
+}
 #endif
 
 }  // namespace detail

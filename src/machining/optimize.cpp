@@ -16,9 +16,12 @@ namespace cutroute::machining {
 
 const char* to_string(Status s) {
   switch (s) {
-    case Status::optimal: return "optimal";
-    case Status::infeasible: return "infeasible";
-    case Status::warning: return "warning";
+    case Status::optimal:
+      return "optimal";
+    case Status::infeasible:
+      return "infeasible";
+    case Status::warning:
+      return "warning";
   }
   return "?";
 }
@@ -129,7 +132,8 @@ std::vector<std::string> suggestions_for(ConstraintId c) {
     case ConstraintId::roughness:
       return {"use a larger nose radius r_eps (or a wiper insert)", "relax Ra_max or lower f_min"};
     case ConstraintId::power:
-      return {"split the depth of cut into more passes (smaller ap)", "use a machine with more spindle power"};
+      return {"split the depth of cut into more passes (smaller ap)",
+              "use a machine with more spindle power"};
     case ConstraintId::spindle:
     case ConstraintId::feedrate:
       return {"lower vc_min or f_min: the machine limits n_max / Vf_max exclude the whole search box"};
@@ -148,9 +152,9 @@ std::vector<std::string> suggestions_for(ConstraintId c) {
 std::string empty_box_reason(const Problem& p, int set, const SearchBox& b) {
   std::string msg;
   if (b.vc[0] > b.vc[1]) {
-    msg += "cutting-speed range is empty: search.vc_min = " + fmt(p.search.vc_min) + " m/min > min(search.vc_max = " +
-           fmt(p.search.vc_max) + ", pi*D*n_max/1000 = " + fmt(spindle_speed_limit_vc(p.op.D, p.machine.n_max)) +
-           ") m/min";
+    msg += "cutting-speed range is empty: search.vc_min = " + fmt(p.search.vc_min) +
+           " m/min > min(search.vc_max = " + fmt(p.search.vc_max) +
+           ", pi*D*n_max/1000 = " + fmt(spindle_speed_limit_vc(p.op.D, p.machine.n_max)) + ") m/min";
   }
   if (b.f[0] > b.f[1]) {
     if (!msg.empty()) msg += "; ";
@@ -185,8 +189,7 @@ void add_solution_warnings(const Problem& p, const OptimizeResult& r, std::vecto
       w.push_back("boring-bar overhang L_o/d = " + fmt(L_o / bar.d) + " exceeds " + fmt(limit) + " for a " +
                   (bar.E < 300000.0 ? "steel" : "carbide") + " bar: expect chatter");
     }
-    if (r.V_rho_cubature && e.acc &&
-        std::abs(*r.V_rho_cubature / e.acc->V_rho - 1.0) > 1e-4) {
+    if (r.V_rho_cubature && e.acc && std::abs(*r.V_rho_cubature / e.acc->V_rho - 1.0) > 1e-4) {
       w.push_back("the cubature V_rho (" + fmt(*r.V_rho_cubature * 1000.0) +
                   " um) differs from the closed form (" + fmt(e.acc->V_rho * 1000.0) +
                   " um) by more than 1e-4: raise integration.simpson_m/n");
@@ -208,9 +211,10 @@ void apply_spindle_steps(const Problem& p, OptimizeResult& r) {
   }
   const double vc = kPi * p.op.D * n_step / 1000.0;
   const PointEval e = evaluate(p, vc, r.solution->f, r.set);
-  r.warnings.push_back("stepped spindle: n rounded down from " + fmt(r.solution->n) + " to " + fmt(n_step) +
-                       " rpm (vc = " + fmt(vc) + " m/min)" +
-                       (e.feasible() ? std::string() : "; the rounded point violates " + std::string(to_string(e.worst()))));
+  r.warnings.push_back(
+      "stepped spindle: n rounded down from " + fmt(r.solution->n) + " to " + fmt(n_step) +
+      " rpm (vc = " + fmt(vc) + " m/min)" +
+      (e.feasible() ? std::string() : "; the rounded point violates " + std::string(to_string(e.worst()))));
   r.solution = e;
 }
 
@@ -333,7 +337,8 @@ OptimizeResult optimize(const Problem& p, const OptimizeParams& params) {
   for (int set = 0; set < life_set_count(p); ++set) {
     const SearchBox box = search_box(p, set);
     if (box.vc[0] > box.vc[1] || box.f[0] > box.f[1]) {
-      box_reasons += (box_reasons.empty() ? "" : "; ") + std::string(life_set_count(p) > 1 ? "set " + std::to_string(set) + ": " : "") +
+      box_reasons += (box_reasons.empty() ? "" : "; ") +
+                     std::string(life_set_count(p) > 1 ? "set " + std::to_string(set) + ": " : "") +
                      empty_box_reason(p, set, box);
       continue;
     }
@@ -357,8 +362,10 @@ OptimizeResult optimize(const Problem& p, const OptimizeParams& params) {
       r.grid_best = scan.best;
       r.vc_bounds = box.vc;
       r.f_bounds = box.f;
-      if (params.keep_surface) r.surface = std::move(scan.surface);
-      else r.surface.reset();
+      if (params.keep_surface)
+        r.surface = std::move(scan.surface);
+      else
+        r.surface.reset();
     }
   }
 
@@ -375,9 +382,9 @@ OptimizeResult optimize(const Problem& p, const OptimizeParams& params) {
       inf.violation = least_violation;
       inf.vc = least_violated->vc;
       inf.f = least_violated->f;
-      inf.message = "no grid point meets every constraint; the least-violated constraint is " + inf.constraint +
-                    " (g = " + fmt(least_violation) + " at vc = " + fmt(inf.vc) + " m/min, f = " + fmt(inf.f) +
-                    " mm/rev)";
+      inf.message = "no grid point meets every constraint; the least-violated constraint is " +
+                    inf.constraint + " (g = " + fmt(least_violation) + " at vc = " + fmt(inf.vc) +
+                    " m/min, f = " + fmt(inf.f) + " mm/rev)";
       inf.suggestions = suggestions_for(c);
     }
     r.infeasible = std::move(inf);
@@ -505,8 +512,8 @@ Fig5Agreement fig5_agreement(const Problem& p, const OptimizeResult& r, const Fi
     }
   }
   const double slack = 1e-12 * x.cost.total;
-  a.within_one_cell_cost = f5.CT >= x.cost.total - slack &&
-                           (a.within_one_cell || (dearest > -kInf && f5.CT <= dearest + slack));
+  a.within_one_cell_cost =
+      f5.CT >= x.cost.total - slack && (a.within_one_cell || (dearest > -kInf && f5.CT <= dearest + slack));
   return a;
 }
 

@@ -10,15 +10,24 @@ namespace cutroute::machining {
 
 const char* to_string(ConstraintId c) {
   switch (c) {
-    case ConstraintId::power: return "power";
-    case ConstraintId::roughness: return "roughness";
-    case ConstraintId::spindle: return "spindle";
-    case ConstraintId::feedrate: return "feedrate";
-    case ConstraintId::accuracy: return "accuracy";
-    case ConstraintId::tool_life_min: return "tool_life_min";
-    case ConstraintId::tool_life_max: return "tool_life_max";
-    case ConstraintId::load: return "load";
-    case ConstraintId::deflection: return "deflection";
+    case ConstraintId::power:
+      return "power";
+    case ConstraintId::roughness:
+      return "roughness";
+    case ConstraintId::spindle:
+      return "spindle";
+    case ConstraintId::feedrate:
+      return "feedrate";
+    case ConstraintId::accuracy:
+      return "accuracy";
+    case ConstraintId::tool_life_min:
+      return "tool_life_min";
+    case ConstraintId::tool_life_max:
+      return "tool_life_max";
+    case ConstraintId::load:
+      return "load";
+    case ConstraintId::deflection:
+      return "deflection";
   }
   return "?";
 }
@@ -26,7 +35,8 @@ const char* to_string(ConstraintId c) {
 double PointEval::max_violation() const {
   double worst_g = -std::numeric_limits<double>::infinity();
   for (const auto& c : g) {
-    if (c.enabled) worst_g = std::max(worst_g, std::isnan(c.g) ? std::numeric_limits<double>::infinity() : c.g);
+    if (c.enabled)
+      worst_g = std::max(worst_g, std::isnan(c.g) ? std::numeric_limits<double>::infinity() : c.g);
   }
   return worst_g;
 }
@@ -56,9 +66,12 @@ namespace {
 
 double tangential_force(const Problem& p, double f, double vc) {
   switch (p.tangential.kind) {
-    case ForceKind::handbook: return handbook_force_n(p.tangential.handbook, p.op.ap, f, vc);
-    case ForceKind::kienzle: return kienzle_force_n(p.tangential.kienzle, p.op.ap, f, p.tool.kappa_r);
-    case ForceKind::ratio: break;
+    case ForceKind::handbook:
+      return handbook_force_n(p.tangential.handbook, p.op.ap, f, vc);
+    case ForceKind::kienzle:
+      return kienzle_force_n(p.tangential.kienzle, p.op.ap, f, p.tool.kappa_r);
+    case ForceKind::ratio:
+      break;
   }
   return 0.0;
 }
@@ -66,9 +79,12 @@ double tangential_force(const Problem& p, double f, double vc) {
 double radial_force(const Problem& p, double Fc, double f, double vc) {
   if (!p.radial) return 0.0;
   switch (p.radial->kind) {
-    case ForceKind::handbook: return handbook_force_n(p.radial->handbook, p.op.ap, f, vc);
-    case ForceKind::ratio: return p.radial->k_r * Fc;
-    case ForceKind::kienzle: break;
+    case ForceKind::handbook:
+      return handbook_force_n(p.radial->handbook, p.op.ap, f, vc);
+    case ForceKind::ratio:
+      return p.radial->k_r * Fc;
+    case ForceKind::kienzle:
+      break;
   }
   return 0.0;
 }
@@ -166,7 +182,8 @@ PointEval evaluate(const Problem& p, double vc, double f, int set, AccuracyMetho
     e.acc = accuracy_chain(p, *p.accuracy, e.Fr, method);
     set_upper(g[static_cast<int>(ConstraintId::accuracy)], e.acc->value, p.accuracy->K_TZ);
     if (p.accuracy->delta_allow) {
-      set_upper(g[static_cast<int>(ConstraintId::deflection)], std::abs(e.acc->delta0), *p.accuracy->delta_allow);
+      set_upper(g[static_cast<int>(ConstraintId::deflection)], std::abs(e.acc->delta0),
+                *p.accuracy->delta_allow);
     }
   }
   if (p.search.T_min) set_lower(g[static_cast<int>(ConstraintId::tool_life_min)], e.T, *p.search.T_min);

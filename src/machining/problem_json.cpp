@@ -71,17 +71,20 @@ class Obj {
     const json& v = raw(key);
     if (!v.is_array()) throw FieldError(at(key) + ": expected an array of numbers");
     if (exact && v.size() != exact) {
-      throw FieldError(at(key) + ": expected " + std::to_string(exact) + " numbers, got " + std::to_string(v.size()));
+      throw FieldError(at(key) + ": expected " + std::to_string(exact) + " numbers, got " +
+                       std::to_string(v.size()));
     }
     std::vector<double> out;
-    for (std::size_t i = 0; i < v.size(); ++i) out.push_back(as_number(v[i], at(key) + "[" + std::to_string(i) + "]"));
+    for (std::size_t i = 0; i < v.size(); ++i)
+      out.push_back(as_number(v[i], at(key) + "[" + std::to_string(i) + "]"));
     return out;
   }
   // Keys the reader never asked for are typos or unsupported options; "_..." and the notes are free.
   void finish() const {
     for (auto it = j_.begin(); it != j_.end(); ++it) {
       const std::string& k = it.key();
-      if (used_.count(k) || k.empty() || k[0] == '_' || k == "comment" || k == "source" || k == "notes") continue;
+      if (used_.count(k) || k.empty() || k[0] == '_' || k == "comment" || k == "source" || k == "notes")
+        continue;
       throw FieldError(at(k) + ": unknown field");
     }
   }
@@ -100,7 +103,8 @@ class Obj {
 };
 
 template <class E>
-E pick(const std::string& path, const std::string& value, std::initializer_list<std::pair<const char*, E>> names) {
+E pick(const std::string& path, const std::string& value,
+       std::initializer_list<std::pair<const char*, E>> names) {
   std::string known;
   for (const auto& [n, e] : names) {
     if (value == n) return e;
@@ -114,8 +118,10 @@ ForceModel read_force(Obj& parent, const std::string& key, bool radial) {
   ForceModel m;
   // Two separate lists: an initializer_list's array would not outlive a conditional expression.
   const std::string model = o.str("model");
-  m.kind = radial ? pick<ForceKind>(o.at("model"), model, {{"handbook", ForceKind::handbook}, {"ratio", ForceKind::ratio}})
-                  : pick<ForceKind>(o.at("model"), model, {{"handbook", ForceKind::handbook}, {"kienzle", ForceKind::kienzle}});
+  m.kind = radial ? pick<ForceKind>(o.at("model"), model,
+                                    {{"handbook", ForceKind::handbook}, {"ratio", ForceKind::ratio}})
+                  : pick<ForceKind>(o.at("model"), model,
+                                    {{"handbook", ForceKind::handbook}, {"kienzle", ForceKind::kienzle}});
   switch (m.kind) {
     case ForceKind::handbook:
       m.handbook.Cp = o.num("Cp");
@@ -128,7 +134,9 @@ ForceModel read_force(Obj& parent, const std::string& key, bool radial) {
       m.kienzle.kc11 = o.num("kc11");
       m.kienzle.mc = o.num("mc");
       break;
-    case ForceKind::ratio: m.k_r = o.num("k_r"); break;
+    case ForceKind::ratio:
+      m.k_r = o.num("k_r");
+      break;
   }
   o.finish();
   return m;
@@ -185,8 +193,9 @@ Problem read(const json& root) {
   }
   {
     Obj o(top.raw("tool_life"), "tool_life");
-    p.life.kind = pick<ToolLifeKind>(o.at("model"), o.str("model"),
-                       {{"taylor", ToolLifeKind::taylor}, {"handbook", ToolLifeKind::handbook}});
+    p.life.kind =
+        pick<ToolLifeKind>(o.at("model"), o.str("model"),
+                           {{"taylor", ToolLifeKind::taylor}, {"handbook", ToolLifeKind::handbook}});
     p.life.source = o.str("source", "");
     if (p.life.kind == ToolLifeKind::taylor) {
       p.life.taylor.C = o.num("C");
@@ -230,8 +239,9 @@ Problem read(const json& root) {
     p.econ.rates.R_TR = o.num("R_TR");
     p.econ.t_load = o.num("t_load");
     p.econ.R_H = o.num("R_H");
-    p.econ.rate_map = pick<RateMap>(o.at("rate_map"), o.str("rate_map", "physical"),
-                           {{"physical", RateMap::physical}, {"listed_order", RateMap::listed_order}});
+    p.econ.rate_map =
+        pick<RateMap>(o.at("rate_map"), o.str("rate_map", "physical"),
+                      {{"physical", RateMap::physical}, {"listed_order", RateMap::listed_order}});
     o.finish();
   }
   {
@@ -249,9 +259,11 @@ Problem read(const json& root) {
       a.bar.d = b.num("d");
       a.bar.d_in = b.num("d_in", 0.0);
       a.bar.mode = pick<OverhangMode>(b.at("overhang_mode"), b.str("overhang_mode", "constant"),
-                        {{"constant", OverhangMode::constant}, {"quill", OverhangMode::quill}});
-      if (a.bar.mode == OverhangMode::constant) a.bar.L_o = b.num("L_o");
-      else a.bar.L_o0 = b.num("L_o0");
+                                      {{"constant", OverhangMode::constant}, {"quill", OverhangMode::quill}});
+      if (a.bar.mode == OverhangMode::constant)
+        a.bar.L_o = b.num("L_o");
+      else
+        a.bar.L_o0 = b.num("L_o0");
       b.finish();
     }
     {
@@ -292,7 +304,8 @@ Problem read(const json& root) {
         throw FieldError("search.grid: expected [n_vc, n_f] integers");
       }
       const auto gv = g[0].get<long long>(), gf = g[1].get<long long>();
-      if (gv < 3 || gv > 4001 || gf < 3 || gf > 4001) throw FieldError("search.grid: each size must lie in [3, 4001]");
+      if (gv < 3 || gv > 4001 || gf < 3 || gf > 4001)
+        throw FieldError("search.grid: each size must lie in [3, 4001]");
       p.search.grid_vc = static_cast<int>(gv);
       p.search.grid_f = static_cast<int>(gf);
     }
@@ -338,7 +351,8 @@ Result<json> parse(std::string_view text, const std::string& file) {
   } catch (const json::parse_error& e) {
     // Byte offset -> 1-based line for the diagnostic.
     const std::size_t upto = std::min<std::size_t>(e.byte, text.size());
-    const long line = 1 + static_cast<long>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(upto), '\n'));
+    const long line = 1 + static_cast<long>(std::count(
+                              text.begin(), text.begin() + static_cast<std::ptrdiff_t>(upto), '\n'));
     return make_error(std::string("invalid JSON: ") + e.what(), file, line);
   }
 }
@@ -355,7 +369,8 @@ Result<Transitions> read_transitions_json(std::string_view text, const std::stri
       Obj top(*root, "");
       t.name = top.str("name", "");
       const json& list = top.raw("transitions");
-      if (!list.is_array() || list.empty()) throw FieldError("transitions: expected a non-empty array of problems");
+      if (!list.is_array() || list.empty())
+        throw FieldError("transitions: expected a non-empty array of problems");
       top.finish();
       for (std::size_t i = 0; i < list.size(); ++i) {
         auto p = read_one(list[i], file, "transitions[" + std::to_string(i) + "].");

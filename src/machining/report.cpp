@@ -45,15 +45,23 @@ json constraints_json(const PointEval& e) {
 
 const char* constraint_unit(ConstraintId c) {
   switch (c) {
-    case ConstraintId::power: return "kW";
-    case ConstraintId::roughness: return "um";
-    case ConstraintId::spindle: return "rpm";
-    case ConstraintId::feedrate: return "mm/min";
-    case ConstraintId::accuracy: return "mm";
+    case ConstraintId::power:
+      return "kW";
+    case ConstraintId::roughness:
+      return "um";
+    case ConstraintId::spindle:
+      return "rpm";
+    case ConstraintId::feedrate:
+      return "mm/min";
+    case ConstraintId::accuracy:
+      return "mm";
     case ConstraintId::tool_life_min:
-    case ConstraintId::tool_life_max: return "min";
-    case ConstraintId::load: return "N";
-    case ConstraintId::deflection: return "mm";
+    case ConstraintId::tool_life_max:
+      return "min";
+    case ConstraintId::load:
+      return "N";
+    case ConstraintId::deflection:
+      return "mm";
   }
   return "";
 }
@@ -75,13 +83,21 @@ json report_json(const RunOutput& out) {
     j["tm_min"] = num(e.tm);
     j["tool_life_min"] = num(e.T);
     j["tool_life_set"] = r.set;
-    j["cost"] = {{"total_cu", num(e.cost.total)},       {"cutting_cu", num(e.cost.cutting)},
-                 {"tool_cu", num(e.cost.tool)},         {"service_cu", num(e.cost.service)},
-                 {"fixed_cu", num(e.cost.fixed)},       {"edges_per_part", num(e.cost.edges_per_part)},
+    j["cost"] = {{"total_cu", num(e.cost.total)},
+                 {"cutting_cu", num(e.cost.cutting)},
+                 {"tool_cu", num(e.cost.tool)},
+                 {"service_cu", num(e.cost.service)},
+                 {"fixed_cu", num(e.cost.fixed)},
+                 {"edges_per_part", num(e.cost.edges_per_part)},
                  {"parts_per_edge", num(e.cost.parts_per_edge)}};
-    j["derived"] = {{"Fc_N", num(e.Fc)},          {"Fr_N", num(e.Fr)},          {"Pc_kW", num(e.Pc)},
-                    {"Pc_over_eta_kW", num(e.P_demand)}, {"P_avail_kW", num(e.P_avail)},
-                    {"torque_Nm", num(e.M)},      {"Ra_um", num(e.Ra)},         {"Rz_um", num(e.Rz)}};
+    j["derived"] = {{"Fc_N", num(e.Fc)},
+                    {"Fr_N", num(e.Fr)},
+                    {"Pc_kW", num(e.Pc)},
+                    {"Pc_over_eta_kW", num(e.P_demand)},
+                    {"P_avail_kW", num(e.P_avail)},
+                    {"torque_Nm", num(e.M)},
+                    {"Ra_um", num(e.Ra)},
+                    {"Rz_um", num(e.Rz)}};
     if (e.acc) {
       const AccuracyValues& a = *e.acc;
       j["accuracy"] = {{"k_N_mm", num(a.k)},
@@ -101,7 +117,8 @@ json report_json(const RunOutput& out) {
     j["constraints"] = constraints_json(e);
     j["active"] = r.active;
     if (r.grid_best) j["grid_best"] = point_json(*r.grid_best);
-    j["search_box"] = {{"vc_m_min", {r.vc_bounds[0], r.vc_bounds[1]}}, {"f_mm_rev", {r.f_bounds[0], r.f_bounds[1]}}};
+    j["search_box"] = {{"vc_m_min", {r.vc_bounds[0], r.vc_bounds[1]}},
+                       {"f_mm_rev", {r.f_bounds[0], r.f_bounds[1]}}};
   }
   if (r.infeasible) {
     const Infeasibility& inf = *r.infeasible;
@@ -130,12 +147,9 @@ json report_json(const RunOutput& out) {
   j["near_optimal"] = contours;
   if (out.fig5) {
     const Fig5Result& f = *out.fig5;
-    j["fig5_cross_check"] = {{"found", f.found},
-                             {"candidate", f.candidate},
-                             {"candidates", f.candidates},
-                             {"vc_m_min", num(f.vc)},
-                             {"f_mm_rev", num(f.f)},
-                             {"ct_cu", num(f.CT)}};
+    j["fig5_cross_check"] = {{"found", f.found},           {"candidate", f.candidate},
+                             {"candidates", f.candidates}, {"vc_m_min", num(f.vc)},
+                             {"f_mm_rev", num(f.f)},       {"ct_cu", num(f.CT)}};
     const Fig5Agreement a = fig5_agreement(p, r, f);
     j["fig5_cross_check"]["distance_cells"] = {a.cells_vc, a.cells_f};
     j["fig5_cross_check"]["within_one_cell"] = a.within_one_cell;
@@ -167,10 +181,11 @@ std::string report_text(const RunOutput& out) {
     const PointEval& e = *r.solution;
     s += "vc = " + fmt(e.vc, 8) + " m/min, f = " + fmt(e.f, 8) + " mm/rev, n = " + fmt(e.n, 7) +
          " rpm, Vf = " + fmt(e.Vf, 7) + " mm/min\n";
-    s += "tm = " + fmt(e.tm, 7) + " min, T = " + fmt(e.T, 7) + " min, edges/part = " + fmt(e.cost.edges_per_part, 5) +
+    s += "tm = " + fmt(e.tm, 7) + " min, T = " + fmt(e.T, 7) +
+         " min, edges/part = " + fmt(e.cost.edges_per_part, 5) + "\n";
+    s += "CT = " + fmt(e.cost.total, 8) + " CU = cutting " + fmt(e.cost.cutting, 6) + " + tool " +
+         fmt(e.cost.tool, 6) + " + service " + fmt(e.cost.service, 6) + " + fixed " + fmt(e.cost.fixed, 6) +
          "\n";
-    s += "CT = " + fmt(e.cost.total, 8) + " CU = cutting " + fmt(e.cost.cutting, 6) + " + tool " + fmt(e.cost.tool, 6) +
-         " + service " + fmt(e.cost.service, 6) + " + fixed " + fmt(e.cost.fixed, 6) + "\n";
     s += "Fc = " + fmt(e.Fc, 6) + " N, Pc = " + fmt(e.Pc, 6) + " kW (Pc/eta " + fmt(e.P_demand, 6) + " of " +
          fmt(e.P_avail, 6) + "), Ra = " + fmt(e.Ra, 5) + " um\n";
     if (e.acc) {
@@ -199,10 +214,11 @@ std::string report_csv(const RunOutput& out) {
   const Problem& p = *out.problem;
   const OptimizeResult& r = *out.result;
   std::string s = "section,vc_m_min,f_mm_rev,vf_mm_min,ct_cu,tool_life_min,feasible,constraint\n";
-  const auto row = [&](const char* sec, double vc, double f, double ct, double T, bool ok, const std::string& c) {
+  const auto row = [&](const char* sec, double vc, double f, double ct, double T, bool ok,
+                       const std::string& c) {
     const double Vf = feed_speed_mm_min(f, spindle_speed_rpm(vc, p.op.D));
-    s += std::string(sec) + "," + fmt(vc, 10) + "," + fmt(f, 10) + "," + fmt(Vf, 10) + "," + fmt(ct, 10) + "," +
-         fmt(T, 8) + "," + (ok ? "1" : "0") + "," + c + "\n";
+    s += std::string(sec) + "," + fmt(vc, 10) + "," + fmt(f, 10) + "," + fmt(Vf, 10) + "," + fmt(ct, 10) +
+         "," + fmt(T, 8) + "," + (ok ? "1" : "0") + "," + c + "\n";
   };
   for (const FeedOptimum& v : r.valley) {
     std::string b;

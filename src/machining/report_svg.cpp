@@ -48,11 +48,16 @@ Rgb pale(Rgb c) { return {c.r * 0.3 + 225 * 0.7, c.g * 0.3 + 225 * 0.7, c.b * 0.
 std::string esc(const std::string& s) {
   std::string o;
   for (char ch : s) {
-    if (ch == '<') o += "&lt;";
-    else if (ch == '>') o += "&gt;";
-    else if (ch == '&') o += "&amp;";
-    else if (ch == '"') o += "&quot;";
-    else o += ch;
+    if (ch == '<')
+      o += "&lt;";
+    else if (ch == '>')
+      o += "&gt;";
+    else if (ch == '&')
+      o += "&amp;";
+    else if (ch == '"')
+      o += "&quot;";
+    else
+      o += ch;
   }
   return o;
 }
@@ -69,7 +74,8 @@ std::string xy(double x, double y) { return fmt_fixed(x, 2) + "," + fmt_fixed(y,
 std::vector<double> log_ticks(double lo, double hi) {
   for (const auto& mant : {std::vector<double>{1, 2, 5}, std::vector<double>{1, 1.5, 2, 3, 5, 7}}) {
     std::vector<double> t;
-    for (int e = static_cast<int>(std::floor(std::log10(lo))) - 1; e <= static_cast<int>(std::ceil(std::log10(hi))); ++e) {
+    for (int e = static_cast<int>(std::floor(std::log10(lo))) - 1;
+         e <= static_cast<int>(std::ceil(std::log10(hi))); ++e) {
       for (double m : mant) {
         const double v = m * std::pow(10.0, e);
         if (v >= lo * (1 - 1e-9) && v <= hi * (1 + 1e-9)) t.push_back(v);
@@ -96,7 +102,8 @@ std::string report_svg(const RunOutput& out) {
        "\" font-family=\"DejaVu Sans, Arial, sans-serif\" font-size=\"13\">\n";
   s += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   const std::string title = "Cost per part CT(vc, Vf)" + (p.name.empty() ? std::string() : " - " + p.name);
-  s += "<text x=\"" + fmt_fixed(kLeft, 0) + "\" y=\"28\" font-size=\"16\" font-weight=\"bold\">" + esc(title) + "</text>\n";
+  s += "<text x=\"" + fmt_fixed(kLeft, 0) + "\" y=\"28\" font-size=\"16\" font-weight=\"bold\">" +
+       esc(title) + "</text>\n";
   if (!r.surface || r.surface->vc.size() < 2 || r.surface->f.size() < 2) {
     s += "<text x=\"" + fmt_fixed(kLeft, 0) + "\" y=\"60\">status: " + std::string(to_string(r.status)) +
          (r.infeasible ? " - " + esc(r.infeasible->message) : std::string()) + "</text>\n</svg>\n";
@@ -111,24 +118,28 @@ std::string report_svg(const RunOutput& out) {
   const double ct_top = std::min(*std::max_element(g.CT.begin(), g.CT.end()), 2.0 * ct_ref);
   const auto shade = [&](double ct) { return std::log(ct / ct_ref) / std::log(ct_top / ct_ref); };
 
-  const std::string sub = r.solution
-      ? "optimum vc = " + fmt(r.solution->vc, 6) + " m/min, f = " + fmt(r.solution->f, 5) + " mm/rev, Vf = " +
-            fmt(r.solution->Vf, 5) + " mm/min, CT = " + fmt(r.solution->cost.total, 6) + " CU; active: " +
-            [&] {
-              std::string a;
-              for (const auto& n : r.active) a += (a.empty() ? "" : ", ") + n;
-              return a.empty() ? std::string("none (bounds only)") : a;
-            }()
-      : std::string("status: ") + to_string(r.status);
-  s += "<text x=\"" + fmt_fixed(kLeft, 0) + "\" y=\"50\" font-size=\"12\" fill=\"#333\">" + esc(sub) + "</text>\n";
+  const std::string sub =
+      r.solution ? "optimum vc = " + fmt(r.solution->vc, 6) + " m/min, f = " + fmt(r.solution->f, 5) +
+                       " mm/rev, Vf = " + fmt(r.solution->Vf, 5) +
+                       " mm/min, CT = " + fmt(r.solution->cost.total, 6) + " CU; active: " +
+                       [&] {
+                         std::string a;
+                         for (const auto& n : r.active) a += (a.empty() ? "" : ", ") + n;
+                         return a.empty() ? std::string("none (bounds only)") : a;
+                       }()
+                 : std::string("status: ") + to_string(r.status);
+  s += "<text x=\"" + fmt_fixed(kLeft, 0) + "\" y=\"50\" font-size=\"12\" fill=\"#333\">" + esc(sub) +
+       "</text>\n";
 
   // Heat map: each block of grid cells is a parallelogram in (ln vc, ln Vf).
-  s += "<clipPath id=\"plot\"><rect x=\"" + fmt_fixed(kLeft, 2) + "\" y=\"" + fmt_fixed(kTop, 2) + "\" width=\"" +
-       fmt_fixed(kPlotW, 2) + "\" height=\"" + fmt_fixed(kPlotH, 2) + "\"/></clipPath>\n";
-  s += "<rect x=\"" + fmt_fixed(kLeft, 2) + "\" y=\"" + fmt_fixed(kTop, 2) + "\" width=\"" + fmt_fixed(kPlotW, 2) +
-       "\" height=\"" + fmt_fixed(kPlotH, 2) + "\" fill=\"#f4f4f4\" stroke=\"none\"/>\n";
+  s += "<clipPath id=\"plot\"><rect x=\"" + fmt_fixed(kLeft, 2) + "\" y=\"" + fmt_fixed(kTop, 2) +
+       "\" width=\"" + fmt_fixed(kPlotW, 2) + "\" height=\"" + fmt_fixed(kPlotH, 2) + "\"/></clipPath>\n";
+  s += "<rect x=\"" + fmt_fixed(kLeft, 2) + "\" y=\"" + fmt_fixed(kTop, 2) + "\" width=\"" +
+       fmt_fixed(kPlotW, 2) + "\" height=\"" + fmt_fixed(kPlotH, 2) +
+       "\" fill=\"#f4f4f4\" stroke=\"none\"/>\n";
   s += "<g clip-path=\"url(#plot)\" stroke-width=\"0.6\">\n";
-  const int sx = std::max(1, (nx - 1 + kMaxCells - 1) / kMaxCells), sy = std::max(1, (ny - 1 + kMaxCells - 1) / kMaxCells);
+  const int sx = std::max(1, (nx - 1 + kMaxCells - 1) / kMaxCells),
+            sy = std::max(1, (ny - 1 + kMaxCells - 1) / kMaxCells);
   for (int j0 = 0; j0 + 1 < ny; j0 += sy) {
     const int j1 = std::min(j0 + sy, ny - 1);
     for (int i0 = 0; i0 + 1 < nx; i0 += sx) {
@@ -140,8 +151,10 @@ std::string report_svg(const RunOutput& out) {
       const Rgb col = ok ? ramp(shade(ct)) : pale(ramp(shade(ct)));
       const std::string cs = css(col);
       s += "<polygon points=\"" + xy(ax.x(g.vc[i0]), ax.y(vf(g.vc[i0], g.f[j0]))) + " " +
-           xy(ax.x(g.vc[i1]), ax.y(vf(g.vc[i1], g.f[j0]))) + " " + xy(ax.x(g.vc[i1]), ax.y(vf(g.vc[i1], g.f[j1]))) +
-           " " + xy(ax.x(g.vc[i0]), ax.y(vf(g.vc[i0], g.f[j1]))) + "\" fill=\"" + cs + "\" stroke=\"" + cs + "\"/>\n";
+           xy(ax.x(g.vc[i1]), ax.y(vf(g.vc[i1], g.f[j0]))) + " " +
+           xy(ax.x(g.vc[i1]), ax.y(vf(g.vc[i1], g.f[j1]))) + " " +
+           xy(ax.x(g.vc[i0]), ax.y(vf(g.vc[i0], g.f[j1]))) + "\" fill=\"" + cs + "\" stroke=\"" + cs +
+           "\"/>\n";
     }
   }
   // Feasible-region boundary: the 0.5 iso-line of the feasibility indicator.
@@ -175,7 +188,8 @@ std::string report_svg(const RunOutput& out) {
     const std::size_t k = static_cast<std::size_t>(it - deltas.begin());
     std::vector<std::array<double, 2>> pts;
     for (const auto& q : c.pts) pts.push_back({ax.x(q[0]), ax.y(q[1])});
-    s += polyline(pts, "stroke=\"#c0392b\" stroke-width=\"1.4\" " + std::string(dash[std::min<std::size_t>(k, 2)]));
+    s += polyline(
+        pts, "stroke=\"#c0392b\" stroke-width=\"1.4\" " + std::string(dash[std::min<std::size_t>(k, 2)]));
   }
   // Valley vc*(f).
   std::vector<std::array<double, 2>> vpts;
@@ -185,7 +199,8 @@ std::string report_svg(const RunOutput& out) {
   if (!vpts.empty()) {
     s += polyline(vpts, "stroke=\"#1f4e9e\" stroke-width=\"2\"");
     for (const auto& q : vpts) {
-      s += "<circle cx=\"" + fmt_fixed(q[0], 2) + "\" cy=\"" + fmt_fixed(q[1], 2) + "\" r=\"2.6\" fill=\"#1f4e9e\"/>\n";
+      s += "<circle cx=\"" + fmt_fixed(q[0], 2) + "\" cy=\"" + fmt_fixed(q[1], 2) +
+           "\" r=\"2.6\" fill=\"#1f4e9e\"/>\n";
     }
   }
   s += "</g>\n";
@@ -195,27 +210,28 @@ std::string report_svg(const RunOutput& out) {
     s += "<circle cx=\"" + fmt_fixed(ox, 2) + "\" cy=\"" + fmt_fixed(oy, 2) +
          "\" r=\"6\" fill=\"#e74c3c\" stroke=\"white\" stroke-width=\"2\"/>\n";
     const bool left = ox > kLeft + kPlotW * 0.7;
-    s += "<text x=\"" + fmt_fixed(left ? ox - 10 : ox + 10, 2) + "\" y=\"" + fmt_fixed(oy - 10, 2) + "\" text-anchor=\"" +
-         (left ? "end" : "start") +
-         "\" font-weight=\"bold\" fill=\"#111\" stroke=\"white\" stroke-width=\"3\" paint-order=\"stroke\">optimum CT* = " +
+    s += "<text x=\"" + fmt_fixed(left ? ox - 10 : ox + 10, 2) + "\" y=\"" + fmt_fixed(oy - 10, 2) +
+         "\" text-anchor=\"" + (left ? "end" : "start") +
+         "\" font-weight=\"bold\" fill=\"#111\" stroke=\"white\" stroke-width=\"3\" "
+         "paint-order=\"stroke\">optimum CT* = " +
          fmt(r.solution->cost.total, 6) + "</text>\n";
   }
   // Frame, ticks, labels.
-  s += "<rect x=\"" + fmt_fixed(kLeft, 2) + "\" y=\"" + fmt_fixed(kTop, 2) + "\" width=\"" + fmt_fixed(kPlotW, 2) +
-       "\" height=\"" + fmt_fixed(kPlotH, 2) + "\" fill=\"none\" stroke=\"#000\"/>\n";
+  s += "<rect x=\"" + fmt_fixed(kLeft, 2) + "\" y=\"" + fmt_fixed(kTop, 2) + "\" width=\"" +
+       fmt_fixed(kPlotW, 2) + "\" height=\"" + fmt_fixed(kPlotH, 2) + "\" fill=\"none\" stroke=\"#000\"/>\n";
   for (double t : log_ticks(g.vc.front(), g.vc.back())) {
     const double x = ax.x(t);
-    s += "<line x1=\"" + fmt_fixed(x, 2) + "\" y1=\"" + fmt_fixed(kTop + kPlotH, 2) + "\" x2=\"" + fmt_fixed(x, 2) +
-         "\" y2=\"" + fmt_fixed(kTop + kPlotH + 6, 2) + "\" stroke=\"#000\"/>\n";
-    s += "<text x=\"" + fmt_fixed(x, 2) + "\" y=\"" + fmt_fixed(kTop + kPlotH + 21, 2) + "\" text-anchor=\"middle\">" +
-         fmt(t, 4) + "</text>\n";
+    s += "<line x1=\"" + fmt_fixed(x, 2) + "\" y1=\"" + fmt_fixed(kTop + kPlotH, 2) + "\" x2=\"" +
+         fmt_fixed(x, 2) + "\" y2=\"" + fmt_fixed(kTop + kPlotH + 6, 2) + "\" stroke=\"#000\"/>\n";
+    s += "<text x=\"" + fmt_fixed(x, 2) + "\" y=\"" + fmt_fixed(kTop + kPlotH + 21, 2) +
+         "\" text-anchor=\"middle\">" + fmt(t, 4) + "</text>\n";
   }
   for (double t : log_ticks(std::exp(ax.ly0), std::exp(ax.ly1))) {
     const double y = ax.y(t);
-    s += "<line x1=\"" + fmt_fixed(kLeft - 6, 2) + "\" y1=\"" + fmt_fixed(y, 2) + "\" x2=\"" + fmt_fixed(kLeft, 2) +
-         "\" y2=\"" + fmt_fixed(y, 2) + "\" stroke=\"#000\"/>\n";
-    s += "<text x=\"" + fmt_fixed(kLeft - 9, 2) + "\" y=\"" + fmt_fixed(y + 4, 2) + "\" text-anchor=\"end\">" +
-         fmt(t, 4) + "</text>\n";
+    s += "<line x1=\"" + fmt_fixed(kLeft - 6, 2) + "\" y1=\"" + fmt_fixed(y, 2) + "\" x2=\"" +
+         fmt_fixed(kLeft, 2) + "\" y2=\"" + fmt_fixed(y, 2) + "\" stroke=\"#000\"/>\n";
+    s += "<text x=\"" + fmt_fixed(kLeft - 9, 2) + "\" y=\"" + fmt_fixed(y + 4, 2) +
+         "\" text-anchor=\"end\">" + fmt(t, 4) + "</text>\n";
   }
   s += "<text x=\"" + fmt_fixed(kLeft + kPlotW / 2, 2) + "\" y=\"" + fmt_fixed(kTop + kPlotH + 45, 2) +
        "\" text-anchor=\"middle\" font-size=\"14\">cutting speed vc [m/min] (log)</text>\n";
@@ -225,38 +241,41 @@ std::string report_svg(const RunOutput& out) {
   // Caption: the grid box, whose upper feed edge is often the roughness limit f_Ra.
   const double f_Ra = feed_for_ra(p.quality.Ra_max, p.tool.r_eps, p.quality.k_Ra);
   const bool top_is_fRa = std::abs(g.f.back() / f_Ra - 1.0) < 1e-12;
-  s += "<text x=\"" + fmt_fixed(kLeft, 2) + "\" y=\"" + fmt_fixed(kHeight - 12, 2) + "\" font-size=\"11\" fill=\"#444\">" +
-       esc("grid " + std::to_string(nx) + " x " + std::to_string(ny) + ": vc in [" + fmt(g.vc.front(), 5) + ", " +
-           fmt(g.vc.back(), 5) + "] m/min, f in [" + fmt(g.f.front(), 5) + ", " + fmt(g.f.back(), 5) + "] mm/rev" +
-           (top_is_fRa ? " (upper edge f = f_Ra: the roughness limit)" : "")) +
+  s += "<text x=\"" + fmt_fixed(kLeft, 2) + "\" y=\"" + fmt_fixed(kHeight - 12, 2) +
+       "\" font-size=\"11\" fill=\"#444\">" +
+       esc("grid " + std::to_string(nx) + " x " + std::to_string(ny) + ": vc in [" + fmt(g.vc.front(), 5) +
+           ", " + fmt(g.vc.back(), 5) + "] m/min, f in [" + fmt(g.f.front(), 5) + ", " + fmt(g.f.back(), 5) +
+           "] mm/rev" + (top_is_fRa ? " (upper edge f = f_Ra: the roughness limit)" : "")) +
        "</text>\n";
 
   // Legend: colour bar and line keys.
   const double lx = kLeft + kPlotW + 30, ly = kTop;
-  s += "<text x=\"" + fmt_fixed(lx, 2) + "\" y=\"" + fmt_fixed(ly + 4, 2) + "\" font-weight=\"bold\">CT [CU/part]</text>\n";
+  s += "<text x=\"" + fmt_fixed(lx, 2) + "\" y=\"" + fmt_fixed(ly + 4, 2) +
+       "\" font-weight=\"bold\">CT [CU/part]</text>\n";
   const double bh = 200;
   for (int k = 0; k < 50; ++k) {
     const double t = k / 49.0;
-    s += "<rect x=\"" + fmt_fixed(lx, 2) + "\" y=\"" + fmt_fixed(ly + 14 + t * bh, 2) + "\" width=\"22\" height=\"" +
-         fmt_fixed(bh / 49.0 + 0.6, 2) + "\" fill=\"" + css(ramp(t)) + "\"/>\n";
+    s += "<rect x=\"" + fmt_fixed(lx, 2) + "\" y=\"" + fmt_fixed(ly + 14 + t * bh, 2) +
+         "\" width=\"22\" height=\"" + fmt_fixed(bh / 49.0 + 0.6, 2) + "\" fill=\"" + css(ramp(t)) + "\"/>\n";
   }
   for (int k = 0; k <= 4; ++k) {
     const double t = k / 4.0;
     const double ct = ct_ref * std::exp(t * std::log(ct_top / ct_ref));
-    s += "<text x=\"" + fmt_fixed(lx + 30, 2) + "\" y=\"" + fmt_fixed(ly + 18 + t * bh, 2) + "\">" + fmt(ct, 5) +
-         (k == 4 ? "+" : "") + "</text>\n";
+    s += "<text x=\"" + fmt_fixed(lx + 30, 2) + "\" y=\"" + fmt_fixed(ly + 18 + t * bh, 2) + "\">" +
+         fmt(ct, 5) + (k == 4 ? "+" : "") + "</text>\n";
   }
   double ky = ly + bh + 50;
   const auto key = [&](const std::string& style, const std::string& label) {
-    s += "<line x1=\"" + fmt_fixed(lx, 2) + "\" y1=\"" + fmt_fixed(ky, 2) + "\" x2=\"" + fmt_fixed(lx + 28, 2) +
-         "\" y2=\"" + fmt_fixed(ky, 2) + "\" " + style + "/>\n";
-    s += "<text x=\"" + fmt_fixed(lx + 36, 2) + "\" y=\"" + fmt_fixed(ky + 4, 2) + "\">" + esc(label) + "</text>\n";
+    s += "<line x1=\"" + fmt_fixed(lx, 2) + "\" y1=\"" + fmt_fixed(ky, 2) + "\" x2=\"" +
+         fmt_fixed(lx + 28, 2) + "\" y2=\"" + fmt_fixed(ky, 2) + "\" " + style + "/>\n";
+    s += "<text x=\"" + fmt_fixed(lx + 36, 2) + "\" y=\"" + fmt_fixed(ky + 4, 2) + "\">" + esc(label) +
+         "</text>\n";
     ky += 22;
   };
   key("stroke=\"#111\" stroke-width=\"2.2\"", "feasible-region boundary");
-  s += "<rect x=\"" + fmt_fixed(lx, 2) + "\" y=\"" + fmt_fixed(ky - 7, 2) + "\" width=\"28\" height=\"14\" fill=\"" +
-       css(pale(ramp(0.5))) + "\"/>\n<text x=\"" + fmt_fixed(lx + 36, 2) + "\" y=\"" + fmt_fixed(ky + 4, 2) +
-       "\">infeasible (pale)</text>\n";
+  s += "<rect x=\"" + fmt_fixed(lx, 2) + "\" y=\"" + fmt_fixed(ky - 7, 2) +
+       "\" width=\"28\" height=\"14\" fill=\"" + css(pale(ramp(0.5))) + "\"/>\n<text x=\"" +
+       fmt_fixed(lx + 36, 2) + "\" y=\"" + fmt_fixed(ky + 4, 2) + "\">infeasible (pale)</text>\n";
   ky += 22;
   key("stroke=\"#1f4e9e\" stroke-width=\"2\"", "valley vc*(f)");
   for (std::size_t k = 0; k < deltas.size(); ++k) {
@@ -264,8 +283,8 @@ std::string report_svg(const RunOutput& out) {
         "CT = CT*(1 + " + fmt(deltas[k], 3) + ")");
   }
   s += "<circle cx=\"" + fmt_fixed(lx + 14, 2) + "\" cy=\"" + fmt_fixed(ky, 2) +
-       "\" r=\"6\" fill=\"#e74c3c\" stroke=\"white\" stroke-width=\"2\"/>\n<text x=\"" + fmt_fixed(lx + 36, 2) +
-       "\" y=\"" + fmt_fixed(ky + 4, 2) + "\">optimum</text>\n";
+       "\" r=\"6\" fill=\"#e74c3c\" stroke=\"white\" stroke-width=\"2\"/>\n<text x=\"" +
+       fmt_fixed(lx + 36, 2) + "\" y=\"" + fmt_fixed(ky + 4, 2) + "\">optimum</text>\n";
   s += "</svg>\n";
   return s;
 }

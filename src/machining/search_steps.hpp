@@ -44,8 +44,10 @@ template <class Pred>
 double bisect_boundary(Pred&& ok, double u_bad, double u_good, double width = tol::kBoundaryBisectRel) {
   for (int it = 0; it < 200 && std::abs(u_good - u_bad) > width; ++it) {
     const double mid = 0.5 * (u_bad + u_good);
-    if (ok(mid)) u_good = mid;
-    else u_bad = mid;
+    if (ok(mid))
+      u_good = mid;
+    else
+      u_bad = mid;
   }
   return u_good;
 }

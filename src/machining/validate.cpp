@@ -15,7 +15,8 @@ namespace {
 struct Checker {
   std::vector<std::string> out;
   void positive(const char* path, double v) {
-    if (!(std::isfinite(v) && v > 0.0)) out.push_back(std::string(path) + " must be a positive number, got " + fmt(v));
+    if (!(std::isfinite(v) && v > 0.0))
+      out.push_back(std::string(path) + " must be a positive number, got " + fmt(v));
   }
   void non_negative(const char* path, double v) {
     if (!(std::isfinite(v) && v >= 0.0)) out.push_back(std::string(path) + " must be >= 0, got " + fmt(v));
@@ -41,9 +42,12 @@ void check_force(Checker& c, const ForceModel& m, const std::string& path, bool 
       c.positive((path + ".Kp").c_str(), m.handbook.Kp);
       break;
     case ForceKind::kienzle:
-      c.rule(!radial, path + ".model: 'kienzle' is a tangential model; use 'handbook' or 'ratio' for the radial force");
+      c.rule(
+          !radial,
+          path + ".model: 'kienzle' is a tangential model; use 'handbook' or 'ratio' for the radial force");
       c.positive((path + ".kc11").c_str(), m.kienzle.kc11);
-      c.rule(m.kienzle.mc >= 0.0 && m.kienzle.mc < 1.0, path + ".mc must lie in [0, 1), got " + fmt(m.kienzle.mc));
+      c.rule(m.kienzle.mc >= 0.0 && m.kienzle.mc < 1.0,
+             path + ".mc must lie in [0, 1), got " + fmt(m.kienzle.mc));
       break;
     case ForceKind::ratio:
       c.rule(radial, path + ".model: 'ratio' is a radial model (F_r = k_r*F_c)");
@@ -92,7 +96,8 @@ std::vector<std::string> validate(const Problem& p) {
   if (p.radial) check_force(c, *p.radial, "force.radial", true);
 
   c.positive("machine.P_motor", p.machine.P_motor);
-  c.rule(p.machine.eta > 0.0 && p.machine.eta <= 1.0, "machine.eta must lie in (0, 1], got " + fmt(p.machine.eta));
+  c.rule(p.machine.eta > 0.0 && p.machine.eta <= 1.0,
+         "machine.eta must lie in (0, 1], got " + fmt(p.machine.eta));
   c.positive("machine.n_max", p.machine.n_max);
   c.positive("machine.Vf_max", p.machine.Vf_max);
   c.non_negative("machine.n_base", p.machine.n_base);
@@ -116,8 +121,10 @@ std::vector<std::string> validate(const Problem& p) {
     c.positive("accuracy.bar.E", a.bar.E);
     c.positive("accuracy.bar.d", a.bar.d);
     c.rule(a.bar.d_in >= 0.0 && a.bar.d_in < a.bar.d, "accuracy.bar.d_in must lie in [0, d)");
-    if (a.bar.mode == OverhangMode::constant) c.positive("accuracy.bar.L_o", a.bar.L_o);
-    else c.positive("accuracy.bar.L_o0", a.bar.L_o0);
+    if (a.bar.mode == OverhangMode::constant)
+      c.positive("accuracy.bar.L_o", a.bar.L_o);
+    else
+      c.positive("accuracy.bar.L_o0", a.bar.L_o0);
     c.non_negative("accuracy.blank.TA", a.TA);
     c.non_negative("accuracy.blank.TB", a.TB);
     c.non_negative("accuracy.blank.T_R3", a.T_R3);

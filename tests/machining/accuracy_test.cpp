@@ -29,8 +29,10 @@ TEST(MachiningAccuracy, U11SimpsonExp) {
 }
 
 TEST(MachiningAccuracy, U12SimpsonExactForCubics) {
-  EXPECT_NEAR(simpson_2d([](double x, double y) { return x * x * y * y; }, 0, 1, 0, 1, 2, 2), 1.0 / 9.0, 1e-16);
-  EXPECT_NEAR(simpson_2d([](double x, double y) { return x * x * x * y * y * y; }, 0, 1, 0, 2, 2, 2), 1.0, 1e-15);
+  EXPECT_NEAR(simpson_2d([](double x, double y) { return x * x * y * y; }, 0, 1, 0, 1, 2, 2), 1.0 / 9.0,
+              1e-16);
+  EXPECT_NEAR(simpson_2d([](double x, double y) { return x * x * x * y * y * y; }, 0, 1, 0, 2, 2, 2), 1.0,
+              1e-15);
 }
 
 struct AVector {
@@ -43,10 +45,8 @@ struct AVector {
 
 TEST(MachiningAccuracy, A1ToA5RadiusVectorMoments) {
   const AVector vs[] = {
-      {"A1", 0.003, 0, 64, 0.0, 2.999994e-3, 1e-12},
-      {"A2", 0.003, 45, 64, 1.124995e-7, 2.121316e-3, 0},
-      {"A3", 0.003, 90, 64, 2.249991e-7, 3.181987e-7, 0},
-      {"A4", 0.5, 90, 128, 6.247073e-3, 8.830570e-3, 0},
+      {"A1", 0.003, 0, 64, 0.0, 2.999994e-3, 1e-12},      {"A2", 0.003, 45, 64, 1.124995e-7, 2.121316e-3, 0},
+      {"A3", 0.003, 90, 64, 2.249991e-7, 3.181987e-7, 0}, {"A4", 0.5, 90, 128, 6.247073e-3, 8.830570e-3, 0},
       {"A5", 2.0, 45, 128, 5.0554852e-2, 1.4054356, 0},
   };
   for (const auto& v : vs) {
@@ -110,7 +110,8 @@ TEST(MachiningAccuracy, RayleighFactors) {
 
 TEST(MachiningAccuracy, PhaseIntegralAvoidsArcsineSingularity) {
   // Pitfall 3: E[y²] of the arcsine law is 1/2; integrating over the phase gets it to machine precision.
-  const double ey2 = simpson_2d([](double, double th) { return std::cos(th) * std::cos(th); }, 0, 1, 0, kPi, 2, 64) / kPi;
+  const double ey2 =
+      simpson_2d([](double, double th) { return std::cos(th) * std::cos(th); }, 0, 1, 0, kPi, 2, 64) / kPi;
   EXPECT_NEAR(ey2, 0.5, 1e-14);
 }
 

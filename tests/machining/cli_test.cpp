@@ -17,7 +17,9 @@ namespace {
 
 using nlohmann::json;
 
-test::CommandOutput run(const std::string& args) { return test::run_command(test::cli_path() + " machining " + args); }
+test::CommandOutput run(const std::string& args) {
+  return test::run_command(test::cli_path() + " machining " + args);
+}
 
 TEST(MachiningCli, WorkedExamplesReproduceTheOptimum) {
   const struct {
@@ -40,7 +42,8 @@ TEST(MachiningCli, WorkedExamplesReproduceTheOptimum) {
 }
 
 TEST(MachiningCli, WritesSvgAndCsv) {
-  const auto dir = std::filesystem::temp_directory_path() / ("cutroute-machining-cli-" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("cutroute-machining-cli-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const auto svg = (dir / "e2.svg").string(), csv = (dir / "e2.csv").string();
   const auto r = run(test::machining_example_path(test::kE2) + " --svg " + svg + " --csv " + csv);
@@ -101,8 +104,8 @@ TEST(MachiningCli, TransitionsSumTheirCost) {
   const double a = j["transitions"][0]["cost"]["total_cu"].get<double>();
   const double b = j["transitions"][1]["cost"]["total_cu"].get<double>();
   EXPECT_NEAR(j["total_cost_cu"].get<double>(), a + b, 1e-15);
-  EXPECT_NEAR(a, 1.2388572, 1.2388572 * 1e-7);               // E2 as it stands
-  EXPECT_NEAR(b, 1.2497633 - 1.1, 1e-7);                       // E1 without the fixed share
+  EXPECT_NEAR(a, 1.2388572, 1.2388572 * 1e-7);  // E2 as it stands
+  EXPECT_NEAR(b, 1.2497633 - 1.1, 1e-7);        // E1 without the fixed share
   EXPECT_NEAR(j["transitions"][1]["vc_m_min"].get<double>() / 332.44714, 1.0, 1e-5);
 }
 

@@ -11,10 +11,12 @@
 namespace cutroute::machining {
 namespace {
 
-constexpr double kVcRel = 1e-5;   // optimizer outputs: vc and f within 1e-5 relative
-constexpr double kCtRel = 1e-7;   // CT within 1e-7 relative
+constexpr double kVcRel = 1e-5;  // optimizer outputs: vc and f within 1e-5 relative
+constexpr double kCtRel = 1e-7;  // CT within 1e-7 relative
 
-bool has(const std::vector<std::string>& v, const char* s) { return std::find(v.begin(), v.end(), s) != v.end(); }
+bool has(const std::vector<std::string>& v, const char* s) {
+  return std::find(v.begin(), v.end(), s) != v.end();
+}
 
 TEST(MachiningExamples, E0GilbertSpeedOnly) {
   const auto p = test::load_machining_example(test::kE0);
@@ -70,8 +72,11 @@ TEST(MachiningExamples, E1ValleyTable) {
   const auto vcg = log_grid(30, 600, 241);
   const struct {
     double f, vc, ct;
-  } rows[] = {{0.06, 395.57, 1.40020}, {0.08, 373.45, 1.33849}, {0.10, 357.15, 1.29950},
-              {0.12, 344.37, 1.27242}, {0.143108, 332.45, 1.24976}};
+  } rows[] = {{0.06, 395.57, 1.40020},
+              {0.08, 373.45, 1.33849},
+              {0.10, 357.15, 1.29950},
+              {0.12, 344.37, 1.27242},
+              {0.143108, 332.45, 1.24976}};
   double prev = 1e9;
   for (const auto& row : rows) {
     const FeedOptimum fo = best_vc_at_feed(p, 0, row.f, vcg);
@@ -124,7 +129,8 @@ TEST(MachiningExamples, E2AccuracyBinds) {
   // Hand check: F_r,max and the coupled tool life with β = n_r/y_r = 0.5.
   const double zp = z_two_sided(0.9973);
   const double k = bar_stiffness_n_mm(210000, bar_inertia_mm4(25, 0), 100);
-  const double Fr_max = 0.006 / (2 * zp * std::sqrt(std::pow(0.4 / 6, 2) + std::pow(0.05, 2))) * 1.5 * k / 0.9;
+  const double Fr_max =
+      0.006 / (2 * zp * std::sqrt(std::pow(0.4 / 6, 2) + std::pow(0.05, 2))) * 1.5 * k / 0.9;
   EXPECT_REL(Fr_max, 241.60383, 5e-8);
   EXPECT_REL(e.Fr, Fr_max, 1e-8);
   EXPECT_REL(e.T, coupled_tool_life(0.2, 0.2, 0.5, 0.68, 1.5, 3.0, 0.72), 1e-7);

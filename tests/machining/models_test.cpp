@@ -11,7 +11,9 @@
 namespace cutroute::machining {
 namespace {
 
-TEST(MachiningModels, U1SpindleSpeed) { EXPECT_NEAR(spindle_speed_rpm(250, 40), 1989.43679, test::printed(5)); }
+TEST(MachiningModels, U1SpindleSpeed) {
+  EXPECT_NEAR(spindle_speed_rpm(250, 40), 1989.43679, test::printed(5));
+}
 
 TEST(MachiningModels, U2FeedSpeedAndTime) {
   const double Vf = feed_speed_mm_min(0.15, spindle_speed_rpm(250, 40));
@@ -128,8 +130,8 @@ TEST(MachiningEconomics, CoupledToolLifeFormula) {
   // E2 hand check: β = 0.5 from n_r/y_r = 0.3/0.6, y = 0.2, m = 0.2.
   EXPECT_REL(coupled_tool_life(0.2, 0.2, 0.5, 0.68, 1.5, 3.0, 0.72), 14.888889, 1e-7);
   // β = 0 reduces to Gilbert.
-  EXPECT_REL(coupled_tool_life(0.2, 0.2, 0.0, 0.68, 1.5, 3.0, 0.72), gilbert_tool_life(0.2, 0.68, 1.5, 3.0, 0.72),
-             1e-14);
+  EXPECT_REL(coupled_tool_life(0.2, 0.2, 0.0, 0.68, 1.5, 3.0, 0.72),
+             gilbert_tool_life(0.2, 0.68, 1.5, 3.0, 0.72), 1e-14);
 }
 
 }  // namespace

@@ -35,8 +35,10 @@ Problem random_problem(Rng& rng, bool with_accuracy) {
   p.search.f_max = 0.6;
   p.search.grid_vc = p.search.grid_f = 121;
   p.K_TZ_sweep.clear();
-  if (with_accuracy) p.accuracy->K_TZ = uniform(rng, 0.004, 0.02);
-  else p.accuracy.reset();
+  if (with_accuracy)
+    p.accuracy->K_TZ = uniform(rng, 0.004, 0.02);
+  else
+    p.accuracy.reset();
   return p;
 }
 
@@ -44,14 +46,15 @@ TEST(MachiningProperties, ValleyCostDecreasesWithFeed) {
   Rng rng(20261121);
   for (int trial = 0; trial < 20; ++trial) {
     Problem p = random_problem(rng, false);
-    p.machine.P_motor = 1e6;     // only the Gilbert valley: nothing binds in vc
+    p.machine.P_motor = 1e6;  // only the Gilbert valley: nothing binds in vc
     p.quality.Ra_max = 1e3;
     const auto vcg = log_grid(p.search.vc_min, p.search.vc_max, 121);
     double prev = std::numeric_limits<double>::infinity();
     for (double f : log_grid(0.05, 0.6, 15)) {
       const FeedOptimum fo = best_vc_at_feed(p, 0, f, vcg);
       if (!fo.feasible) continue;
-      const bool on_bound = std::abs(fo.vc / vcg.front() - 1) < 1e-12 || std::abs(fo.vc / vcg.back() - 1) < 1e-12;
+      const bool on_bound =
+          std::abs(fo.vc / vcg.front() - 1) < 1e-12 || std::abs(fo.vc / vcg.back() - 1) < 1e-12;
       if (fo.binding.empty() && !on_bound) {
         // On the Gilbert speed T = T*, to the golden section's resolution (CT is flat there: a
         // relative step δ in vc moves CT by O(δ²), so vc is only resolved to ~1e-8).
@@ -67,7 +70,8 @@ TEST(MachiningProperties, ValleyCostDecreasesWithFeed) {
 TEST(MachiningProperties, RefinedNeverWorseThanGridAndFeasible) {
   Rng rng(7);
   std::vector<Problem> ps = {test::load_machining_example(test::kE0), test::load_machining_example(test::kE1),
-                             test::load_machining_example(test::kE2), test::load_machining_example(test::kE3)};
+                             test::load_machining_example(test::kE2),
+                             test::load_machining_example(test::kE3)};
   for (int trial = 0; trial < 12; ++trial) ps.push_back(random_problem(rng, trial % 2 == 0));
   for (std::size_t k = 0; k < ps.size(); ++k) {
     const OptimizeResult r = optimize(ps[k]);
@@ -113,8 +117,10 @@ TEST(MachiningProperties, Fig5AgreesWithinOneGridCell) {
     EXPECT_GE(f5.CT, r.solution->cost.total) << "the grid never beats the refined optimum";
     // Positionally within one cell on the spec's 121 grid (and the coarser one); on the 241 grid the
     // cheapest accurate grid point is 1.11 cells away in vc: the cost is flat along the accuracy limit.
-    if (n <= 121) EXPECT_TRUE(a.within_one_cell) << n << ": " << a.cells_vc << " " << a.cells_f;
-    else EXPECT_LT(std::max(a.cells_vc, a.cells_f), 1.5) << n;
+    if (n <= 121)
+      EXPECT_TRUE(a.within_one_cell) << n << ": " << a.cells_vc << " " << a.cells_f;
+    else
+      EXPECT_LT(std::max(a.cells_vc, a.cells_f), 1.5) << n;
   }
   Rng rng(99);
   int checked = 0;
@@ -126,9 +132,9 @@ TEST(MachiningProperties, Fig5AgreesWithinOneGridCell) {
     if (!rr.solution || !f5.found) continue;
     ++checked;
     const Fig5Agreement a = fig5_agreement(p, rr, f5);
-    EXPECT_TRUE(a.within_one_cell_cost) << trial << ": optimize (" << rr.solution->vc << ", " << rr.solution->f
-                                        << ") fig5 (" << f5.vc << ", " << f5.f << ") cells " << a.cells_vc << " "
-                                        << a.cells_f;
+    EXPECT_TRUE(a.within_one_cell_cost)
+        << trial << ": optimize (" << rr.solution->vc << ", " << rr.solution->f << ") fig5 (" << f5.vc << ", "
+        << f5.f << ") cells " << a.cells_vc << " " << a.cells_f;
   }
   EXPECT_GE(checked, 5);
 }
@@ -309,7 +315,7 @@ namespace {
 TEST(MachiningOptimizer, LongOverhangWarns) {
   Problem p = test::load_machining_example(test::kE2);
   EXPECT_EQ(optimize(p).status, Status::optimal);  // L_o/d = 4 exactly: at the limit, no warning
-  p.accuracy->bar.L_o = 120;                        // L_o/d = 4.8 > 4 for a steel bar
+  p.accuracy->bar.L_o = 120;                       // L_o/d = 4.8 > 4 for a steel bar
   p.accuracy->K_TZ = 0.02;
   const OptimizeResult r = optimize(p);
   EXPECT_EQ(r.status, Status::warning);

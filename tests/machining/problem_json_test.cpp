@@ -92,8 +92,8 @@ TEST(MachiningJson, BadInputNamesTheField) {
       {"vc_min > vc_max", [](json& j) { j["search"]["vc_min"] = 700; }, "search.vc_min", "vc_max"},
       {"unknown life model", [](json& j) { j["tool_life"]["model"] = "kronenberg"; }, "tool_life.model",
        "unknown model name"},
-      {"unknown force model", [](json& j) { j["force"]["radial"]["model"] = "kienzle"; }, "force.radial.model",
-       "unknown model name"},
+      {"unknown force model", [](json& j) { j["force"]["radial"]["model"] = "kienzle"; },
+       "force.radial.model", "unknown model name"},
       {"unknown overhang mode", [](json& j) { j["accuracy"]["bar"]["overhang_mode"] = "telescopic"; },
        "accuracy.bar.overhang_mode", "unknown model name"},
       {"unknown rate map", [](json& j) { j["rates"]["rate_map"] = "reverse"; }, "rates.rate_map", "unknown"},
@@ -102,11 +102,20 @@ TEST(MachiningJson, BadInputNamesTheField) {
       {"eta > 1", [](json& j) { j["machine"]["eta"] = 1.2; }, "machine.eta", "(0, 1]"},
       {"odd simpson", [](json& j) { j["accuracy"]["integration"]["simpson_m"] = 63; }, "simpson_m", "even"},
       {"P = 1", [](json& j) { j["accuracy"]["P"] = 1.0; }, "accuracy.P", "(0, 1)"},
-      {"bad f_range", [](json& j) { j["tool_life"]["sets"][0]["f_range"] = {0.3, 0.1}; }, "tool_life.sets[0].f_range",
-       "lo < hi"},
-      {"grid too small", [](json& j) { j["search"]["grid"] = {2, 241}; }, "search.grid", "[3, 4001]"},
-      {"hollow bar wider than bar", [](json& j) { j["accuracy"]["bar"]["d_in"] = 30; }, "accuracy.bar.d_in", "[0, d)"},
-      {"accuracy without radial force", [](json& j) { j["force"].erase("radial"); }, "force.radial", "required"},
+      {"bad f_range",
+       [](json& j) {
+         j["tool_life"]["sets"][0]["f_range"] = {0.3, 0.1};
+       },
+       "tool_life.sets[0].f_range", "lo < hi"},
+      {"grid too small",
+       [](json& j) {
+         j["search"]["grid"] = {2, 241};
+       },
+       "search.grid", "[3, 4001]"},
+      {"hollow bar wider than bar", [](json& j) { j["accuracy"]["bar"]["d_in"] = 30; }, "accuracy.bar.d_in",
+       "[0, d)"},
+      {"accuracy without radial force", [](json& j) { j["force"].erase("radial"); }, "force.radial",
+       "required"},
       {"passes not integer", [](json& j) { j["operation"]["passes"] = 1.5; }, "operation.passes", "integer"},
       {"depth beyond radius", [](json& j) { j["operation"]["ap"] = 25; }, "operation.ap", "radius"},
   };

@@ -16,9 +16,9 @@ TEST(MachiningReport, JsonHasEveryIssueField) {
   const OptimizeResult r = optimize(p);
   RunOutput out{&p, &r, optimize_fig5(p, 121, 121), cost_of_accuracy(p, p.K_TZ_sweep)};
   const auto j = report_json(out);
-  for (const char* k : {"status", "vc_m_min", "f_mm_rev", "n_rpm", "vf_mm_min", "tm_min", "tool_life_min", "cost",
-                        "constraints", "active", "accuracy", "warnings", "valley", "near_optimal", "derived",
-                        "fig5_cross_check", "cost_of_accuracy"}) {
+  for (const char* k : {"status", "vc_m_min", "f_mm_rev", "n_rpm", "vf_mm_min", "tm_min", "tool_life_min",
+                        "cost", "constraints", "active", "accuracy", "warnings", "valley", "near_optimal",
+                        "derived", "fig5_cross_check", "cost_of_accuracy"}) {
     EXPECT_TRUE(j.contains(k)) << k;
   }
   EXPECT_EQ(j["status"], "optimal");
@@ -73,7 +73,8 @@ TEST(MachiningReport, CsvHasValleyAndGrid) {
     }
   }
   // At f = f_Ra the accuracy limit would need vc ≈ 607 m/min > vc_max: that valley point is infeasible.
-  EXPECT_EQ(valley, std::count_if(r.valley.begin(), r.valley.end(), [](const FeedOptimum& v) { return v.feasible; }));
+  EXPECT_EQ(valley,
+            std::count_if(r.valley.begin(), r.valley.end(), [](const FeedOptimum& v) { return v.feasible; }));
   EXPECT_EQ(valley, 24);
   EXPECT_EQ(grid, 31 * 21);
   EXPECT_GT(feasible, 0);
@@ -86,8 +87,9 @@ TEST(MachiningReport, SvgShowsMapValleyContoursAndLegend) {
   const std::string svg = report_svg(RunOutput{&p, &r, std::nullopt, {}});
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
   EXPECT_NE(svg.find("</svg>"), std::string::npos);
-  for (const char* s : {"cutting speed vc [m/min]", "feed speed Vf", "valley vc*(f)", "CT = CT*(1 + 0.01)",
-                        "CT = CT*(1 + 0.05)", "feasible-region boundary", "optimum", "<polygon", "<polyline"}) {
+  for (const char* s :
+       {"cutting speed vc [m/min]", "feed speed Vf", "valley vc*(f)", "CT = CT*(1 + 0.01)",
+        "CT = CT*(1 + 0.05)", "feasible-region boundary", "optimum", "<polygon", "<polyline"}) {
     EXPECT_NE(svg.find(s), std::string::npos) << s;
   }
   EXPECT_EQ(svg.find("nan"), std::string::npos);

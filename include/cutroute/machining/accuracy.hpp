@@ -38,9 +38,9 @@ struct RhoMoments {
   double mean_sq = 0.0;   // E[ρ²] [mm²]
 };
 struct CubatureParams {
-  int m = 64;             // Simpson intervals over A ∈ [0, a_mult·σ_A] (even)
-  int n = 64;             // Simpson intervals over the phase θ ∈ [0, π] (even)
-  double a_mult = 8.0;    // truncation of the Rayleigh density, in σ_A [-]
+  int m = 64;           // Simpson intervals over A ∈ [0, a_mult·σ_A] (even)
+  int n = 64;           // Simpson intervals over the phase θ ∈ [0, π] (even)
+  double a_mult = 8.0;  // truncation of the Rayleigh density, in σ_A [-]
 };
 // Accumulates the deviation d = ρ − r = (A²y² + 2rAy·cosφ)/(ρ + r), so that σ_A ≪ r keeps its digits.
 RhoMoments rho_moments(double r_mm, double sigma_A_mm, double phi_deg, const CubatureParams& p = {});

@@ -7,11 +7,11 @@ namespace cutroute::machining {
 inline constexpr double kPi = 3.14159265358979323846;
 
 // ---- 3.1 Kinematics [std] ----
-double spindle_speed_rpm(double vc_m_min, double D_mm);                  // n [rev/min]
-double feed_speed_mm_min(double f_mm_rev, double n_rpm);                 // Vf [mm/min]
+double spindle_speed_rpm(double vc_m_min, double D_mm);   // n [rev/min]
+double feed_speed_mm_min(double f_mm_rev, double n_rpm);  // Vf [mm/min]
 // Machining time of `passes` passes over L + l_extra at feed speed Vf [min].
 double machining_time_min(int passes, double L_mm, double l_extra_mm, double Vf_mm_min);
-double spindle_speed_limit_vc(double D_mm, double n_max_rpm);            // vc_max,spindle [m/min]
+double spindle_speed_limit_vc(double D_mm, double n_max_rpm);  // vc_max,spindle [m/min]
 
 // ---- 3.2 Tool life [std] ----
 struct TaylorLife {
@@ -20,15 +20,15 @@ struct TaylorLife {
 };
 // One handbook (extended Taylor) coefficient set; valid only for f in [f_lo, f_hi].
 struct HandbookLife {
-  double Cv = 0.0;     // [m/min for ap, f in mm]
-  double Kv = 1.0;     // product of correction factors (material, boring, tool) [-]
-  double m = 0.0;      // tool-life exponent [-]
-  double x = 0.0;      // depth exponent [-]
-  double y = 0.0;      // feed exponent [-]
-  double f_lo = 0.0;   // lower end of the set's feed range [mm/rev]
-  double f_hi = 0.0;   // upper end of the set's feed range [mm/rev]
+  double Cv = 0.0;    // [m/min for ap, f in mm]
+  double Kv = 1.0;    // product of correction factors (material, boring, tool) [-]
+  double m = 0.0;     // tool-life exponent [-]
+  double x = 0.0;     // depth exponent [-]
+  double y = 0.0;     // feed exponent [-]
+  double f_lo = 0.0;  // lower end of the set's feed range [mm/rev]
+  double f_hi = 0.0;  // upper end of the set's feed range [mm/rev]
 };
-double taylor_life_min(const TaylorLife& t, double vc_m_min);                                 // T [min]
+double taylor_life_min(const TaylorLife& t, double vc_m_min);                                     // T [min]
 double handbook_life_min(const HandbookLife& h, double vc_m_min, double ap_mm, double f_mm_rev);  // T [min]
 // The speed constant C_f of T = (C_f/vc)^(1/m) at fixed ap and f [m/min].
 double handbook_speed_constant(const HandbookLife& h, double ap_mm, double f_mm_rev);
@@ -46,24 +46,24 @@ struct KienzleForce {
   double kc11 = 0.0;  // specific cutting force for h = b = 1 mm [MPa]
   double mc = 0.0;    // Kienzle exponent [-]
 };
-double handbook_force_n(const HandbookForce& c, double ap_mm, double f_mm_rev, double vc_m_min);  // [N]
-double kienzle_force_n(const KienzleForce& c, double ap_mm, double f_mm_rev, double kappa_r_deg);   // [N]
+double handbook_force_n(const HandbookForce& c, double ap_mm, double f_mm_rev, double vc_m_min);   // [N]
+double kienzle_force_n(const KienzleForce& c, double ap_mm, double f_mm_rev, double kappa_r_deg);  // [N]
 
 // ---- 3.5 Power [std] ----
-double cutting_power_kw(double Fc_n, double vc_m_min);                   // Pc [kW]
+double cutting_power_kw(double Fc_n, double vc_m_min);  // Pc [kW]
 // P_motor, or P_motor·min(1, n/n_base) with a power curve (n_base_rpm <= 0: no curve) [kW].
 double available_power_kw(double P_motor_kw, double n_rpm, double n_base_rpm);
-double torque_nm(double Fc_n, double D_mm);                              // M [N·m]
+double torque_nm(double Fc_n, double D_mm);  // M [N·m]
 
 // ---- 3.6 Roughness [std] ----
-double roughness_ra_um(double f_mm_rev, double r_eps_mm, double k_Ra);   // Ra [µm]
-double roughness_rz_um(double f_mm_rev, double r_eps_mm, double k_Ra);   // Rz [µm]
-double feed_for_ra(double Ra_max_um, double r_eps_mm, double k_Ra);      // f_Ra [mm/rev]
+double roughness_ra_um(double f_mm_rev, double r_eps_mm, double k_Ra);  // Ra [µm]
+double roughness_rz_um(double f_mm_rev, double r_eps_mm, double k_Ra);  // Rz [µm]
+double feed_for_ra(double Ra_max_um, double r_eps_mm, double k_Ra);     // f_Ra [mm/rev]
 
 // ---- 3.7 Boring bar [std] ----
-double bar_inertia_mm4(double d_mm, double d_in_mm);                     // I [mm^4]
-double bar_stiffness_n_mm(double E_mpa, double I_mm4, double L_o_mm);    // k = 3EI/L^3 [N/mm]
-double deflection_mm(double F_n, double k_n_mm);                         // δ0 = F/k [mm]
+double bar_inertia_mm4(double d_mm, double d_in_mm);                   // I [mm^4]
+double bar_stiffness_n_mm(double E_mpa, double I_mm4, double L_o_mm);  // k = 3EI/L^3 [N/mm]
+double deflection_mm(double F_n, double k_n_mm);                       // δ0 = F/k [mm]
 
 // ---- 3.3 Cost per part [paper structure, recon pairing] ----
 // Rates per minute of machine work [CU/min] as the seed groups them.

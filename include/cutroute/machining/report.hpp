@@ -16,8 +16,8 @@ namespace cutroute::machining {
 struct RunOutput {
   const Problem* problem = nullptr;
   const OptimizeResult* result = nullptr;
-  std::optional<Fig5Result> fig5;             // cross-check on the same grid size
-  std::vector<AccuracyCostPoint> sweep;       // cost of accuracy, when problem.K_TZ_sweep is given
+  std::optional<Fig5Result> fig5;        // cross-check on the same grid size
+  std::vector<AccuracyCostPoint> sweep;  // cost of accuracy, when problem.K_TZ_sweep is given
 };
 
 // Unit of each constraint row's value and limit.

@@ -92,7 +92,6 @@ PointEval refine(const Problem& p, int set, const SearchBox& box, const Surface&
     return fo.feasible ? fo.CT : kInf;
   };
   const auto score = [&](double u) { return score_f(std::exp(u)); };
-  // Bracket ends as exact values: exp(log(f_Ra)) may land an ulp outside the roughness limit.
   double centre = start.f;
   double best_f = start.f;
   double best_ct = score_f(start.f);
@@ -105,6 +104,7 @@ PointEval refine(const Problem& p, int set, const SearchBox& box, const Surface&
     double f_round = fb > fa ? std::exp(detail::golden_min(score, std::log(fa), std::log(fb))) : fa;
     double ct_round = score_f(f_round);
     // The optimum often sits on the bracket end (f = f_Ra); the golden section only approaches it.
+    // The ends are scored as exact values: exp(log(f_Ra)) may land an ulp outside the roughness limit.
     for (double f : {fa, fb}) {
       const double ct = score_f(f);
       if (ct < ct_round) ct_round = ct, f_round = f;

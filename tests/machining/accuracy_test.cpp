@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include <cutroute/core/random.hpp>
 #include <cutroute/machining/accuracy.hpp>
 #include <cutroute/machining/models.hpp>
 
@@ -119,6 +120,38 @@ TEST(MachiningAccuracy, ChainPieces) {
   EXPECT_NEAR(eccentricity_sigma(0.4, 0.4), 0.4 / 6.0, 1e-15);
   EXPECT_NEAR(scatter_field(3.0, 0.0, 1.0), 6.0, 1e-15);
   EXPECT_NEAR(error_copying(0.9, 100.0, 1.5, 1000.0), 0.06, 1e-15);
+}
+
+}  // namespace
+}  // namespace cutroute::machining
+
+namespace cutroute::machining {
+namespace {
+
+TEST(MachiningAccuracy, MonteCarloCrossCheck) {
+  // Independent truth for A4 and A5: seeded sampling of A ~ Rayleigh(σ) by inverse CDF and θ ~ U[0, 2π)
+  // (pitfall 10: a Monte-Carlo check takes a seeded engine).
+  const struct { double sigma, phi; } cases[] = {{0.5, 90}, {2.0, 45}};
+  for (const auto& c : cases) {
+    Rng rng(12345);
+    const double r = 20.0, cphi = std::cos(c.phi * kPi / 180.0);
+    const int n = 400000;
+    double s1 = 0, s2 = 0;
+    for (int k = 0; k < n; ++k) {
+      const double a = c.sigma * std::sqrt(-2.0 * std::log(1.0 - rng.uniform01()));
+      const double y = std::cos(2.0 * kPi * rng.uniform01());
+      const double d = std::sqrt(r * r + 2 * r * a * y * cphi + a * a * y * y) - r;
+      s1 += d;
+      s2 += d * d;
+    }
+    const double mean = s1 / n, var = s2 / n - mean * mean;
+    CubatureParams p;
+    p.m = p.n = 128;
+    const RhoMoments m = rho_moments(r, c.sigma, c.phi, p);
+    // Standard errors: sd/√n for the mean, about sd²·√(2/n)·2 for the variance (heavy-ish tails).
+    EXPECT_NEAR(m.mean_dev, mean, 5.0 * std::sqrt(var / n)) << c.sigma;
+    EXPECT_NEAR(m.var / var, 1.0, 5.0 * 2.0 * std::sqrt(2.0 / n)) << c.sigma;
+  }
 }
 
 }  // namespace

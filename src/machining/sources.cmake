@@ -1,1 +1,11 @@
-set(CUTROUTE_MACHINING_SOURCES)
+set(CUTROUTE_MACHINING_SOURCES
+  accuracy.cpp
+  contours.cpp
+  models.cpp
+  nlopt_backend.cpp
+  optimize.cpp
+  problem.cpp
+  problem_json.cpp
+  report.cpp
+  report_svg.cpp
+  validate.cpp)

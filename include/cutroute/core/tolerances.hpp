@@ -79,4 +79,8 @@ inline constexpr double kOffsetPruneMm = 1e-6;
 // A closed offset loop enclosing less than this is numerical debris and is dropped [mm²].
 inline constexpr double kOffsetMinLoopAreaMm2 = 1e-9;
 
+// Relative width to which a feasibility boundary in vc is bisected between two grid samples
+// [dimensionless]; well below kConstraintSlackRel so that boundary points count as active.
+inline constexpr double kBoundaryBisectRel = 1e-14;
+
 }  // namespace cutroute::tol

@@ -1,0 +1,161 @@
+// validate(): every validity rule of the input schema (docs/MACHINING-SCHEMA.md), messages name the
+// JSON path of the offending field.
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <cutroute/machining/problem.hpp>
+
+#include "machining/format.hpp"
+
+namespace cutroute::machining {
+
+namespace {
+
+struct Checker {
+  std::vector<std::string> out;
+  void positive(const char* path, double v) {
+    if (!(std::isfinite(v) && v > 0.0))
+      out.push_back(std::string(path) + " must be a positive number, got " + fmt(v));
+  }
+  void non_negative(const char* path, double v) {
+    if (!(std::isfinite(v) && v >= 0.0)) out.push_back(std::string(path) + " must be >= 0, got " + fmt(v));
+  }
+  void finite(const char* path, double v) {
+    if (!std::isfinite(v)) out.push_back(std::string(path) + " must be a finite number, got " + fmt(v));
+  }
+  void open_unit(const char* path, double v) {
+    if (!(v > 0.0 && v < 1.0)) out.push_back(std::string(path) + " must lie in (0, 1), got " + fmt(v));
+  }
+  void rule(bool ok, std::string msg) {
+    if (!ok) out.push_back(std::move(msg));
+  }
+};
+
+void check_force(Checker& c, const ForceModel& m, const std::string& path, bool radial) {
+  switch (m.kind) {
+    case ForceKind::handbook:
+      c.positive((path + ".Cp").c_str(), m.handbook.Cp);
+      c.finite((path + ".x").c_str(), m.handbook.x);
+      c.finite((path + ".y").c_str(), m.handbook.y);
+      c.finite((path + ".n").c_str(), m.handbook.n);
+      c.positive((path + ".Kp").c_str(), m.handbook.Kp);
+      break;
+    case ForceKind::kienzle:
+      c.rule(
+          !radial,
+          path + ".model: 'kienzle' is a tangential model; use 'handbook' or 'ratio' for the radial force");
+      c.positive((path + ".kc11").c_str(), m.kienzle.kc11);
+      c.rule(m.kienzle.mc >= 0.0 && m.kienzle.mc < 1.0,
+             path + ".mc must lie in [0, 1), got " + fmt(m.kienzle.mc));
+      break;
+    case ForceKind::ratio:
+      c.rule(radial, path + ".model: 'ratio' is a radial model (F_r = k_r*F_c)");
+      c.positive((path + ".k_r").c_str(), m.k_r);
+      break;
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> validate(const Problem& p) {
+  Checker c;
+  c.positive("operation.D", p.op.D);
+  c.positive("operation.L", p.op.L);
+  c.non_negative("operation.l_extra", p.op.l_extra);
+  c.rule(p.op.passes >= 1, "operation.passes must be >= 1, got " + std::to_string(p.op.passes));
+  c.positive("operation.ap", p.op.ap);
+  c.rule(!(p.op.ap >= p.op.D / 2.0), "operation.ap must be smaller than the radius D/2");
+
+  c.positive("tool.r_eps", p.tool.r_eps);
+  c.rule(p.tool.kappa_r > 0.0 && p.tool.kappa_r <= 180.0,
+         "tool.kappa_r must lie in (0, 180] degrees, got " + fmt(p.tool.kappa_r));
+  c.non_negative("tool.C_edge", p.tool.C_edge);
+  c.non_negative("tool.t_change", p.tool.t_change);
+  if (p.tool.F_allow) c.positive("tool.F_allow", *p.tool.F_allow);
+
+  if (p.life.kind == ToolLifeKind::taylor) {
+    c.positive("tool_life.C", p.life.taylor.C);
+    c.open_unit("tool_life.n", p.life.taylor.n);
+  } else {
+    c.rule(!p.life.sets.empty(), "tool_life.sets must hold at least one coefficient set");
+    for (std::size_t i = 0; i < p.life.sets.size(); ++i) {
+      const auto& s = p.life.sets[i];
+      const std::string at = "tool_life.sets[" + std::to_string(i) + "]";
+      c.positive((at + ".Cv").c_str(), s.Cv);
+      c.positive((at + ".Kv").c_str(), s.Kv);
+      c.open_unit((at + ".m").c_str(), s.m);
+      c.finite((at + ".x").c_str(), s.x);
+      c.rule(s.y >= 0.0 && s.y < 1.0, at + ".y must lie in [0, 1), got " + fmt(s.y));
+      c.rule(s.f_lo >= 0.0 && s.f_lo < s.f_hi, at + ".f_range must be [lo, hi] with 0 <= lo < hi");
+    }
+  }
+  c.rule(p.life.warn_T_min < p.life.warn_T_max, "tool_life.warn_window must be [lo, hi] with lo < hi");
+
+  check_force(c, p.tangential, "force.tangential", false);
+  if (p.radial) check_force(c, *p.radial, "force.radial", true);
+
+  c.positive("machine.P_motor", p.machine.P_motor);
+  c.rule(p.machine.eta > 0.0 && p.machine.eta <= 1.0,
+         "machine.eta must lie in (0, 1], got " + fmt(p.machine.eta));
+  c.positive("machine.n_max", p.machine.n_max);
+  c.positive("machine.Vf_max", p.machine.Vf_max);
+  c.non_negative("machine.n_base", p.machine.n_base);
+  for (double s : p.machine.spindle_steps) c.positive("machine.spindle_steps[]", s);
+
+  c.non_negative("rates.R_AO", p.econ.rates.R_AO);
+  c.non_negative("rates.R_Z", p.econ.rates.R_Z);
+  c.non_negative("rates.R_Erx", p.econ.rates.R_Erx);
+  c.non_negative("rates.R_Exx", p.econ.rates.R_Exx);
+  c.non_negative("rates.R_TR", p.econ.rates.R_TR);
+  c.non_negative("rates.t_load", p.econ.t_load);
+  c.non_negative("rates.R_H", p.econ.R_H);
+  c.rule(combine_rates(p.econ.rates).r30 > 0.0, "rates: r30 = R_AO + R_Z + R_Erx + R_Exx + R_TR must be > 0");
+
+  c.positive("quality.Ra_max", p.quality.Ra_max);
+  c.positive("quality.k_Ra", p.quality.k_Ra);
+
+  if (p.accuracy) {
+    const Accuracy& a = *p.accuracy;
+    c.rule(p.radial.has_value(), "force.radial is required when accuracy is given");
+    c.positive("accuracy.bar.E", a.bar.E);
+    c.positive("accuracy.bar.d", a.bar.d);
+    c.rule(a.bar.d_in >= 0.0 && a.bar.d_in < a.bar.d, "accuracy.bar.d_in must lie in [0, d)");
+    if (a.bar.mode == OverhangMode::constant)
+      c.positive("accuracy.bar.L_o", a.bar.L_o);
+    else
+      c.positive("accuracy.bar.L_o0", a.bar.L_o0);
+    c.non_negative("accuracy.blank.TA", a.TA);
+    c.non_negative("accuracy.blank.TB", a.TB);
+    c.non_negative("accuracy.blank.T_R3", a.T_R3);
+    c.rule(a.waves >= 1, "accuracy.waves must be >= 1");
+    c.open_unit("accuracy.P", a.P);
+    c.positive("accuracy.K_TZ", a.K_TZ);
+    c.rule(a.n_phi >= 1 && a.n_phi <= 3600, "accuracy.integration.n_phi must lie in [1, 3600]");
+    c.rule(a.n_z >= 1 && a.n_z <= 1000, "accuracy.integration.n_z must lie in [1, 1000]");
+    c.rule(a.cubature.m >= 2 && a.cubature.m % 2 == 0 && a.cubature.m <= 4096,
+           "accuracy.integration.simpson_m must be even and in [2, 4096]");
+    c.rule(a.cubature.n >= 2 && a.cubature.n % 2 == 0 && a.cubature.n <= 4096,
+           "accuracy.integration.simpson_n must be even and in [2, 4096]");
+    if (a.delta_allow) c.positive("accuracy.delta_allow", *a.delta_allow);
+  }
+
+  c.positive("search.vc_min", p.search.vc_min);
+  c.positive("search.vc_max", p.search.vc_max);
+  c.positive("search.f_min", p.search.f_min);
+  c.positive("search.f_max", p.search.f_max);
+  c.rule(!(p.search.vc_min > p.search.vc_max), "search.vc_min must not exceed search.vc_max");
+  c.rule(!(p.search.f_min > p.search.f_max), "search.f_min must not exceed search.f_max");
+  c.rule(p.search.grid_vc >= 3 && p.search.grid_vc <= 4001 && p.search.grid_f >= 3 && p.search.grid_f <= 4001,
+         "search.grid must be [n_vc, n_f] with 3 <= n <= 4001");
+  if (p.search.T_min) c.positive("search.T_window[0]", *p.search.T_min);
+  if (p.search.T_max) c.positive("search.T_window[1]", *p.search.T_max);
+  if (p.search.T_min && p.search.T_max) {
+    c.rule(*p.search.T_min < *p.search.T_max, "search.T_window must be [lo, hi] with lo < hi");
+  }
+  for (double K : p.K_TZ_sweep) c.positive("accuracy.K_TZ_sweep[]", K);
+  c.rule(p.K_TZ_sweep.empty() || p.accuracy.has_value(), "accuracy.K_TZ_sweep needs the accuracy section");
+  return c.out;
+}
+
+}  // namespace cutroute::machining

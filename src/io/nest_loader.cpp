@@ -1,5 +1,7 @@
 #include <cutroute/io/nest_loader.hpp>
 
+#include <algorithm>
+
 #include <map>
 
 #include <cutroute/core/number_format.hpp>
@@ -76,7 +78,9 @@ LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
     out.diagnostics.push_back(make_warning(
         std::to_string(chained.dropped_duplicates) + " duplicated entities dropped", out.file));
 
-  out.nest = model::build_nest(std::move(closed), options.nest);
+  model::NestOptions nest_options = options.nest;
+  nest_options.crossing_tol_mm = std::max(nest_options.crossing_tol_mm, options.dxf.curve_tol_mm);
+  out.nest = model::build_nest(std::move(closed), nest_options);
   for (auto& d : out.nest.diagnostics) {
     if (d.file.empty()) d.file = out.file;
     out.diagnostics.push_back(d);

@@ -258,7 +258,8 @@ struct Tree {
   }
 };
 
-Tree build_tree(const Nest& nest, const Prepared& prep, std::optional<std::size_t> excluded, double tol_mm) {
+Tree build_tree(const Nest& nest, const Prepared& prep, std::optional<std::size_t> excluded, double tol_mm,
+                double crossing_tol_mm) {
   const std::size_t n = nest.contours.size();
   Tree tree;
   tree.parent.assign(n, -1);
@@ -297,6 +298,20 @@ Tree build_tree(const Nest& nest, const Prepared& prep, std::optional<std::size_
         const bool undecided = s_in_b.inside + s_in_b.outside == 0 || b_in_s.inside + b_in_s.outside == 0;
         const std::string pair = describe(ci.source, prep.input_index[i]) + " and " + describe(cj.source, prep.input_index[j]);
         const std::string where = " near " + format_point(contact.first);
+        const double depth = crossing ? std::max(s_in_b.depth, b_in_s.depth) : 0.0;
+        // Curves converted to arcs (SPLINE, ELLIPSE) may cross a neighbour they only touched in
+        // the drawing, by up to the conversion tolerance: that is touching, not an overlap.
+        const bool shallow = crossing && !undecided && depth <= crossing_tol_mm;
+        if (shallow) {
+          tree.report(diagnostic_for(Severity::warning,
+                                     pair + " cross by about " + format_mm(depth) + " mm" + where +
+                                         ", within the curve tolerance: treated as touching",
+                                     ci.source, "nest.touch"));
+          if (!box_inside || s_in_b.inside <= s_in_b.outside) continue;
+          const std::int32_t current = tree.parent[small];
+          if (current < 0 || bigger(static_cast<std::size_t>(current), big)) tree.parent[small] = static_cast<std::int32_t>(big);
+          continue;
+        }
         if (crossing || undecided) {
           std::string message = pair + " cross or overlap" + where;
           if (crossing) {
@@ -418,11 +433,11 @@ Nest build_nest(std::vector<SourceContour> contours, const NestOptions& options)
   std::optional<SheetCandidate> sheet = find_sheet_candidate(nest, options);
   std::optional<std::size_t> excluded;
   if (sheet) excluded = sheet->index;
-  Tree tree = build_tree(nest, prep, excluded, tol_mm);
+  Tree tree = build_tree(nest, prep, excluded, tol_mm, options.crossing_tol_mm);
   if (sheet && sheet->reason == SheetReason::geometry && !looks_like_sheet(tree)) {
     {
       sheet.reset();
-      tree = build_tree(nest, prep, std::nullopt, tol_mm);
+      tree = build_tree(nest, prep, std::nullopt, tol_mm, options.crossing_tol_mm);
     }
   }
   std::optional<std::size_t> sheet_index;

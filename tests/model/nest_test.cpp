@@ -250,11 +250,14 @@ TEST(Nest, CrossingContoursDiagnosedNamingBoth) {
   EXPECT_EQ(d.line, 120);
   EXPECT_FALSE(nest.contours[find(nest, "2B")].parent.valid());
   EXPECT_EQ(nest.contours[find(nest, "3C")].parent, find(nest, "1A"));
-  // A common edge (common-line cut) is an error too, naming both.
+  EXPECT_EQ(d.code, "nest.crossing");
+  // A common edge (parts placed edge to edge) is a warning naming both: each part can still be
+  // cut whole (the edge twice), or once with common-line cutting.
   const Nest shared = build_nest({src(geometry::rectangle({0, 0, 1, 1}), "0", "L"), src(geometry::rectangle({1, 0.5, 2, 3}), "0", "R")},
                                  NestOptions{});
   ASSERT_EQ(shared.diagnostics.size(), 1u);
-  EXPECT_EQ(shared.diagnostics[0].severity, Severity::error);
+  EXPECT_EQ(shared.diagnostics[0].severity, Severity::warning);
+  EXPECT_EQ(shared.diagnostics[0].code, "nest.common_edge");
   EXPECT_NE(shared.diagnostics[0].message.find("share a boundary stretch"), std::string::npos);
   EXPECT_NE(shared.diagnostics[0].message.find("entity R"), std::string::npos);
 }

@@ -43,28 +43,28 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
 
   auto dist_to = [&](int k, Vec2 q) { return geometry::distance(cut[static_cast<std::size_t>(k)]->source.contour, q); };
 
-  // Which contour does a move lie on? (-1: none, i.e. a lead or a bridge)
-  auto contour_of = [&](const ProbeMove& m) -> int {
+  // Which contours does a move lie on? All whose distance stays within the tolerance at five
+  // points along it (parts placed edge to edge share a stretch: a move there lies on both).
+  auto contours_of = [&](const ProbeMove& m) {
+    std::vector<int> on;
     Vec2 mid;
     probe_point(m, 0.5, mid.x, mid.y);
     index.query(geometry::Box{mid.x, mid.y, mid.x, mid.y}.inflated(opt.on_contour_mm), hits);
-    int best = -1;
-    double best_d = 1e300;
     for (auto h : hits) {
       const int k = static_cast<int>(h);
-      double worst = 0;
+      bool all = true;
       for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
         Vec2 q;
         probe_point(m, t, q.x, q.y);
-        worst = std::max(worst, dist_to(k, q));
-        if (worst > opt.on_contour_mm) break;
+        if (dist_to(k, q) > opt.on_contour_mm) {
+          all = false;
+          break;
+        }
       }
-      if (worst <= opt.on_contour_mm && worst < best_d) {
-        best_d = worst;
-        best = k;
-      }
+      if (all) on.push_back(k);
     }
-    return best;
+    std::sort(on.begin(), on.end());
+    return on;
   };
 
   // Scrap test for pierce points: inside an even number of cut contours.
@@ -77,12 +77,13 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
     return inside % 2 == 1;
   };
 
+  // Group the beam-on moves into runs (pierce to beam off), then give each move the contour its
+  // run cuts when it lies on it (a shared edge belongs to the part being cut), else the lowest.
   std::vector<double> covered(cut.size(), 0.0);
   std::vector<std::set<int>> runs_of(cut.size());
-  int run = -1;
   bool beam = false;
-  // Per run: the moves in order with their contour (or -1).
   std::vector<std::vector<std::pair<const ProbeMove*, int>>> run_moves;
+  std::vector<std::vector<std::vector<int>>> run_on;
   for (const auto& m : p.moves) {
     if (m.rapid) {
       beam = false;
@@ -91,19 +92,39 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
     if (!m.beam_on) continue;
     if (!beam) {
       beam = true;
-      ++run;
       run_moves.emplace_back();
+      run_on.emplace_back();
       const Vec2 pierce{m.x0, m.y0};
       if (in_material(pierce)) {
         out.failures.push_back(at(m) + ": pierce at (" + format_fixed(m.x0, 3) + ", " + format_fixed(m.y0, 3) +
                                ") inside a part");
       }
     }
-    const int k = contour_of(m);
-    run_moves.back().push_back({&m, k});
-    if (k >= 0) {
-      covered[static_cast<std::size_t>(k)] += m.length;
-      runs_of[static_cast<std::size_t>(k)].insert(run);
+    run_moves.back().push_back({&m, -1});
+    run_on.back().push_back(contours_of(m));
+  }
+  for (std::size_t r = 0; r < run_moves.size(); ++r) {
+    std::map<int, double> length_on;
+    for (std::size_t i = 0; i < run_moves[r].size(); ++i) {
+      for (int k : run_on[r][i]) length_on[k] += run_moves[r][i].first->length;
+    }
+    int main_contour = -1;
+    double best = 0;
+    for (const auto& [k, len] : length_on) {
+      if (len > best) {
+        best = len;
+        main_contour = k;
+      }
+    }
+    for (std::size_t i = 0; i < run_moves[r].size(); ++i) {
+      const auto& on = run_on[r][i];
+      int k = -1;
+      if (!on.empty()) k = std::find(on.begin(), on.end(), main_contour) != on.end() ? main_contour : on.front();
+      run_moves[r][i].second = k;
+      if (k >= 0) {
+        covered[static_cast<std::size_t>(k)] += run_moves[r][i].first->length;
+        runs_of[static_cast<std::size_t>(k)].insert(static_cast<int>(r));
+      }
     }
   }
   // A pierce starts a run even where the probe saw the beam switched on without a move.

@@ -56,6 +56,10 @@ struct NestOptions {
   std::optional<geometry::Vec2> sheet_size;
   double touch_tol_mm = 1e-6;   // boundaries closer than this count as touching [mm]
   bool detect_sheet = true;     // false: never look for a border (sheet_size still applies)
+  // Boundaries that cross by no more than this are reported as touching (a warning), not as
+  // overlapping parts (an error) [mm]. The DXF loader sets its curve-conversion tolerance here:
+  // a SPLINE touching a neighbour may cross it by that much once turned into arcs.
+  double crossing_tol_mm = 0.0;
 };
 
 struct Nest {

@@ -52,6 +52,7 @@ int run_gtsp(const GtspOptions& o) {
     j["time_s"] = s.stats.seconds;
     j["solver"] = s.stats.solver;
     j["threads"] = s.stats.threads;
+    j["iterations"] = s.stats.iterations;
     if (!s.route.empty()) j["objective"] = s.cost;
     else j["objective"] = nullptr;
     auto tour = nlohmann::json::array();

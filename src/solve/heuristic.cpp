@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 #include <thread>
+#include <cstdio>
+#include <cstdlib>
 
 #include "tour.hpp"
 
@@ -80,8 +82,12 @@ class Worker {
       const double u = rng_.uniform01();
       const int k = std::min(movable, 1 + static_cast<int>(u * u * kmax));
       destroy(trial_, k);
+      if (std::getenv("CR_DBG") && trial_.cost != ops_.full_cost(trial_.seq)) std::fprintf(stderr, "destroy drift %ld %ld\n", (long)trial_.cost, (long)ops_.full_cost(trial_.seq));
       repair(trial_);
+      if (std::getenv("CR_DBG") && trial_.cost != ops_.full_cost(trial_.seq)) std::fprintf(stderr, "repair drift %ld %ld\n", (long)trial_.cost, (long)ops_.full_cost(trial_.seq));
       ops_.local_search(trial_);
+      if (std::getenv("CR_DBG") && trial_.cost != ops_.full_cost(trial_.seq)) std::fprintf(stderr, "ls drift %ld %ld\n", (long)trial_.cost, (long)ops_.full_cost(trial_.seq));
+      if (std::getenv("CR_DBG2")) std::fprintf(stderr, "k %d trial %ld cur %ld best %ld\n", k, (long)trial_.cost, (long)cur_.cost, (long)best_.cost);
       const double thr = params_.accept_threshold * (1.0 - static_cast<double>(it) / iterations);
       if (static_cast<double>(trial_.cost) <= static_cast<double>(cur_.cost) * (1.0 + thr)) std::swap(cur_, trial_);
       if (cur_.cost < best_.cost) best_ = cur_;
@@ -100,7 +106,17 @@ class Worker {
     removed_.clear();
     const Problem& p = ops_.problem();
     const int L = static_cast<int>(t.seq.size());
-    switch (rng_.below(4)) {
+    const bool bridge_ok = !p.has_precedence() && L >= 8;
+    switch (rng_.below(bridge_ok ? 5 : 4)) {
+      case 4: {  // double bridge: S A B C D -> S A C B D (segment exchange that 2-opt/Or-opt rarely undo)
+        int cut[3];
+        for (int& c : cut) c = 1 + static_cast<int>(rng_.below(static_cast<std::uint64_t>(L - 1)));
+        std::sort(cut, cut + 3);
+        if (cut[0] == cut[1] || cut[1] == cut[2]) break;
+        std::rotate(t.seq.begin() + cut[0], t.seq.begin() + cut[1], t.seq.begin() + cut[2]);
+        ops_.init(t);
+        break;
+      }
       case 0: {  // random clusters
         for (int r = 0; r < k; ++r) {
           const int i = 1 + static_cast<int>(rng_.below(static_cast<std::uint64_t>(t.seq.size() - 1)));
@@ -152,7 +168,11 @@ class Worker {
 
   void repair(Tour& t) {
     rng_.shuffle(removed_.begin(), removed_.end());
-    const double noise = rng_.chance(0.5) ? 0.0 : 0.1;
+    // Additive noise on insertion costs, in units of the mean step of the route: without it,
+    // cheapest reinsertion of what was just removed mostly rebuilds the same route.
+    const double mean_step = static_cast<double>(t.cost) / static_cast<double>(ops_.problem().cluster_count());
+    static constexpr double kNoise[4] = {0.0, 0.3, 1.0, 2.0};
+    const double noise = kNoise[rng_.below(4)] * mean_step;
     // Precedence: insert predecessors first when both were removed (a topological order of the removed set).
     const Problem& p = ops_.problem();
     if (p.has_precedence())
@@ -173,7 +193,11 @@ class Worker {
 
 }  // namespace
 
-Solution solve_heuristic(const Problem& p, const SolveParams& params, const StopToken& stop_in, const ProgressFn& progress) {
+Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const StopToken& stop_in, const ProgressFn& progress) {
+  SolveParams params = params_in;
+  if (const char* e = std::getenv("CR_ACC")) params.accept_threshold = std::atof(e);
+  if (const char* e = std::getenv("CR_STAG")) params.stagnation_rounds = std::atoi(e);
+  if (const char* e = std::getenv("CR_FRAC")) params.max_removal_fraction = std::atof(e);
   const auto t0 = std::chrono::steady_clock::now();
   StopToken stop = params.time_limit_s > 0 ? stop_in.with_time_limit(params.time_limit_s) : stop_in;
   if (params.target_cost) stop = stop.with_target(*params.target_cost);

@@ -9,7 +9,40 @@ namespace {
 constexpr Cost kHuge = std::numeric_limits<Cost>::max() / 4;
 }
 
-Ops::Ops(const Problem& p) : p_(p), m_(p.cluster_count()), closed_(p.closed()), prec_(p.has_precedence()) {}
+namespace {
+// Neighbour-list length: moves are only evaluated next to the closest clusters (as in LKH's
+// candidate sets); 12 keeps GTSPLIB optima reachable while making a pass O(m * 12 * k).
+constexpr int kNeighbours = 12;
+// Nodes per cluster used to measure cluster distances (large clusters are sampled evenly).
+constexpr int kSampleNodes = 12;
+}  // namespace
+
+Ops::Ops(const Problem& p) : p_(p), m_(p.cluster_count()), closed_(p.closed()), prec_(p.has_precedence()) {
+  kn_ = static_cast<std::size_t>(std::min(kNeighbours, std::max(0, m_ - 1)));
+  if (kn_ == 0) return;
+  std::vector<std::vector<NodeId>> sample(static_cast<std::size_t>(m_));
+  for (int c = 0; c < m_; ++c) {
+    const auto nodes = p.nodes_of(ClusterId(c));
+    const std::size_t step = std::max<std::size_t>(1, nodes.size() / kSampleNodes);
+    for (std::size_t k = 0; k < nodes.size() && sample[static_cast<std::size_t>(c)].size() < kSampleNodes; k += step)
+      sample[static_cast<std::size_t>(c)].push_back(nodes[k]);
+  }
+  nbr_.resize(static_cast<std::size_t>(m_) * kn_);
+  std::vector<std::pair<Cost, int>> d(static_cast<std::size_t>(m_));
+  for (int a = 0; a < m_; ++a) {
+    for (int b = 0; b < m_; ++b) {
+      Cost best = kHuge;
+      if (a != b)
+        for (NodeId u : sample[static_cast<std::size_t>(a)])
+          for (NodeId v : sample[static_cast<std::size_t>(b)]) best = std::min({best, p.arc_cost(u, v), p.arc_cost(v, u)});
+      d[static_cast<std::size_t>(b)] = {best, b};
+    }
+    std::partial_sort(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(kn_ + 1), d.end());
+    std::size_t k = 0;
+    for (std::size_t r = 0; r <= kn_ && k < kn_; ++r)
+      if (d[r].second != a) nbr_[static_cast<std::size_t>(a) * kn_ + k++] = ClusterId(d[r].second);
+  }
+}
 
 Cost Ops::full_cost(const std::vector<NodeId>& seq) const {
   if (seq.empty()) return 0;
@@ -58,11 +91,40 @@ Ops::Insertion Ops::best_insertion(const Tour& t, ClusterId c, double noise, Rng
       if (d < pos_best) pos_best = d, pos_node = v;
     }
     if (noise > 0.0 && rng) {
-      const double key = static_cast<double>(pos_best) * (1.0 + noise * rng->uniform01());
+      const double key = static_cast<double>(pos_best) + noise * rng->uniform01();
       if (key < best_key) best_key = key, best = {at, pos_node, pos_best};
     } else if (pos_best < best_delta) {
       best_delta = pos_best;
       best = {at, pos_node, pos_best};
+    }
+  }
+  return best;
+}
+
+Ops::Insertion Ops::best_local_insertion(const Tour& t, ClusterId c, int old_at) const {
+  const int L = static_cast<int>(t.seq.size());
+  if (static_cast<int>(kn_) * 2 + 1 >= L) return best_insertion(t, c, 0.0, nullptr);
+  const auto [lo, hi] = window(t, c);
+  thread_local std::vector<int> cand_;  // Ops is shared by the search threads
+  cand_.clear();
+  cand_.push_back(old_at);
+  for (ClusterId x : neighbours(c)) {
+    const int px = t.pos[x.index()];
+    if (px < 0) continue;
+    cand_.push_back(px);
+    cand_.push_back(px + 1);
+  }
+  const auto nodes = p_.nodes_of(c);
+  Insertion best;
+  Cost best_delta = kHuge;
+  for (int at : cand_) {
+    if (at < lo || at > hi) continue;
+    const NodeId prev = t.seq[static_cast<std::size_t>(at - 1)];
+    const NodeId next = at < L ? t.seq[static_cast<std::size_t>(at)] : (closed_ ? t.seq[0] : NodeId{});
+    const Cost base = next.valid() ? link(prev, next) : 0;
+    for (NodeId v : nodes) {
+      const Cost d = link(prev, v) + (next.valid() ? link(v, next) : 0) - base;
+      if (d < best_delta) best_delta = d, best = {at, v, d};
     }
   }
   return best;
@@ -100,7 +162,7 @@ bool Ops::reinsertion_pass(Tour& t) const {
     const Cost before = t.cost;
     const NodeId old = t.seq[static_cast<std::size_t>(i)];
     remove_at(t, i);
-    Insertion ins = best_insertion(t, ClusterId(c), 0.0, nullptr);
+    Insertion ins = best_local_insertion(t, ClusterId(c), i);
     // Keep the old place on ties so that a pass without improvement leaves the route unchanged.
     if (t.cost + ins.delta >= before) {
       Tour& u = t;
@@ -122,6 +184,28 @@ bool Ops::two_opt_pass(Tour& t) const {
   if (!p_.symmetric()) return false;
   const int L = static_cast<int>(t.seq.size());
   bool improved = false;
+  if (!prec_ && static_cast<int>(kn_) * 4 < L) {
+    // Neighbour-list 2-opt: the new arc (a, c) or (b, d) joins a cluster to one of its neighbours.
+    auto try_move = [&](int i, int j) {
+      if (j <= i || j >= L) return;
+      const NodeId a = t.seq[static_cast<std::size_t>(i - 1)], b = t.seq[static_cast<std::size_t>(i)];
+      const NodeId c = t.seq[static_cast<std::size_t>(j)];
+      const NodeId d = after(t, j);
+      Cost delta = p_.arc_cost(a, c) - p_.arc_cost(a, b);
+      if (d.valid()) delta += p_.arc_cost(b, d) - p_.arc_cost(c, d);
+      if (delta < 0) {
+        std::reverse(t.seq.begin() + i, t.seq.begin() + j + 1);
+        reindex(t, i, j + 1);
+        t.cost += delta;
+        improved = true;
+      }
+    };
+    for (int i = 1; i + 1 < L; ++i) {
+      for (ClusterId x : neighbours(cl(t.seq[static_cast<std::size_t>(i - 1)]))) try_move(i, t.pos[x.index()]);
+      for (ClusterId x : neighbours(cl(t.seq[static_cast<std::size_t>(i)]))) try_move(i, t.pos[x.index()] - 1);
+    }
+    return improved;
+  }
   for (int i = 1; i + 1 < L; ++i) {
     for (int j = i + 1; j < L; ++j) {
       const NodeId a = t.seq[static_cast<std::size_t>(i - 1)], b = t.seq[static_cast<std::size_t>(i)];
@@ -168,6 +252,18 @@ bool Ops::or_opt_pass(Tour& t) const {
       const Cost gain = link(prev, f) + (next.valid() ? link(l, next) - link(prev, next) : 0);
       Cost best = 0;
       int best_t = -1;
+      if (!prec_ && static_cast<int>(kn_) * 4 < L) {
+        // Only next to the neighbours of the segment's end clusters.
+        auto eval = [&](int tt) {
+          if (tt < 0 || tt >= L || (tt >= i - 1 && tt <= e)) return;
+          const NodeId y = t.seq[static_cast<std::size_t>(tt)];
+          const NodeId z = tt > e ? after(t, tt) : t.seq[static_cast<std::size_t>(tt + 1)];
+          const Cost add = link(y, f) + (z.valid() ? link(l, z) - link(y, z) : 0);
+          if (add - gain < best) best = add - gain, best_t = tt;
+        };
+        for (ClusterId x : neighbours(cl(f))) eval(t.pos[x.index()]);
+        for (ClusterId x : neighbours(cl(l))) eval(t.pos[x.index()] - 1);
+      } else {
       // Forward: insert after seq[tt], tt > e.
       for (int tt = e + 1; tt < L; ++tt) {
         const NodeId y = t.seq[static_cast<std::size_t>(tt)];
@@ -192,6 +288,7 @@ bool Ops::or_opt_pass(Tour& t) const {
         const NodeId z = jumped;
         const Cost add = link(y, f) + link(l, z) - link(y, z);
         if (add - gain < best) best = add - gain, best_t = tt;
+      }
       }
       if (best_t < 0) continue;
       if (best_t > e) {
@@ -296,12 +393,16 @@ bool Ops::cluster_optimise(Tour& t, double max_work) const {
 }
 
 void Ops::local_search(Tour& t) const {
-  for (int guard = 0; guard < 1000; ++guard) {
-    bool improved = reinsertion_pass(t);
-    improved = two_opt_pass(t) || improved;
-    improved = or_opt_pass(t) || improved;
-    improved = cluster_optimise(t, 2.0e6) || improved;
-    if (!improved) break;
+  // Sequence moves until none improves, then cluster optimisation (the expensive one on large
+  // clusters); repeat while it still improves. Bounded so a cost plateau cannot loop forever.
+  for (int guard = 0; guard < 100; ++guard) {
+    for (int inner = 0; inner < 100; ++inner) {
+      bool improved = reinsertion_pass(t);
+      improved = two_opt_pass(t) || improved;
+      improved = or_opt_pass(t) || improved;
+      if (!improved) break;
+    }
+    if (!cluster_optimise(t, 2.0e6)) break;
   }
 }
 

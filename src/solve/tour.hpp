@@ -2,6 +2,7 @@
 // operators of solve/heuristic.hpp working on it without reallocating.
 #pragma once
 
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -44,11 +45,18 @@ class Ops {
   };
   // Indices at which cluster c may be inserted keeping precedence with the clusters present: [lo, hi].
   std::pair<int, int> window(const Tour& t, ClusterId c) const;
-  // Best (position, node) for c; with noise > 0 each position's cost is multiplied by 1 + noise * u.
+  // Best (position, node) for c; with noise > 0 each position's cost gets + noise * u (u uniform in [0, 1)).
   Insertion best_insertion(const Tour& t, ClusterId c, double noise, Rng* rng) const;
+  // Like best_insertion, but only next to c's neighbour clusters and at old_at (the local-search move).
+  Insertion best_local_insertion(const Tour& t, ClusterId c, int old_at) const;
   void insert(Tour& t, const Insertion& ins) const;
   Cost removal_gain(const Tour& t, int i) const;
   void remove_at(Tour& t, int i) const;
+
+  // The up-to-kNeighbours clusters closest to c (min arc between sampled nodes, either direction).
+  std::span<const ClusterId> neighbours(ClusterId c) const {
+    return {nbr_.data() + static_cast<std::size_t>(c.value()) * kn_, kn_};
+  }
 
   bool reinsertion_pass(Tour& t) const;
   bool two_opt_pass(Tour& t) const;
@@ -62,6 +70,8 @@ class Ops {
   int m_;
   bool closed_;
   bool prec_;
+  std::size_t kn_ = 0;
+  std::vector<ClusterId> nbr_;
 };
 
 }  // namespace cutroute::solve::detail

@@ -70,11 +70,20 @@ class Worker {
   }
 
   // `iterations` destroy/repair steps; returns early when `stop` fires or the target is reached.
-  void round(int iterations, const StopToken& stop) {
+  void round(int iterations, const StopToken& stop, bool diversify) {
     const Problem& p = ops_.problem();
+    // After a round without progress, half of the rounds start from a fresh random construction
+    // instead of the best route (the best is kept): local search funnels similar routes back
+    // into the same optimum, a new start reaches other basins.
+    if (diversify && rng_.chance(0.5)) {
+      ops_.construct(cur_, rng_);
+      ops_.local_search(cur_);
+      if (cur_.cost < best_.cost) best_ = cur_;
+    }
     const int movable = p.cluster_count() - 1;
     if (movable < 1) return;
-    const int kmax = std::max(1, static_cast<int>(params_.max_removal_fraction * movable));
+    // At least 3 clusters (when there are) so tiny instances get perturbations local search cannot undo.
+    const int kmax = std::max(std::min(movable, 3), static_cast<int>(params_.max_removal_fraction * movable));
     for (int it = 0; it < iterations; ++it) {
       if (stop.stop_requested() || stop.target_reached(best_.cost)) return;
       ++iterations_;
@@ -82,14 +91,12 @@ class Worker {
       const double u = rng_.uniform01();
       const int k = std::min(movable, 1 + static_cast<int>(u * u * kmax));
       destroy(trial_, k);
-      if (std::getenv("CR_DBG") && trial_.cost != ops_.full_cost(trial_.seq)) std::fprintf(stderr, "destroy drift %ld %ld\n", (long)trial_.cost, (long)ops_.full_cost(trial_.seq));
       repair(trial_);
-      if (std::getenv("CR_DBG") && trial_.cost != ops_.full_cost(trial_.seq)) std::fprintf(stderr, "repair drift %ld %ld\n", (long)trial_.cost, (long)ops_.full_cost(trial_.seq));
       ops_.local_search(trial_);
-      if (std::getenv("CR_DBG") && trial_.cost != ops_.full_cost(trial_.seq)) std::fprintf(stderr, "ls drift %ld %ld\n", (long)trial_.cost, (long)ops_.full_cost(trial_.seq));
-      if (std::getenv("CR_DBG2")) std::fprintf(stderr, "k %d trial %ld cur %ld best %ld\n", k, (long)trial_.cost, (long)cur_.cost, (long)best_.cost);
-      const double thr = params_.accept_threshold * (1.0 - static_cast<double>(it) / iterations);
-      if (static_cast<double>(trial_.cost) <= static_cast<double>(cur_.cost) * (1.0 + thr)) std::swap(cur_, trial_);
+      // Threshold acceptance in units of the mean step of the route, decaying over the round.
+      const double mean_step = static_cast<double>(cur_.cost) / static_cast<double>(p.cluster_count());
+      const double thr = params_.accept_threshold * mean_step * (1.0 - static_cast<double>(it) / iterations);
+      if (static_cast<double>(trial_.cost) <= static_cast<double>(cur_.cost) + thr) std::swap(cur_, trial_);
       if (cur_.cost < best_.cost) best_ = cur_;
     }
   }
@@ -229,7 +236,11 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
     }
     first = false;
     for (Worker& w : workers) w.restart_from(global);
-    done = stop.stop_requested() || stop.target_reached(global.cost) || stagnant >= params.stagnation_rounds;
+    // Stagnation: enough rounds without progress, and enough iterations in them (tiny instances have
+    // short rounds; a few thousand iterations on them cost milliseconds).
+    const long long stagnant_iterations = static_cast<long long>(stagnant) * round_iters * threads;
+    done = stop.stop_requested() || stop.target_reached(global.cost) ||
+           (stagnant >= params.stagnation_rounds && stagnant_iterations >= params.min_stagnation_iterations);
     if (progress) progress({"heuristic", -1.0, static_cast<double>(global.cost)});
   };
 
@@ -237,7 +248,7 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
     workers[static_cast<std::size_t>(i)].start();
     sync();
     while (!done) {
-      workers[static_cast<std::size_t>(i)].round(round_iters, stop);
+      workers[static_cast<std::size_t>(i)].round(round_iters, stop, stagnant > 0);
       sync();
     }
   };

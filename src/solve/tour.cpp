@@ -393,8 +393,10 @@ bool Ops::cluster_optimise(Tour& t, double max_work) const {
 }
 
 void Ops::local_search(Tour& t) const {
-  // Sequence moves until none improves, then cluster optimisation (the expensive one on large
-  // clusters); repeat while it still improves. Bounded so a cost plateau cannot loop forever.
+  // Cluster optimisation first (a perturbed order often only pays off with other nodes; the sequence
+  // moves, which keep nodes, would otherwise undo it), then sequence moves until none improves, then
+  // cluster optimisation again; repeat while it improves. Bounded so a plateau cannot loop forever.
+  cluster_optimise(t, 2.0e6);
   for (int guard = 0; guard < 100; ++guard) {
     for (int inner = 0; inner < 100; ++inner) {
       bool improved = reinsertion_pass(t);

@@ -31,11 +31,13 @@ struct SolveParams {
   int round_iterations = 0;            // 0: automatic, ~ 40 + cluster_count / 2
   // Stop after this many rounds in a row without improving the best route.
   int stagnation_rounds = 6;
+  // ... and only after at least this many destroy/repair iterations (all threads) without progress.
+  long long min_stagnation_iterations = 4000;
   // Largest share of the clusters one destroy step may remove.
   double max_removal_fraction = 0.3;
-  // Threshold acceptance: a worse route is accepted when within this relative amount of the
-  // current one; the threshold decays linearly to 0 over each round.
-  double accept_threshold = 0.01;
+  // Threshold acceptance: a worse route is accepted when it costs at most this many mean steps
+  // (route cost / clusters) more than the current one; decays linearly to 0 over each round.
+  double accept_threshold = 0.5;
 
   // Exact DP (solve/exact_dp.hpp).
   std::size_t exact_memory_limit_bytes = std::size_t{1536} << 20;  // 1.5 GiB

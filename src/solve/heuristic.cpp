@@ -238,9 +238,9 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
     for (Worker& w : workers) w.restart_from(global);
     // Stagnation: enough rounds without progress, and enough iterations in them (tiny instances have
     // short rounds; a few thousand iterations on them cost milliseconds).
-    const long long stagnant_iterations = static_cast<long long>(stagnant) * round_iters * threads;
+    const long long stagnant_work = static_cast<long long>(stagnant) * round_iters * threads * p.node_count();
     done = stop.stop_requested() || stop.target_reached(global.cost) ||
-           (stagnant >= params.stagnation_rounds && stagnant_iterations >= params.min_stagnation_iterations);
+           (stagnant >= params.stagnation_rounds && stagnant_work >= params.min_stagnation_work);
     if (progress) progress({"heuristic", -1.0, static_cast<double>(global.cost)});
   };
 

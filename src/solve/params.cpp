@@ -18,7 +18,7 @@ SolveParams SolveParams::standard() { return SolveParams{}; }
 SolveParams SolveParams::fast() {
   SolveParams p;
   p.stagnation_rounds = 1;
-  p.min_stagnation_iterations = 200;
+  p.min_stagnation_work = 10000;
   p.max_removal_fraction = 0.2;
   p.exact_auto_max_work = 5.0e7;
   return p;
@@ -27,7 +27,7 @@ SolveParams SolveParams::fast() {
 SolveParams SolveParams::thorough() {
   SolveParams p;
   p.stagnation_rounds = 24;
-  p.min_stagnation_iterations = 20000;
+  p.min_stagnation_work = 1000000;
   p.max_removal_fraction = 0.4;
   p.time_limit_s = 600.0;
   p.exact_auto_max_work = 4.0e9;
@@ -48,7 +48,7 @@ std::vector<std::string> check(const SolveParams& p) {
     out.push_back("accept_threshold must be in [0, 10] (got " + num(p.accept_threshold) + ")");
   if (p.exact_memory_limit_bytes < (std::size_t{1} << 20)) out.push_back("exact_memory_limit_bytes must be >= 1 MiB");
   if (!(p.exact_auto_max_work >= 0.0)) out.push_back("exact_auto_max_work must be >= 0");
-  if (p.min_stagnation_iterations < 0) out.push_back("min_stagnation_iterations must be >= 0");
+  if (p.min_stagnation_work < 0) out.push_back("min_stagnation_work must be >= 0");
   if (p.target_cost && *p.target_cost < 0) out.push_back("target_cost must be >= 0");
   return out;
 }

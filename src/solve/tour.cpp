@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <cstdlib>
 
 namespace cutroute::solve::detail {
 
@@ -18,7 +19,9 @@ constexpr int kSampleNodes = 12;
 }  // namespace
 
 Ops::Ops(const Problem& p) : p_(p), m_(p.cluster_count()), closed_(p.closed()), prec_(p.has_precedence()) {
-  kn_ = static_cast<std::size_t>(std::min(kNeighbours, std::max(0, m_ - 1)));
+  int kneigh = kNeighbours;
+  if (const char* e = std::getenv("CR_K")) kneigh = std::atoi(e);
+  kn_ = static_cast<std::size_t>(std::min(kneigh, std::max(0, m_ - 1)));
   if (kn_ == 0) return;
   std::vector<std::vector<NodeId>> sample(static_cast<std::size_t>(m_));
   for (int c = 0; c < m_; ++c) {
@@ -61,6 +64,22 @@ void Ops::init(Tour& t) const {
   t.pos.assign(static_cast<std::size_t>(m_), -1);
   reindex(t, 0, static_cast<int>(t.seq.size()));
   t.cost = full_cost(t.seq);
+  t.dirty.assign(static_cast<std::size_t>(m_), 1);
+  t.epoch = t.pass_start = 1;
+  t.since = 0;
+  t.touched.assign(static_cast<std::size_t>(m_), 1);
+}
+
+void Ops::mark(Tour& t, int i) const {
+  const int L = static_cast<int>(t.seq.size());
+  if (L == 0) return;
+  if (i < 0 || i >= L) {
+    if (!closed_) return;
+    i = (i % L + L) % L;
+  }
+  const std::size_t c = cl(t.seq[static_cast<std::size_t>(i)]).index();
+  t.dirty[c] = 1;
+  t.touched[c] = t.epoch;
 }
 
 std::pair<int, int> Ops::window(const Tour& t, ClusterId c) const {
@@ -134,6 +153,7 @@ void Ops::insert(Tour& t, const Insertion& ins) const {
   t.seq.insert(t.seq.begin() + ins.at, ins.node);
   reindex(t, ins.at, static_cast<int>(t.seq.size()));
   t.cost += ins.delta;
+  mark_around(t, ins.at);
 }
 
 Cost Ops::removal_gain(const Tour& t, int i) const {
@@ -148,6 +168,8 @@ void Ops::remove_at(Tour& t, int i) const {
   t.pos[cl(t.seq[static_cast<std::size_t>(i)]).index()] = -1;
   t.seq.erase(t.seq.begin() + i);
   reindex(t, i, static_cast<int>(t.seq.size()));
+  mark(t, i - 1);
+  mark(t, i);
 }
 
 // Reinsertion (Or-opt of one cluster with node re-selection), e.g. cluster C in
@@ -158,9 +180,17 @@ bool Ops::reinsertion_pass(Tour& t) const {
   const int L = static_cast<int>(t.seq.size());
   for (int c = 0; c < m_ && L > 1; ++c) {
     if (ClusterId(c) == p_.start_cluster()) continue;
+    if (!t.dirty[static_cast<std::size_t>(c)]) continue;
+    t.dirty[static_cast<std::size_t>(c)] = 0;
     const int i = t.pos[static_cast<std::size_t>(c)];
+    const int touched_before = t.touched[static_cast<std::size_t>(c)];
     const Cost before = t.cost;
     const NodeId old = t.seq[static_cast<std::size_t>(i)];
+    // Flags of the neighbours, restored when the cluster goes back where it was.
+    const int Lc = static_cast<int>(t.seq.size());
+    const std::size_t nprev = cl(t.seq[static_cast<std::size_t>(i - 1)]).index();
+    const std::size_t nnext = cl(t.seq[static_cast<std::size_t>((i + 1) % Lc)]).index();
+    const int saved[4] = {t.dirty[nprev], t.touched[nprev], t.dirty[nnext], t.touched[nnext]};
     remove_at(t, i);
     Insertion ins = best_local_insertion(t, ClusterId(c), i);
     // Keep the old place on ties so that a pass without improvement leaves the route unchanged.
@@ -169,10 +199,15 @@ bool Ops::reinsertion_pass(Tour& t) const {
       const NodeId prev = u.seq[static_cast<std::size_t>(i - 1)];
       const NodeId next = i < static_cast<int>(u.seq.size()) ? u.seq[static_cast<std::size_t>(i)] : (closed_ ? u.seq[0] : NodeId{});
       ins = {i, old, link(prev, old) + (next.valid() ? link(old, next) - link(prev, next) : 0)};
+      insert(t, ins);
+      t.dirty[nprev] = static_cast<char>(saved[0]), t.touched[nprev] = saved[1];
+      t.dirty[nnext] = static_cast<char>(saved[2]), t.touched[nnext] = saved[3];
+      t.dirty[static_cast<std::size_t>(c)] = 0;
+      t.touched[static_cast<std::size_t>(c)] = touched_before;
     } else {
       improved = true;
+      insert(t, ins);
     }
-    insert(t, ins);
   }
   return improved;
 }
@@ -198,9 +233,13 @@ bool Ops::two_opt_pass(Tour& t) const {
         reindex(t, i, j + 1);
         t.cost += delta;
         improved = true;
+        mark_around(t, i);
+        mark_around(t, j);
       }
     };
     for (int i = 1; i + 1 < L; ++i) {
+      const std::size_t ca = cl(t.seq[static_cast<std::size_t>(i - 1)]).index(), cb = cl(t.seq[static_cast<std::size_t>(i)]).index();
+      if (!touched(t, ca) && !touched(t, cb)) continue;
       for (ClusterId x : neighbours(cl(t.seq[static_cast<std::size_t>(i - 1)]))) try_move(i, t.pos[x.index()]);
       for (ClusterId x : neighbours(cl(t.seq[static_cast<std::size_t>(i)]))) try_move(i, t.pos[x.index()] - 1);
     }
@@ -229,6 +268,8 @@ bool Ops::two_opt_pass(Tour& t) const {
         reindex(t, i, j + 1);
         t.cost += delta;
         improved = true;
+        mark_around(t, i);
+        mark_around(t, j);
       }
     }
   }
@@ -242,9 +283,13 @@ bool Ops::two_opt_pass(Tour& t) const {
 bool Ops::or_opt_pass(Tour& t) const {
   const int L = static_cast<int>(t.seq.size());
   bool improved = false;
-  for (int k = 2; k <= 3; ++k) {
+  static const int kmaxseg = std::getenv("CR_SEG") ? std::atoi(std::getenv("CR_SEG")) : 3;
+  for (int k = 2; k <= kmaxseg; ++k) {
     for (int i = 1; i + k <= L; ++i) {
       const int e = i + k - 1;
+      if (!touched(t, cl(t.seq[static_cast<std::size_t>(i)]).index()) && !touched(t, cl(t.seq[static_cast<std::size_t>(e)]).index()) &&
+          !touched(t, cl(t.seq[static_cast<std::size_t>(i - 1)]).index()))
+        continue;
       const NodeId prev = t.seq[static_cast<std::size_t>(i - 1)];
       const NodeId f = t.seq[static_cast<std::size_t>(i)], l = t.seq[static_cast<std::size_t>(e)];
       const NodeId next = after(t, e);
@@ -294,9 +339,15 @@ bool Ops::or_opt_pass(Tour& t) const {
       if (best_t > e) {
         std::rotate(t.seq.begin() + i, t.seq.begin() + e + 1, t.seq.begin() + best_t + 1);
         reindex(t, i, best_t + 1);
+        mark_around(t, i - 1);
+        mark_around(t, best_t - k + 1);
+        mark_around(t, best_t);
       } else {
         std::rotate(t.seq.begin() + best_t + 1, t.seq.begin() + i, t.seq.begin() + e + 1);
         reindex(t, best_t + 1, e + 1);
+        mark_around(t, best_t + 1);
+        mark_around(t, best_t + k);
+        mark_around(t, e + 1);
       }
       t.cost += best;
       improved = true;
@@ -387,7 +438,11 @@ bool Ops::cluster_optimise(Tour& t, double max_work) const {
     run(std::span<const NodeId>(&cur, 1));
   }
   if (best_seq.empty()) return false;
-  t.seq = std::move(best_seq);
+  for (int i = 0; i < L; ++i)
+    if (best_seq[static_cast<std::size_t>(i)] != t.seq[static_cast<std::size_t>(i)]) {
+      t.seq[static_cast<std::size_t>(i)] = best_seq[static_cast<std::size_t>(i)];
+      mark_around(t, i);
+    }
   t.cost = best;
   return true;
 }
@@ -400,6 +455,7 @@ void Ops::local_search(Tour& t) const {
   for (int guard = 0; guard < 100; ++guard) {
     for (int inner = 0; inner < 100; ++inner) {
       bool improved = reinsertion_pass(t);
+      begin_round(t);
       improved = two_opt_pass(t) || improved;
       improved = or_opt_pass(t) || improved;
       if (!improved) break;
@@ -423,8 +479,7 @@ void Ops::construct(Tour& t, Rng& rng) const {
   for (NodeId v : p_.nodes_of(s))
     if (p_.inner_cost(v) < p_.inner_cost(first)) first = v;
   t.seq.assign(1, first);
-  t.pos.assign(static_cast<std::size_t>(m_), -1);
-  t.pos[s.index()] = 0;
+  init(t);
   t.cost = p_.inner_cost(first);  // one-node route, closed or open
   while (!avail.empty()) {
     const std::size_t k = rng.below(avail.size());

@@ -14,9 +14,17 @@ namespace cutroute::solve::detail {
 // A route over some (partial) or all (complete) clusters; seq[0] is always in the start cluster.
 // Cost convention: closed tour = sum of link() around the cycle; open path = inner(seq[0]) + sum of
 // link() along it. link(a, a) = inner(a) makes the one-node cycle consistent.
+// Don't-look flags (Bentley 1992): local search only re-examines clusters whose neighbourhood in the
+// route changed since they were last examined without success; a pass over a route that a small
+// destroy/repair changed in a few places then costs O(changes), not O(m).
 struct Tour {
   std::vector<NodeId> seq;
-  std::vector<int> pos;  // by cluster: index in seq, -1 when absent
+  std::vector<int> pos;          // by cluster: index in seq, -1 when absent
+  std::vector<char> dirty;       // by cluster: reinsertion should look at it again
+  std::vector<int> touched;      // by cluster: epoch of the last change next to it (2-opt / Or-opt)
+  int epoch = 1;                 // current change epoch
+  int since = 0;                 // 2-opt / Or-opt look at clusters touched at or after this epoch
+  int pass_start = 1;            // epoch at which the last 2-opt / Or-opt round began
   Cost cost = 0;
 };
 
@@ -29,7 +37,15 @@ class Ops {
   ClusterId cl(NodeId v) const { return p_.cluster_of(v); }
 
   Cost full_cost(const std::vector<NodeId>& seq) const;
-  void init(Tour& t) const;                      // pos and cost from seq
+  void init(Tour& t) const;                      // pos and cost from seq; every cluster dirty
+  void mark(Tour& t, int i) const;               // flags the cluster at index i (wraps on a tour)
+  void mark_around(Tour& t, int i) const { mark(t, i - 1), mark(t, i), mark(t, i + 1); }
+  static bool touched(const Tour& t, std::size_t c) { return t.touched[c] >= t.since; }
+  // Starts a 2-opt / Or-opt round: it looks at what changed since the previous round began.
+  static void begin_round(Tour& t) {
+    t.since = t.pass_start;
+    t.pass_start = ++t.epoch;
+  }
   void reindex(Tour& t, int from, int to) const; // pos for seq[from, to)
   // The node after index i: the next one, the first one (closed tour), or an invalid id (path end).
   NodeId after(const Tour& t, int i) const {

@@ -28,7 +28,7 @@ TEST(Heuristic, SameSeedAndThreadsGiveTheSameRoute) {
     sp.seed = 42;
     sp.threads = 2;
     sp.time_limit_s = 0;
-    sp.min_stagnation_iterations = 500;  // keep the test short (also under sanitizers)
+    sp.min_stagnation_work = 10000;  // keep the test short (also under sanitizers)
     const Solution a = solve(p, sp);
     const Solution b = solve(p, sp);
     EXPECT_EQ(a.route, b.route);
@@ -55,7 +55,7 @@ TEST(Heuristic, StopsAtTargetCost) {
   SolveParams sp;
   sp.solver = SolverKind::heuristic;
   sp.threads = 1;
-  sp.min_stagnation_iterations = 500;
+  sp.min_stagnation_work = 10000;
   const Solution full = solve(p, sp);
   sp.target_cost = full.cost * 2;  // any route after construction + local search is below this
   const Solution quick = solve(p, sp);

@@ -31,8 +31,10 @@ struct SolveParams {
   int round_iterations = 0;            // 0: automatic, ~ 40 + cluster_count / 2
   // Stop after this many rounds in a row without improving the best route.
   int stagnation_rounds = 6;
-  // ... and only after at least this many destroy/repair iterations (all threads) without progress.
-  long long min_stagnation_iterations = 4000;
+  // ... and only after (iterations without progress, all threads) x (node count) reaches this:
+  // tiny instances, whose iterations cost microseconds, get thousands of them; large ones are
+  // governed by stagnation_rounds alone.
+  long long min_stagnation_work = 100000;
   // Largest share of the clusters one destroy step may remove.
   double max_removal_fraction = 0.3;
   // Threshold acceptance: a worse route is accepted when it costs at most this many mean steps

@@ -5,8 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <thread>
-#include <cstdio>
-#include <cstdlib>
 
 #include "tour.hpp"
 
@@ -45,6 +43,9 @@ bool two_opt_pass(const Problem& p, std::vector<NodeId>& r) {
 }
 bool or_opt_pass(const Problem& p, std::vector<NodeId>& r) {
   return on_route(p, r, [](const Ops& o, Tour& t) { return o.or_opt_pass(t); });
+}
+bool swap_pass(const Problem& p, std::vector<NodeId>& r) {
+  return on_route(p, r, [](const Ops& o, Tour& t) { return o.swap_pass(t); });
 }
 bool cluster_optimise(const Problem& p, std::vector<NodeId>& r, double max_work) {
   return on_route(p, r, [max_work](const Ops& o, Tour& t) { return o.cluster_optimise(t, max_work); });
@@ -200,11 +201,7 @@ class Worker {
 
 }  // namespace
 
-Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const StopToken& stop_in, const ProgressFn& progress) {
-  SolveParams params = params_in;
-  if (const char* e = std::getenv("CR_ACC")) params.accept_threshold = std::atof(e);
-  if (const char* e = std::getenv("CR_STAG")) params.stagnation_rounds = std::atoi(e);
-  if (const char* e = std::getenv("CR_FRAC")) params.max_removal_fraction = std::atof(e);
+Solution solve_heuristic(const Problem& p, const SolveParams& params, const StopToken& stop_in, const ProgressFn& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   StopToken stop = params.time_limit_s > 0 ? stop_in.with_time_limit(params.time_limit_s) : stop_in;
   if (params.target_cost) stop = stop.with_target(*params.target_cost);

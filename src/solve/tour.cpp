@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <limits>
-#include <cstdlib>
 
 namespace cutroute::solve::detail {
 
@@ -19,9 +18,7 @@ constexpr int kSampleNodes = 12;
 }  // namespace
 
 Ops::Ops(const Problem& p) : p_(p), m_(p.cluster_count()), closed_(p.closed()), prec_(p.has_precedence()) {
-  int kneigh = kNeighbours;
-  if (const char* e = std::getenv("CR_K")) kneigh = std::atoi(e);
-  kn_ = static_cast<std::size_t>(std::min(kneigh, std::max(0, m_ - 1)));
+  kn_ = static_cast<std::size_t>(std::min(kNeighbours, std::max(0, m_ - 1)));
   if (kn_ == 0) return;
   std::vector<std::vector<NodeId>> sample(static_cast<std::size_t>(m_));
   for (int c = 0; c < m_; ++c) {
@@ -30,21 +27,28 @@ Ops::Ops(const Problem& p) : p_(p), m_(p.cluster_count()), closed_(p.closed()), 
     for (std::size_t k = 0; k < nodes.size() && sample[static_cast<std::size_t>(c)].size() < kSampleNodes; k += step)
       sample[static_cast<std::size_t>(c)].push_back(nodes[k]);
   }
-  nbr_.resize(static_cast<std::size_t>(m_) * kn_);
-  std::vector<std::pair<Cost, int>> d(static_cast<std::size_t>(m_));
-  for (int a = 0; a < m_; ++a) {
-    for (int b = 0; b < m_; ++b) {
-      Cost best = kHuge;
-      if (a != b)
-        for (NodeId u : sample[static_cast<std::size_t>(a)])
-          for (NodeId v : sample[static_cast<std::size_t>(b)]) best = std::min({best, p.arc_cost(u, v), p.arc_cost(v, u)});
-      d[static_cast<std::size_t>(b)] = {best, b};
+  // For cluster a: the kn_ clusters b with the cheapest sampled arc b -> a (good predecessors) and
+  // a -> b (good successors). On symmetric problems both lists are the same.
+  auto build = [&](std::vector<ClusterId>& out, bool into) {
+    out.resize(static_cast<std::size_t>(m_) * kn_);
+    std::vector<std::pair<Cost, int>> d(static_cast<std::size_t>(m_));
+    for (int a = 0; a < m_; ++a) {
+      for (int b = 0; b < m_; ++b) {
+        Cost best = kHuge;
+        if (a != b)
+          for (NodeId u : sample[static_cast<std::size_t>(a)])
+            for (NodeId v : sample[static_cast<std::size_t>(b)]) best = std::min(best, into ? p.arc_cost(v, u) : p.arc_cost(u, v));
+        d[static_cast<std::size_t>(b)] = {best, b};
+      }
+      std::partial_sort(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(kn_ + 1), d.end());
+      std::size_t k = 0;
+      for (std::size_t r = 0; r <= kn_ && k < kn_; ++r)
+        if (d[r].second != a) out[static_cast<std::size_t>(a) * kn_ + k++] = ClusterId(d[r].second);
     }
-    std::partial_sort(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(kn_ + 1), d.end());
-    std::size_t k = 0;
-    for (std::size_t r = 0; r <= kn_ && k < kn_; ++r)
-      if (d[r].second != a) nbr_[static_cast<std::size_t>(a) * kn_ + k++] = ClusterId(d[r].second);
-  }
+  };
+  build(pred_, true);
+  if (p.symmetric()) succ_ = pred_;
+  else build(succ_, false);
 }
 
 Cost Ops::full_cost(const std::vector<NodeId>& seq) const {
@@ -122,17 +126,16 @@ Ops::Insertion Ops::best_insertion(const Tour& t, ClusterId c, double noise, Rng
 
 Ops::Insertion Ops::best_local_insertion(const Tour& t, ClusterId c, int old_at) const {
   const int L = static_cast<int>(t.seq.size());
-  if (static_cast<int>(kn_) * 2 + 1 >= L) return best_insertion(t, c, 0.0, nullptr);
+  // With precedence the window is often narrow and the candidates mostly fall outside it: scan it all.
+  if (prec_ || static_cast<int>(kn_) * 2 + 1 >= L) return best_insertion(t, c, 0.0, nullptr);
   const auto [lo, hi] = window(t, c);
   thread_local std::vector<int> cand_;  // Ops is shared by the search threads
   cand_.clear();
   cand_.push_back(old_at);
-  for (ClusterId x : neighbours(c)) {
-    const int px = t.pos[x.index()];
-    if (px < 0) continue;
-    cand_.push_back(px);
-    cand_.push_back(px + 1);
-  }
+  for (ClusterId x : preds(c))
+    if (t.pos[x.index()] >= 0) cand_.push_back(t.pos[x.index()] + 1);
+  for (ClusterId y : succs(c))
+    if (t.pos[y.index()] >= 0) cand_.push_back(t.pos[y.index()]);
   const auto nodes = p_.nodes_of(c);
   Insertion best;
   Cost best_delta = kHuge;
@@ -240,8 +243,8 @@ bool Ops::two_opt_pass(Tour& t) const {
     for (int i = 1; i + 1 < L; ++i) {
       const std::size_t ca = cl(t.seq[static_cast<std::size_t>(i - 1)]).index(), cb = cl(t.seq[static_cast<std::size_t>(i)]).index();
       if (!touched(t, ca) && !touched(t, cb)) continue;
-      for (ClusterId x : neighbours(cl(t.seq[static_cast<std::size_t>(i - 1)]))) try_move(i, t.pos[x.index()]);
-      for (ClusterId x : neighbours(cl(t.seq[static_cast<std::size_t>(i)]))) try_move(i, t.pos[x.index()] - 1);
+      for (ClusterId x : succs(cl(t.seq[static_cast<std::size_t>(i - 1)]))) try_move(i, t.pos[x.index()]);
+      for (ClusterId x : succs(cl(t.seq[static_cast<std::size_t>(i)]))) try_move(i, t.pos[x.index()] - 1);
     }
     return improved;
   }
@@ -283,8 +286,7 @@ bool Ops::two_opt_pass(Tour& t) const {
 bool Ops::or_opt_pass(Tour& t) const {
   const int L = static_cast<int>(t.seq.size());
   bool improved = false;
-  static const int kmaxseg = std::getenv("CR_SEG") ? std::atoi(std::getenv("CR_SEG")) : 3;
-  for (int k = 2; k <= kmaxseg; ++k) {
+  for (int k = 2; k <= 3; ++k) {
     for (int i = 1; i + k <= L; ++i) {
       const int e = i + k - 1;
       if (!touched(t, cl(t.seq[static_cast<std::size_t>(i)]).index()) && !touched(t, cl(t.seq[static_cast<std::size_t>(e)]).index()) &&
@@ -306,8 +308,8 @@ bool Ops::or_opt_pass(Tour& t) const {
           const Cost add = link(y, f) + (z.valid() ? link(l, z) - link(y, z) : 0);
           if (add - gain < best) best = add - gain, best_t = tt;
         };
-        for (ClusterId x : neighbours(cl(f))) eval(t.pos[x.index()]);
-        for (ClusterId x : neighbours(cl(l))) eval(t.pos[x.index()] - 1);
+        for (ClusterId x : preds(cl(f))) eval(t.pos[x.index()]);
+        for (ClusterId x : succs(cl(l))) eval(t.pos[x.index()] - 1);
       } else {
       // Forward: insert after seq[tt], tt > e.
       for (int tt = e + 1; tt < L; ++tt) {
@@ -351,6 +353,57 @@ bool Ops::or_opt_pass(Tour& t) const {
       }
       t.cost += best;
       improved = true;
+    }
+  }
+  return improved;
+}
+
+// Swap: exchange two clusters, keeping their nodes, e.g. S a [b] c d [e] f -> S a [e] c d [b] f.
+// Needed on precedence-heavy routes (SOP) where single moves are blocked but exchanges are not.
+// Forbidden: b must not have to precede anything in (b, e], e nothing in [b, e) must precede.
+// O(m^2) a pass (each pair one O(1) evaluation plus the precedence look-ups).
+bool Ops::swap_pass(Tour& t) const {
+  const int L = static_cast<int>(t.seq.size());
+  bool improved = false;
+  auto val = [&](NodeId a, NodeId b) { return a.valid() && b.valid() ? link(a, b) : 0; };
+  for (int i = 1; i + 1 < L; ++i) {
+    if (!touched(t, cl(t.seq[static_cast<std::size_t>(i)]).index()) && !touched(t, cl(t.seq[static_cast<std::size_t>(i - 1)]).index()))
+      continue;
+    for (int j = i + 1; j < L; ++j) {
+      const NodeId x = t.seq[static_cast<std::size_t>(i)], y = t.seq[static_cast<std::size_t>(j)];
+      if (prec_) {
+        if (p_.must_precede(cl(x), cl(y))) break;  // x can never pass y or anything after it
+        bool blocked = false;
+        for (int q = i + 1; q < j && !blocked; ++q) {
+          const ClusterId z = cl(t.seq[static_cast<std::size_t>(q)]);
+          blocked = p_.must_precede(cl(x), z) || p_.must_precede(z, cl(y));
+        }
+        if (blocked) {
+          // Once x must precede something in between, no later j works either.
+          bool x_blocked = false;
+          for (int q = i + 1; q < j && !x_blocked; ++q) x_blocked = p_.must_precede(cl(x), cl(t.seq[static_cast<std::size_t>(q)]));
+          if (x_blocked) break;
+          continue;
+        }
+      }
+      const NodeId a = t.seq[static_cast<std::size_t>(i - 1)];
+      const NodeId d = after(t, j);
+      Cost delta;
+      if (j == i + 1) {
+        delta = link(a, y) + link(y, x) + val(x, d) - link(a, x) - link(x, y) - val(y, d);
+      } else {
+        const NodeId b = t.seq[static_cast<std::size_t>(i + 1)], c = t.seq[static_cast<std::size_t>(j - 1)];
+        delta = link(a, y) + link(y, b) + link(c, x) + val(x, d) - link(a, x) - link(x, b) - link(c, y) - val(y, d);
+      }
+      if (delta < 0) {
+        std::swap(t.seq[static_cast<std::size_t>(i)], t.seq[static_cast<std::size_t>(j)]);
+        reindex(t, i, i + 1);
+        reindex(t, j, j + 1);
+        t.cost += delta;
+        improved = true;
+        mark_around(t, i);
+        mark_around(t, j);
+      }
     }
   }
   return improved;
@@ -458,6 +511,7 @@ void Ops::local_search(Tour& t) const {
       begin_round(t);
       improved = two_opt_pass(t) || improved;
       improved = or_opt_pass(t) || improved;
+      if (prec_) improved = swap_pass(t) || improved;
       if (!improved) break;
     }
     if (!cluster_optimise(t, 2.0e6)) break;

@@ -69,14 +69,15 @@ class Ops {
   Cost removal_gain(const Tour& t, int i) const;
   void remove_at(Tour& t, int i) const;
 
-  // The up-to-kNeighbours clusters closest to c (min arc between sampled nodes, either direction).
-  std::span<const ClusterId> neighbours(ClusterId c) const {
-    return {nbr_.data() + static_cast<std::size_t>(c.value()) * kn_, kn_};
-  }
+  // Candidate lists (LKH-style): the clusters with the cheapest arcs into c (preds) and out of c
+  // (succs), measured between up to 12 sampled nodes per cluster; moves are only tried next to them.
+  std::span<const ClusterId> preds(ClusterId c) const { return {pred_.data() + static_cast<std::size_t>(c.value()) * kn_, kn_}; }
+  std::span<const ClusterId> succs(ClusterId c) const { return {succ_.data() + static_cast<std::size_t>(c.value()) * kn_, kn_}; }
 
   bool reinsertion_pass(Tour& t) const;
   bool two_opt_pass(Tour& t) const;
   bool or_opt_pass(Tour& t) const;
+  bool swap_pass(Tour& t) const;
   bool cluster_optimise(Tour& t, double max_work) const;
   void local_search(Tour& t) const;
   void construct(Tour& t, Rng& rng) const;
@@ -87,7 +88,7 @@ class Ops {
   bool closed_;
   bool prec_;
   std::size_t kn_ = 0;
-  std::vector<ClusterId> nbr_;
+  std::vector<ClusterId> pred_, succ_;
 };
 
 }  // namespace cutroute::solve::detail

@@ -35,6 +35,7 @@ TEST(Operators, NeverWorsenAndKeepPrecedence) {
     const std::pair<const char*, Op> ops[] = {{"reinsertion", reinsertion_pass},
                                               {"two_opt", two_opt_pass},
                                               {"or_opt", or_opt_pass},
+                                              {"swap", swap_pass},
                                               {"cluster_optimise", [](const Problem& q, std::vector<NodeId>& x) { return cluster_optimise(q, x); }}};
     for (int round = 0; round < 3; ++round)
       for (auto [name, op] : ops) {

@@ -72,6 +72,10 @@ int run_gtsp(const GtspOptions& o) {
     std::cerr << "cutroute: " << o.instance << ": error: the instance has no feasible route\n";
     return kInputError;
   }
+  if (s.status == solve::SolveStatus::no_solution) {
+    std::cerr << "cutroute: " << o.instance << ": error: no route without forbidden arcs found (time limit, or infeasible)\n";
+    return kInputError;
+  }
   return kOk;
 }
 

@@ -79,3 +79,33 @@ TEST(Solve, AutomaticPicksExactOnSmallAndHeuristicOnLarge) {
 
 }  // namespace
 }  // namespace cutroute::solve
+
+namespace cutroute::solve {
+namespace {
+
+// One and two clusters, open and closed, every solver: the degenerate sizes must not break anything.
+TEST(Solve, DegenerateSizes) {
+  for (int clusters : {1, 2}) {
+    for (RouteKind kind : {RouteKind::closed_tour, RouteKind::open_path}) {
+      ProblemBuilder b(2 * clusters);
+      std::vector<Cost> m(static_cast<std::size_t>(4 * clusters * clusters), 5);
+      b.set_cost_matrix(m);
+      for (int c = 0; c < clusters; ++c) b.add_cluster({NodeId(2 * c), NodeId(2 * c + 1)});
+      b.set_inner_cost(NodeId(1), 3).set_inner_cost(NodeId(0), 4);
+      b.set_kind(kind);
+      const Problem p = *b.build();
+      for (SolverKind k : {SolverKind::automatic, SolverKind::exact, SolverKind::heuristic}) {
+        SolveParams sp;
+        sp.solver = k;
+        const Solution s = solve(p, sp);
+        ASSERT_FALSE(s.route.empty());
+        EXPECT_TRUE(validate(p, s).empty());
+        const Cost expected = clusters == 1 ? 3 : (kind == RouteKind::closed_tour ? 3 + 5 + 5 : 3 + 5);
+        EXPECT_EQ(s.cost, expected) << clusters << " clusters, solver " << to_string(k);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace cutroute::solve

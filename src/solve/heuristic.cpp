@@ -73,10 +73,11 @@ class Worker {
   // `iterations` destroy/repair steps; returns early when `stop` fires or the target is reached.
   void round(int iterations, const StopToken& stop, bool diversify) {
     const Problem& p = ops_.problem();
-    // After a round without progress, half of the rounds start from a fresh random construction
+    // After a round without progress, some rounds (half on small instances, fewer on large ones,
+    // where a fresh start rarely catches up within a round) start from a fresh random construction
     // instead of the best route (the best is kept): local search funnels similar routes back
     // into the same optimum, a new start reaches other basins.
-    if (diversify && rng_.chance(0.5)) {
+    if (diversify && rng_.chance(std::min(0.5, 16.0 / p.cluster_count()))) {
       ops_.construct(cur_, rng_);
       ops_.local_search(cur_);
       if (cur_.cost < best_.cost) best_ = cur_;
@@ -201,7 +202,12 @@ class Worker {
 
 }  // namespace
 
-Solution solve_heuristic(const Problem& p, const SolveParams& params, const StopToken& stop_in, const ProgressFn& progress) {
+Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const StopToken& stop_in, const ProgressFn& progress) {
+  SolveParams params = params_in;
+  const bool large = p.cluster_count() >= SolveParams::kLargeClusters;
+  if (params.stagnation_rounds == 0) params.stagnation_rounds = large ? 20 : 6;
+  if (params.max_removal_fraction == 0.0) params.max_removal_fraction = large ? 0.05 : 0.3;
+  if (params.accept_threshold == 0.0) params.accept_threshold = large ? 1.0 : 0.5;
   const auto t0 = std::chrono::steady_clock::now();
   StopToken stop = params.time_limit_s > 0 ? stop_in.with_time_limit(params.time_limit_s) : stop_in;
   if (params.target_cost) stop = stop.with_target(*params.target_cost);

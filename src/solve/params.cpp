@@ -17,18 +17,16 @@ SolveParams SolveParams::standard() { return SolveParams{}; }
 
 SolveParams SolveParams::fast() {
   SolveParams p;
-  p.stagnation_rounds = 1;
+  p.stagnation_rounds = 2;
   p.min_stagnation_work = 10000;
-  p.max_removal_fraction = 0.2;
   p.exact_auto_max_work = 5.0e7;
   return p;
 }
 
 SolveParams SolveParams::thorough() {
   SolveParams p;
-  p.stagnation_rounds = 24;
-  p.min_stagnation_work = 1000000;
-  p.max_removal_fraction = 0.4;
+  p.stagnation_rounds = 60;
+  p.min_stagnation_work = 10000000;
   p.time_limit_s = 600.0;
   p.exact_auto_max_work = 4.0e9;
   return p;
@@ -41,9 +39,9 @@ std::vector<std::string> check(const SolveParams& p) {
   if (p.threads > 256) out.push_back("threads must be <= 256 (got " + std::to_string(p.threads) + ")");
   if (!(p.time_limit_s == p.time_limit_s)) out.push_back("time_limit_s is not a number");
   if (p.round_iterations < 0) out.push_back("round_iterations must be >= 0 (got " + std::to_string(p.round_iterations) + ")");
-  if (p.stagnation_rounds < 1) out.push_back("stagnation_rounds must be >= 1 (got " + std::to_string(p.stagnation_rounds) + ")");
-  if (!(p.max_removal_fraction > 0.0 && p.max_removal_fraction <= 1.0))
-    out.push_back("max_removal_fraction must be in (0, 1] (got " + num(p.max_removal_fraction) + ")");
+  if (p.stagnation_rounds < 0) out.push_back("stagnation_rounds must be >= 0 (got " + std::to_string(p.stagnation_rounds) + ")");
+  if (!(p.max_removal_fraction >= 0.0 && p.max_removal_fraction <= 1.0))
+    out.push_back("max_removal_fraction must be in [0, 1] (got " + num(p.max_removal_fraction) + ")");
   if (!(p.accept_threshold >= 0.0 && p.accept_threshold <= 10.0))
     out.push_back("accept_threshold must be in [0, 10] (got " + num(p.accept_threshold) + ")");
   if (p.exact_memory_limit_bytes < (std::size_t{1} << 20)) out.push_back("exact_memory_limit_bytes must be >= 1 MiB");

@@ -59,6 +59,10 @@ void local_search(const Problem& p, std::vector<NodeId>& r) {
 
 namespace {
 
+// Evaluation budget of a full cluster optimisation with every node of the smallest cluster as the
+// cyclic start; above it only the current start node is tried.
+constexpr double kFullCoWork = 2.0e6;
+
 // One search thread: its own random stream, current and best route.
 class Worker {
  public:
@@ -67,6 +71,7 @@ class Worker {
   void start() {
     ops_.construct(cur_, rng_);
     ops_.local_search(cur_);
+    if (ops_.cluster_optimise(cur_, kFullCoWork)) ops_.local_search(cur_);
     best_ = cur_;
   }
 
@@ -265,6 +270,8 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
     for (auto& th : pool) th.join();
   }
 
+  // Final polish: a full cluster optimisation (local search may have used windows only).
+  if (ops.cluster_optimise(global, kFullCoWork)) ops.local_search(global);
   Solution s;
   s.route = global.seq;
   s.cost = ops.full_cost(global.seq);

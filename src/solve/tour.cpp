@@ -15,6 +15,9 @@ namespace {
 constexpr int kNeighbours = 12;
 // Nodes per cluster used to measure cluster distances (large clusters are sampled evenly).
 constexpr int kSampleNodes = 12;
+// Above this many evaluations for one cluster-optimisation pass, local search only re-optimises
+// windows around the changes (large clusters: 100C10k.0 has 100 nodes per cluster).
+constexpr double kMaxFullCoWork = 2.0e5;
 }  // namespace
 
 Ops::Ops(const Problem& p) : p_(p), m_(p.cluster_count()), closed_(p.closed()), prec_(p.has_precedence()) {
@@ -49,6 +52,9 @@ Ops::Ops(const Problem& p) : p_(p), m_(p.cluster_count()), closed_(p.closed()), 
   build(pred_, true);
   if (p.symmetric()) succ_ = pred_;
   else build(succ_, false);
+  // One cluster-optimisation pass costs about m * (n/m)^2 evaluations per start node.
+  const double avg = static_cast<double>(p.node_count()) / m_;
+  expensive_co_ = static_cast<double>(m_) * avg * avg > kMaxFullCoWork;
 }
 
 Cost Ops::full_cost(const std::vector<NodeId>& seq) const {
@@ -500,7 +506,98 @@ bool Ops::cluster_optimise(Tour& t, double max_work) const {
   return true;
 }
 
+bool Ops::window_optimise(Tour& t, int lo, int hi) const {
+  const int L = static_cast<int>(t.seq.size());
+  lo = std::max(lo, 1);
+  hi = std::min(hi, L - 1);
+  if (lo > hi) return false;
+  const NodeId first = t.seq[static_cast<std::size_t>(lo - 1)];
+  const NodeId last = after(t, hi);
+  Cost old = last.valid() ? link(t.seq[static_cast<std::size_t>(hi)], last) : 0;
+  for (int i = lo; i <= hi; ++i) old += link(t.seq[static_cast<std::size_t>(i - 1)], t.seq[static_cast<std::size_t>(i)]);
+  thread_local std::vector<Cost> D;
+  thread_local std::vector<int> pred, off;
+  off.assign(1, 0);
+  for (int i = lo; i <= hi; ++i) off.push_back(off.back() + p_.cluster_size(cl(t.seq[static_cast<std::size_t>(i)])));
+  D.assign(static_cast<std::size_t>(off.back()), kHuge);
+  pred.assign(static_cast<std::size_t>(off.back()), -1);
+  for (int i = lo; i <= hi; ++i) {
+    const auto B = p_.nodes_of(cl(t.seq[static_cast<std::size_t>(i)]));
+    const std::size_t ob = static_cast<std::size_t>(off[static_cast<std::size_t>(i - lo)]);
+    if (i == lo) {
+      for (std::size_t b = 0; b < B.size(); ++b) D[ob + b] = link(first, B[b]);
+      continue;
+    }
+    const auto A = p_.nodes_of(cl(t.seq[static_cast<std::size_t>(i - 1)]));
+    const std::size_t oa = static_cast<std::size_t>(off[static_cast<std::size_t>(i - 1 - lo)]);
+    for (std::size_t b = 0; b < B.size(); ++b)
+      for (std::size_t a = 0; a < A.size(); ++a) {
+        const Cost v = D[oa + a] + link(A[a], B[b]);
+        if (v < D[ob + b]) D[ob + b] = v, pred[ob + b] = static_cast<int>(oa + a);
+      }
+  }
+  const auto Z = p_.nodes_of(cl(t.seq[static_cast<std::size_t>(hi)]));
+  const std::size_t oz = static_cast<std::size_t>(off[static_cast<std::size_t>(hi - lo)]);
+  Cost best = kHuge;
+  int arg = -1;
+  for (std::size_t z = 0; z < Z.size(); ++z) {
+    const Cost v = D[oz + z] + (last.valid() ? link(Z[z], last) : 0);
+    if (v < best) best = v, arg = static_cast<int>(oz + z);
+  }
+  if (best >= old) return false;
+  for (int i = hi; i >= lo; --i) {
+    const int li = arg - off[static_cast<std::size_t>(i - lo)];
+    const NodeId v = p_.nodes_of(cl(t.seq[static_cast<std::size_t>(i)]))[static_cast<std::size_t>(li)];
+    if (v != t.seq[static_cast<std::size_t>(i)]) {
+      t.seq[static_cast<std::size_t>(i)] = v;
+      mark_around(t, i);
+    }
+    arg = pred[static_cast<std::size_t>(arg)];
+  }
+  t.cost += best - old;
+  return true;
+}
+
+bool Ops::windows_optimise(Tour& t, int since_epoch) const {
+  // Windows of +-2 positions around every cluster changed since `since_epoch`, merged when they overlap.
+  const int L = static_cast<int>(t.seq.size());
+  bool improved = false;
+  int lo = -1, hi = -1;
+  for (int i = 0; i <= L; ++i) {
+    const bool changed = i < L && t.touched[cl(t.seq[static_cast<std::size_t>(i)]).index()] >= since_epoch;
+    if (changed) {
+      if (lo >= 0 && i - 2 <= hi + 1) hi = i + 2;
+      else {
+        if (lo >= 0) improved = window_optimise(t, lo, hi) || improved;
+        lo = i - 2, hi = i + 2;
+      }
+    }
+  }
+  if (lo >= 0) improved = window_optimise(t, lo, hi) || improved;
+  return improved;
+}
+
 void Ops::local_search(Tour& t) const {
+  if (expensive_co_) {
+    // Large clusters: a full cluster optimisation costs more than all other moves together, so only
+    // the stretches around what changed are re-optimised (solve_heuristic runs full passes at the
+    // start and on the final route).
+    const int start_epoch = t.pass_start;
+    windows_optimise(t, start_epoch);
+    for (int guard = 0; guard < 100; ++guard) {
+      const int round_epoch = t.epoch;
+      for (int inner = 0; inner < 100; ++inner) {
+        bool improved = reinsertion_pass(t);
+        begin_round(t);
+        improved = two_opt_pass(t) || improved;
+        improved = or_opt_pass(t) || improved;
+        if (prec_) improved = swap_pass(t) || improved;
+        if (!improved) break;
+      }
+      if (!windows_optimise(t, round_epoch)) break;
+    }
+    return;
+  }
   // Cluster optimisation first (a perturbed order often only pays off with other nodes; the sequence
   // moves, which keep nodes, would otherwise undo it), then sequence moves until none improves, then
   // cluster optimisation again; repeat while it improves. Bounded so a plateau cannot loop forever.

@@ -79,6 +79,10 @@ class Ops {
   bool or_opt_pass(Tour& t) const;
   bool swap_pass(Tour& t) const;
   bool cluster_optimise(Tour& t, double max_work) const;
+  // Best nodes for positions [lo, hi] with the nodes around them fixed. O(sum |C_i||C_i+1|) there.
+  bool window_optimise(Tour& t, int lo, int hi) const;
+  // window_optimise around every cluster touched at or after `since_epoch`.
+  bool windows_optimise(Tour& t, int since_epoch) const;
   void local_search(Tour& t) const;
   void construct(Tour& t, Rng& rng) const;
 
@@ -88,6 +92,7 @@ class Ops {
   bool closed_;
   bool prec_;
   std::size_t kn_ = 0;
+  bool expensive_co_ = false;
   std::vector<ClusterId> pred_, succ_;
 };
 

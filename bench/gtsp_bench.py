@@ -60,7 +60,7 @@ def main():
         rows = table(os.path.join(SHARED, "gtsplib", "README.md"), [2, 5])
         lo, hi = (1, 89) if a.set == "gtsp-small" else (99, 217)
         items = [(n + ".gtsp", int(v[0]), int(v[1])) for n, v in rows.items() if lo <= int(v[0]) <= hi]
-        folder, limit, seeds = os.path.join(SHARED, "gtsplib"), (10 if a.set == "gtsp-small" else 30), a.seeds
+        folder, limit, seeds = os.path.join(SHARED, "gtsplib"), 60, a.seeds
     if a.only:
         items = [it for it in items if re.search(a.only, it[0])]
     print(f"| instance | size | best known | mean gap % | max gap % | at best | mean wall s | max wall s | mean cpu s |")

@@ -221,7 +221,7 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
   if (p.cluster_count() <= 3) threads = 1;
   const int round_iters = params.round_iterations > 0 ? params.round_iterations : 40 + p.cluster_count() / 2;
 
-  const Ops ops(p);
+  const Ops ops(p, &stop);
   Rng master(params.seed);
   std::vector<Worker> workers;
   workers.reserve(static_cast<std::size_t>(threads));

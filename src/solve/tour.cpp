@@ -1,6 +1,7 @@
 #include "tour.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace cutroute::solve::detail {
@@ -14,20 +15,24 @@ namespace {
 // candidate sets); 12 keeps GTSPLIB optima reachable while making a pass O(m * 12 * k).
 constexpr int kNeighbours = 12;
 // Nodes per cluster used to measure cluster distances (large clusters are sampled evenly).
-constexpr int kSampleNodes = 12;
+constexpr std::size_t kSampleNodes = 12;
 // Above this many evaluations for one cluster-optimisation pass, local search only re-optimises
 // windows around the changes (large clusters: 100C10k.0 has 100 nodes per cluster).
 constexpr double kMaxFullCoWork = 2.0e5;
 }  // namespace
 
-Ops::Ops(const Problem& p) : p_(p), m_(p.cluster_count()), closed_(p.closed()), prec_(p.has_precedence()) {
+Ops::Ops(const Problem& p, const StopToken* stop) : p_(p), stop_(stop), m_(p.cluster_count()), closed_(p.closed()), prec_(p.has_precedence()) {
   kn_ = static_cast<std::size_t>(std::min(kNeighbours, std::max(0, m_ - 1)));
   if (kn_ == 0) return;
+  // The lists cost m^2 * samples^2 arc evaluations: fewer samples on very large problems (a nest of
+  // 10^4 contours gets one node per cluster, ~2 * 10^8 evaluations).
+  const double mm = static_cast<double>(m_) * m_;
+  const auto samples = static_cast<std::size_t>(std::clamp(std::sqrt(4.0e7 / mm), 1.0, static_cast<double>(kSampleNodes)));
   std::vector<std::vector<NodeId>> sample(static_cast<std::size_t>(m_));
   for (int c = 0; c < m_; ++c) {
     const auto nodes = p.nodes_of(ClusterId(c));
-    const std::size_t step = std::max<std::size_t>(1, nodes.size() / kSampleNodes);
-    for (std::size_t k = 0; k < nodes.size() && sample[static_cast<std::size_t>(c)].size() < kSampleNodes; k += step)
+    const std::size_t step = std::max<std::size_t>(1, nodes.size() / samples);
+    for (std::size_t k = 0; k < nodes.size() && sample[static_cast<std::size_t>(c)].size() < samples; k += step)
       sample[static_cast<std::size_t>(c)].push_back(nodes[k]);
   }
   // For cluster a: the kn_ clusters b with the cheapest sampled arc b -> a (good predecessors) and
@@ -378,19 +383,18 @@ bool Ops::swap_pass(Tour& t) const {
     for (int j = i + 1; j < L; ++j) {
       const NodeId x = t.seq[static_cast<std::size_t>(i)], y = t.seq[static_cast<std::size_t>(j)];
       if (prec_) {
-        if (p_.must_precede(cl(x), cl(y))) break;  // x can never pass y or anything after it
+        // x moves over everything in (i, j]: stop at the first cluster x must precede.
+        if (p_.must_precede(cl(x), cl(y))) break;
+        // y moves over everything in [i, j): skip it if one of them must precede y.
         bool blocked = false;
-        for (int q = i + 1; q < j && !blocked; ++q) {
-          const ClusterId z = cl(t.seq[static_cast<std::size_t>(q)]);
-          blocked = p_.must_precede(cl(x), z) || p_.must_precede(z, cl(y));
+        for (ClusterId a : p_.all_before(cl(y))) {
+          const int pa = t.pos[a.index()];
+          if (pa >= i && pa < j) {
+            blocked = true;
+            break;
+          }
         }
-        if (blocked) {
-          // Once x must precede something in between, no later j works either.
-          bool x_blocked = false;
-          for (int q = i + 1; q < j && !x_blocked; ++q) x_blocked = p_.must_precede(cl(x), cl(t.seq[static_cast<std::size_t>(q)]));
-          if (x_blocked) break;
-          continue;
-        }
+        if (blocked) continue;
       }
       const NodeId a = t.seq[static_cast<std::size_t>(i - 1)];
       const NodeId d = after(t, j);
@@ -586,7 +590,7 @@ void Ops::local_search(Tour& t) const {
     windows_optimise(t, start_epoch);
     for (int guard = 0; guard < 100; ++guard) {
       const int round_epoch = t.epoch;
-      for (int inner = 0; inner < 100; ++inner) {
+      for (int inner = 0; inner < 100 && !stopped(); ++inner) {
         bool improved = reinsertion_pass(t);
         begin_round(t);
         improved = two_opt_pass(t) || improved;
@@ -594,7 +598,7 @@ void Ops::local_search(Tour& t) const {
         if (prec_) improved = swap_pass(t) || improved;
         if (!improved) break;
       }
-      if (!windows_optimise(t, round_epoch)) break;
+      if (stopped() || !windows_optimise(t, round_epoch)) break;
     }
     return;
   }
@@ -603,7 +607,7 @@ void Ops::local_search(Tour& t) const {
   // cluster optimisation again; repeat while it improves. Bounded so a plateau cannot loop forever.
   cluster_optimise(t, 2.0e6);
   for (int guard = 0; guard < 100; ++guard) {
-    for (int inner = 0; inner < 100; ++inner) {
+    for (int inner = 0; inner < 100 && !stopped(); ++inner) {
       bool improved = reinsertion_pass(t);
       begin_round(t);
       improved = two_opt_pass(t) || improved;
@@ -611,7 +615,7 @@ void Ops::local_search(Tour& t) const {
       if (prec_) improved = swap_pass(t) || improved;
       if (!improved) break;
     }
-    if (!cluster_optimise(t, 2.0e6)) break;
+    if (stopped() || !cluster_optimise(t, 2.0e6)) break;
   }
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <cutroute/core/random.hpp>
+#include <cutroute/core/stop.hpp>
 #include <cutroute/solve/problem.hpp>
 
 namespace cutroute::solve::detail {
@@ -30,7 +31,9 @@ struct Tour {
 
 class Ops {
  public:
-  explicit Ops(const Problem& p);
+  // `stop` (optional) ends local search early: on huge routes one descent can take seconds.
+  explicit Ops(const Problem& p, const StopToken* stop = nullptr);
+  bool stopped() const { return stop_ && stop_->stop_requested(); }
 
   const Problem& problem() const { return p_; }
   Cost link(NodeId a, NodeId b) const { return a == b ? p_.inner_cost(b) : p_.step(a, b); }
@@ -88,6 +91,7 @@ class Ops {
 
  private:
   const Problem& p_;
+  const StopToken* stop_;
   int m_;
   bool closed_;
   bool prec_;

@@ -8,21 +8,20 @@
 #include <cutroute/solve/exact_dp.hpp>
 #include <cutroute/solve/solve.hpp>
 
-#include "../tests/solve/random_instance.hpp"
+#include <cmath>
+#include <vector>
+
+#include <cutroute/core/random.hpp>
 
 namespace {
 
 using namespace cutroute;
 
 solve::Problem issue_instance(std::uint64_t seed, bool symmetric) {
+  // Exactly 16 clusters x 8 nodes (test::random_problem draws cluster sizes at random), random
+  // points (symmetric) or a random matrix (asymmetric), 10 precedence pairs from a hidden order.
   Rng rng(seed);
-  test::RandomSpec spec;
-  spec.clusters = 16;
-  spec.max_nodes = 1;  // replaced below: exactly 8 nodes per cluster
-  spec.symmetric = symmetric;
-  spec.precedence_pairs = 10;
-  // random_problem draws cluster sizes in [1, max_nodes]; build 16 x 8 by hand instead.
-  const int m = 16, k = 8, n = m * k;
+  const int m = 16, k = 8, n = m * k, pairs = 10;
   std::vector<solve::Cost> cost(static_cast<std::size_t>(n * n));
   std::vector<double> x(static_cast<std::size_t>(n)), y(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) x[static_cast<std::size_t>(i)] = static_cast<double>(rng.below(1000)), y[static_cast<std::size_t>(i)] = static_cast<double>(rng.below(1000));
@@ -41,7 +40,7 @@ solve::Problem issue_instance(std::uint64_t seed, bool symmetric) {
   std::vector<int> order;
   for (int c = 1; c < m; ++c) order.push_back(c);
   rng.shuffle(order.begin(), order.end());
-  for (int p = 0; p < spec.precedence_pairs; ++p) {
+  for (int p = 0; p < pairs; ++p) {
     const auto i = rng.below(order.size() - 1);
     const auto j = i + 1 + rng.below(order.size() - 1 - i);
     b.add_precedence(solve::ClusterId(order[i]), solve::ClusterId(order[j]));

@@ -290,7 +290,8 @@ bool Ops::two_opt_pass(Tour& t) const {
   return improved;
 }
 
-// Or-opt: move a segment of k = 2 or 3 clusters, same direction, e.g. (k = 2)
+// Or-opt: move a segment of k = 2 or 3 clusters (reversed too on symmetric problems without
+// precedence, S a [b c] d e f -> S a d e [c b] f), e.g. (k = 2, same direction)
 //   S a [b c] d e f -> S a d e [b c] f.
 // Moving forward over a cluster y is refused when a segment cluster must precede y; moving backward
 // over y when y must precede a segment cluster.
@@ -310,6 +311,7 @@ bool Ops::or_opt_pass(Tour& t) const {
       const Cost gain = link(prev, f) + (next.valid() ? link(l, next) - link(prev, next) : 0);
       Cost best = 0;
       int best_t = -1;
+      bool best_rev = false;
       if (!prec_ && static_cast<int>(kn_) * 4 < L) {
         // Only next to the neighbours of the segment's end clusters.
         auto eval = [&](int tt) {
@@ -317,8 +319,17 @@ bool Ops::or_opt_pass(Tour& t) const {
           const NodeId y = t.seq[static_cast<std::size_t>(tt)];
           const NodeId z = tt > e ? after(t, tt) : t.seq[static_cast<std::size_t>(tt + 1)];
           const Cost add = link(y, f) + (z.valid() ? link(l, z) - link(y, z) : 0);
-          if (add - gain < best) best = add - gain, best_t = tt;
+          if (add - gain < best) best = add - gain, best_t = tt, best_rev = false;
+          if (p_.symmetric()) {
+            // Reversed insertion, S a [b c] d e f -> S a d e [c b] f: with symmetric arcs only the
+            // boundary arcs change (inner costs: the same nodes are entered).
+            const Cost gain_arcs = p_.arc_cost(prev, f) + (next.valid() ? p_.arc_cost(l, next) - p_.arc_cost(prev, next) : 0);
+            const Cost add_rev = p_.arc_cost(y, l) + (z.valid() ? p_.arc_cost(f, z) - p_.arc_cost(y, z) : 0);
+            if (add_rev - gain_arcs < best) best = add_rev - gain_arcs, best_t = tt, best_rev = true;
+          }
         };
+        for (ClusterId x : preds(cl(l))) eval(t.pos[x.index()]);
+        for (ClusterId x : succs(cl(f))) eval(t.pos[x.index()] - 1);
         for (ClusterId x : preds(cl(f))) eval(t.pos[x.index()]);
         for (ClusterId x : succs(cl(l))) eval(t.pos[x.index()] - 1);
       } else {
@@ -352,12 +363,20 @@ bool Ops::or_opt_pass(Tour& t) const {
       if (best_t > e) {
         std::rotate(t.seq.begin() + i, t.seq.begin() + e + 1, t.seq.begin() + best_t + 1);
         reindex(t, i, best_t + 1);
+        if (best_rev) {
+          std::reverse(t.seq.begin() + best_t - k + 1, t.seq.begin() + best_t + 1);
+          reindex(t, best_t - k + 1, best_t + 1);
+        }
         mark_around(t, i - 1);
         mark_around(t, best_t - k + 1);
         mark_around(t, best_t);
       } else {
         std::rotate(t.seq.begin() + best_t + 1, t.seq.begin() + i, t.seq.begin() + e + 1);
         reindex(t, best_t + 1, e + 1);
+        if (best_rev) {
+          std::reverse(t.seq.begin() + best_t + 1, t.seq.begin() + best_t + k + 1);
+          reindex(t, best_t + 1, best_t + k + 1);
+        }
         mark_around(t, best_t + 1);
         mark_around(t, best_t + k);
         mark_around(t, e + 1);

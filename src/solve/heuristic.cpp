@@ -219,7 +219,12 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
   int threads = params.threads > 0 ? params.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   threads = std::min(threads, params.threads > 0 ? 256 : 8);
   if (p.cluster_count() <= 3) threads = 1;
-  const int round_iters = params.round_iterations > 0 ? params.round_iterations : 40 + p.cluster_count() / 2;
+  // Automatic round length: 40 + m/2 iterations, shortened for large clusters (avg > 8 nodes), whose
+  // iterations cost up to (avg/8)^2 times more (cluster optimisation is quadratic in cluster size).
+  const double avg_k = static_cast<double>(p.node_count()) / p.cluster_count();
+  const int round_iters = params.round_iterations > 0
+                              ? params.round_iterations
+                              : std::max(10, static_cast<int>((40 + p.cluster_count() / 2) * std::min(1.0, 8.0 / avg_k)));
 
   const Ops ops(p, &stop);
   Rng master(params.seed);

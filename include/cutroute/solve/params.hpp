@@ -28,7 +28,7 @@ struct SolveParams {
   // Heuristic (docs/SOLVER.md "Metaheuristic").
   // Synchronisation: threads work in rounds of `round_iterations` destroy/repair steps, then all
   // restart from the best route (lowest cost, lowest thread index on ties): deterministic.
-  int round_iterations = 0;            // 0: automatic, ~ 40 + cluster_count / 2
+  int round_iterations = 0;            // 0: automatic, 40 + m/2 (x 8/avg cluster size when above 8, >= 10)
   // Stop after this many rounds in a row without improving the best route. 0: automatic,
   // 6 below kLargeClusters clusters, 20 from there on (tuned on GTSPLIB for the time targets:
   // small instances converge in few rounds, large ones keep improving slowly).

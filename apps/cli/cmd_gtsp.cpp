@@ -52,6 +52,7 @@ int run_gtsp(const GtspOptions& o) {
     j["time_s"] = s.stats.seconds;
     j["solver"] = s.stats.solver;
     j["threads"] = s.stats.threads;
+    j["iterations"] = s.stats.iterations;
     if (!s.route.empty()) j["objective"] = s.cost;
     else j["objective"] = nullptr;
     auto tour = nlohmann::json::array();
@@ -69,6 +70,10 @@ int run_gtsp(const GtspOptions& o) {
   }
   if (s.status == solve::SolveStatus::infeasible) {
     std::cerr << "cutroute: " << o.instance << ": error: the instance has no feasible route\n";
+    return kInputError;
+  }
+  if (s.status == solve::SolveStatus::no_solution) {
+    std::cerr << "cutroute: " << o.instance << ": error: no route without forbidden arcs found (time limit, or infeasible)\n";
     return kInputError;
   }
   return kOk;

@@ -44,6 +44,9 @@ bool two_opt_pass(const Problem& p, std::vector<NodeId>& r) {
 bool or_opt_pass(const Problem& p, std::vector<NodeId>& r) {
   return on_route(p, r, [](const Ops& o, Tour& t) { return o.or_opt_pass(t); });
 }
+bool swap_pass(const Problem& p, std::vector<NodeId>& r) {
+  return on_route(p, r, [](const Ops& o, Tour& t) { return o.swap_pass(t); });
+}
 bool cluster_optimise(const Problem& p, std::vector<NodeId>& r, double max_work) {
   return on_route(p, r, [max_work](const Ops& o, Tour& t) { return o.cluster_optimise(t, max_work); });
 }
@@ -56,6 +59,10 @@ void local_search(const Problem& p, std::vector<NodeId>& r) {
 
 namespace {
 
+// Evaluation budget of a full cluster optimisation with every node of the smallest cluster as the
+// cyclic start; above it only the current start node is tried.
+constexpr double kFullCoWork = 2.0e6;
+
 // One search thread: its own random stream, current and best route.
 class Worker {
  public:
@@ -64,15 +71,26 @@ class Worker {
   void start() {
     ops_.construct(cur_, rng_);
     ops_.local_search(cur_);
+    if (ops_.cluster_optimise(cur_, kFullCoWork)) ops_.local_search(cur_);
     best_ = cur_;
   }
 
   // `iterations` destroy/repair steps; returns early when `stop` fires or the target is reached.
-  void round(int iterations, const StopToken& stop) {
+  void round(int iterations, const StopToken& stop, bool diversify) {
     const Problem& p = ops_.problem();
+    // After a round without progress, some rounds (half on small instances, fewer on large ones,
+    // where a fresh start rarely catches up within a round) start from a fresh random construction
+    // instead of the best route (the best is kept): local search funnels similar routes back
+    // into the same optimum, a new start reaches other basins.
+    if (diversify && rng_.chance(std::min(0.5, 16.0 / p.cluster_count()))) {
+      ops_.construct(cur_, rng_);
+      ops_.local_search(cur_);
+      if (cur_.cost < best_.cost) best_ = cur_;
+    }
     const int movable = p.cluster_count() - 1;
     if (movable < 1) return;
-    const int kmax = std::max(1, static_cast<int>(params_.max_removal_fraction * movable));
+    // At least 3 clusters (when there are) so tiny instances get perturbations local search cannot undo.
+    const int kmax = std::max(std::min(movable, 3), static_cast<int>(params_.max_removal_fraction * movable));
     for (int it = 0; it < iterations; ++it) {
       if (stop.stop_requested() || stop.target_reached(best_.cost)) return;
       ++iterations_;
@@ -82,8 +100,10 @@ class Worker {
       destroy(trial_, k);
       repair(trial_);
       ops_.local_search(trial_);
-      const double thr = params_.accept_threshold * (1.0 - static_cast<double>(it) / iterations);
-      if (static_cast<double>(trial_.cost) <= static_cast<double>(cur_.cost) * (1.0 + thr)) std::swap(cur_, trial_);
+      // Threshold acceptance in units of the mean step of the route, decaying over the round.
+      const double mean_step = static_cast<double>(cur_.cost) / static_cast<double>(p.cluster_count());
+      const double thr = params_.accept_threshold * mean_step * (1.0 - static_cast<double>(it) / iterations);
+      if (static_cast<double>(trial_.cost) <= static_cast<double>(cur_.cost) + thr) std::swap(cur_, trial_);
       if (cur_.cost < best_.cost) best_ = cur_;
     }
   }
@@ -100,7 +120,17 @@ class Worker {
     removed_.clear();
     const Problem& p = ops_.problem();
     const int L = static_cast<int>(t.seq.size());
-    switch (rng_.below(4)) {
+    const bool bridge_ok = !p.has_precedence() && L >= 8;
+    switch (rng_.below(bridge_ok ? 5 : 4)) {
+      case 4: {  // double bridge: S A B C D -> S A C B D (segment exchange that 2-opt/Or-opt rarely undo)
+        int cut[3];
+        for (int& c : cut) c = 1 + static_cast<int>(rng_.below(static_cast<std::uint64_t>(L - 1)));
+        std::sort(cut, cut + 3);
+        if (cut[0] == cut[1] || cut[1] == cut[2]) break;
+        std::rotate(t.seq.begin() + cut[0], t.seq.begin() + cut[1], t.seq.begin() + cut[2]);
+        ops_.init(t);
+        break;
+      }
       case 0: {  // random clusters
         for (int r = 0; r < k; ++r) {
           const int i = 1 + static_cast<int>(rng_.below(static_cast<std::uint64_t>(t.seq.size() - 1)));
@@ -152,7 +182,11 @@ class Worker {
 
   void repair(Tour& t) {
     rng_.shuffle(removed_.begin(), removed_.end());
-    const double noise = rng_.chance(0.5) ? 0.0 : 0.1;
+    // Additive noise on insertion costs, in units of the mean step of the route: without it,
+    // cheapest reinsertion of what was just removed mostly rebuilds the same route.
+    const double mean_step = static_cast<double>(t.cost) / static_cast<double>(ops_.problem().cluster_count());
+    static constexpr double kNoise[4] = {0.0, 0.3, 1.0, 2.0};
+    const double noise = kNoise[rng_.below(4)] * mean_step;
     // Precedence: insert predecessors first when both were removed (a topological order of the removed set).
     const Problem& p = ops_.problem();
     if (p.has_precedence())
@@ -173,16 +207,26 @@ class Worker {
 
 }  // namespace
 
-Solution solve_heuristic(const Problem& p, const SolveParams& params, const StopToken& stop_in, const ProgressFn& progress) {
+Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const StopToken& stop_in, const ProgressFn& progress) {
+  SolveParams params = params_in;
+  const bool large = p.cluster_count() >= SolveParams::kLargeClusters;
+  if (params.stagnation_rounds == 0) params.stagnation_rounds = large ? 20 : 6;
+  if (params.max_removal_fraction == 0.0) params.max_removal_fraction = large ? 0.05 : 0.3;
+  if (params.accept_threshold == 0.0) params.accept_threshold = large ? 1.0 : 0.5;
   const auto t0 = std::chrono::steady_clock::now();
   StopToken stop = params.time_limit_s > 0 ? stop_in.with_time_limit(params.time_limit_s) : stop_in;
   if (params.target_cost) stop = stop.with_target(*params.target_cost);
   int threads = params.threads > 0 ? params.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   threads = std::min(threads, params.threads > 0 ? 256 : 8);
   if (p.cluster_count() <= 3) threads = 1;
-  const int round_iters = params.round_iterations > 0 ? params.round_iterations : 40 + p.cluster_count() / 2;
+  // Automatic round length: 40 + m/2 iterations, shortened for large clusters (avg > 8 nodes), whose
+  // iterations cost up to (avg/8)^2 times more (cluster optimisation is quadratic in cluster size).
+  const double avg_k = static_cast<double>(p.node_count()) / p.cluster_count();
+  const int round_iters = params.round_iterations > 0
+                              ? params.round_iterations
+                              : std::max(10, static_cast<int>((40 + p.cluster_count() / 2) * std::min(1.0, 8.0 / avg_k)));
 
-  const Ops ops(p);
+  const Ops ops(p, &stop);
   Rng master(params.seed);
   std::vector<Worker> workers;
   workers.reserve(static_cast<std::size_t>(threads));
@@ -205,7 +249,11 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params, const Stop
     }
     first = false;
     for (Worker& w : workers) w.restart_from(global);
-    done = stop.stop_requested() || stop.target_reached(global.cost) || stagnant >= params.stagnation_rounds;
+    // Stagnation: enough rounds without progress, and enough iterations in them (tiny instances have
+    // short rounds; a few thousand iterations on them cost milliseconds).
+    const long long stagnant_work = static_cast<long long>(stagnant) * round_iters * threads * p.node_count();
+    done = stop.stop_requested() || stop.target_reached(global.cost) ||
+           (stagnant >= params.stagnation_rounds && stagnant_work >= params.min_stagnation_work);
     if (progress) progress({"heuristic", -1.0, static_cast<double>(global.cost)});
   };
 
@@ -213,7 +261,7 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params, const Stop
     workers[static_cast<std::size_t>(i)].start();
     sync();
     while (!done) {
-      workers[static_cast<std::size_t>(i)].round(round_iters, stop);
+      workers[static_cast<std::size_t>(i)].round(round_iters, stop, stagnant > 0);
       sync();
     }
   };
@@ -227,6 +275,8 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params, const Stop
     for (auto& th : pool) th.join();
   }
 
+  // Final polish: a full cluster optimisation (local search may have used windows only).
+  if (ops.cluster_optimise(global, kFullCoWork)) ops.local_search(global);
   Solution s;
   s.route = global.seq;
   s.cost = ops.full_cost(global.seq);

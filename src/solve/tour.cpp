@@ -1,6 +1,7 @@
 #include "tour.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace cutroute::solve::detail {
@@ -9,7 +10,57 @@ namespace {
 constexpr Cost kHuge = std::numeric_limits<Cost>::max() / 4;
 }
 
-Ops::Ops(const Problem& p) : p_(p), m_(p.cluster_count()), closed_(p.closed()), prec_(p.has_precedence()) {}
+namespace {
+// Neighbour-list length: moves are only evaluated next to the closest clusters (as in LKH's
+// candidate sets); 12 keeps GTSPLIB optima reachable while making a pass O(m * 12 * k).
+constexpr int kNeighbours = 12;
+// Nodes per cluster used to measure cluster distances (large clusters are sampled evenly).
+constexpr std::size_t kSampleNodes = 12;
+// Above this many evaluations for one cluster-optimisation pass, local search only re-optimises
+// windows around the changes (large clusters: 100C10k.0 has 100 nodes per cluster).
+constexpr double kMaxFullCoWork = 2.0e5;
+}  // namespace
+
+Ops::Ops(const Problem& p, const StopToken* stop) : p_(p), stop_(stop), m_(p.cluster_count()), closed_(p.closed()), prec_(p.has_precedence()) {
+  kn_ = static_cast<std::size_t>(std::min(kNeighbours, std::max(0, m_ - 1)));
+  if (kn_ == 0) return;
+  // The lists cost m^2 * samples^2 arc evaluations: fewer samples on very large problems (a nest of
+  // 10^4 contours gets one node per cluster, ~2 * 10^8 evaluations).
+  const double mm = static_cast<double>(m_) * m_;
+  const auto samples = static_cast<std::size_t>(std::clamp(std::sqrt(4.0e7 / mm), 1.0, static_cast<double>(kSampleNodes)));
+  std::vector<std::vector<NodeId>> sample(static_cast<std::size_t>(m_));
+  for (int c = 0; c < m_; ++c) {
+    const auto nodes = p.nodes_of(ClusterId(c));
+    const std::size_t step = std::max<std::size_t>(1, nodes.size() / samples);
+    for (std::size_t k = 0; k < nodes.size() && sample[static_cast<std::size_t>(c)].size() < samples; k += step)
+      sample[static_cast<std::size_t>(c)].push_back(nodes[k]);
+  }
+  // For cluster a: the kn_ clusters b with the cheapest sampled arc b -> a (good predecessors) and
+  // a -> b (good successors). On symmetric problems both lists are the same.
+  auto build = [&](std::vector<ClusterId>& out, bool into) {
+    out.resize(static_cast<std::size_t>(m_) * kn_);
+    std::vector<std::pair<Cost, int>> d(static_cast<std::size_t>(m_));
+    for (int a = 0; a < m_; ++a) {
+      for (int b = 0; b < m_; ++b) {
+        Cost best = kHuge;
+        if (a != b)
+          for (NodeId u : sample[static_cast<std::size_t>(a)])
+            for (NodeId v : sample[static_cast<std::size_t>(b)]) best = std::min(best, into ? p.arc_cost(v, u) : p.arc_cost(u, v));
+        d[static_cast<std::size_t>(b)] = {best, b};
+      }
+      std::partial_sort(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(kn_ + 1), d.end());
+      std::size_t k = 0;
+      for (std::size_t r = 0; r <= kn_ && k < kn_; ++r)
+        if (d[r].second != a) out[static_cast<std::size_t>(a) * kn_ + k++] = ClusterId(d[r].second);
+    }
+  };
+  build(pred_, true);
+  if (p.symmetric()) succ_ = pred_;
+  else build(succ_, false);
+  // One cluster-optimisation pass costs about m * (n/m)^2 evaluations per start node.
+  const double avg = static_cast<double>(p.node_count()) / m_;
+  expensive_co_ = static_cast<double>(m_) * avg * avg > kMaxFullCoWork;
+}
 
 Cost Ops::full_cost(const std::vector<NodeId>& seq) const {
   if (seq.empty()) return 0;
@@ -28,6 +79,22 @@ void Ops::init(Tour& t) const {
   t.pos.assign(static_cast<std::size_t>(m_), -1);
   reindex(t, 0, static_cast<int>(t.seq.size()));
   t.cost = full_cost(t.seq);
+  t.dirty.assign(static_cast<std::size_t>(m_), 1);
+  t.epoch = t.pass_start = 1;
+  t.since = 0;
+  t.touched.assign(static_cast<std::size_t>(m_), 1);
+}
+
+void Ops::mark(Tour& t, int i) const {
+  const int L = static_cast<int>(t.seq.size());
+  if (L == 0) return;
+  if (i < 0 || i >= L) {
+    if (!closed_) return;
+    i = (i % L + L) % L;
+  }
+  const std::size_t c = cl(t.seq[static_cast<std::size_t>(i)]).index();
+  t.dirty[c] = 1;
+  t.touched[c] = t.epoch;
 }
 
 std::pair<int, int> Ops::window(const Tour& t, ClusterId c) const {
@@ -58,7 +125,7 @@ Ops::Insertion Ops::best_insertion(const Tour& t, ClusterId c, double noise, Rng
       if (d < pos_best) pos_best = d, pos_node = v;
     }
     if (noise > 0.0 && rng) {
-      const double key = static_cast<double>(pos_best) * (1.0 + noise * rng->uniform01());
+      const double key = static_cast<double>(pos_best) + noise * rng->uniform01();
       if (key < best_key) best_key = key, best = {at, pos_node, pos_best};
     } else if (pos_best < best_delta) {
       best_delta = pos_best;
@@ -68,10 +135,39 @@ Ops::Insertion Ops::best_insertion(const Tour& t, ClusterId c, double noise, Rng
   return best;
 }
 
+Ops::Insertion Ops::best_local_insertion(const Tour& t, ClusterId c, int old_at) const {
+  const int L = static_cast<int>(t.seq.size());
+  // With precedence the window is often narrow and the candidates mostly fall outside it: scan it all.
+  if (prec_ || static_cast<int>(kn_) * 2 + 1 >= L) return best_insertion(t, c, 0.0, nullptr);
+  const auto [lo, hi] = window(t, c);
+  thread_local std::vector<int> cand_;  // Ops is shared by the search threads
+  cand_.clear();
+  cand_.push_back(old_at);
+  for (ClusterId x : preds(c))
+    if (t.pos[x.index()] >= 0) cand_.push_back(t.pos[x.index()] + 1);
+  for (ClusterId y : succs(c))
+    if (t.pos[y.index()] >= 0) cand_.push_back(t.pos[y.index()]);
+  const auto nodes = p_.nodes_of(c);
+  Insertion best;
+  Cost best_delta = kHuge;
+  for (int at : cand_) {
+    if (at < lo || at > hi) continue;
+    const NodeId prev = t.seq[static_cast<std::size_t>(at - 1)];
+    const NodeId next = at < L ? t.seq[static_cast<std::size_t>(at)] : (closed_ ? t.seq[0] : NodeId{});
+    const Cost base = next.valid() ? link(prev, next) : 0;
+    for (NodeId v : nodes) {
+      const Cost d = link(prev, v) + (next.valid() ? link(v, next) : 0) - base;
+      if (d < best_delta) best_delta = d, best = {at, v, d};
+    }
+  }
+  return best;
+}
+
 void Ops::insert(Tour& t, const Insertion& ins) const {
   t.seq.insert(t.seq.begin() + ins.at, ins.node);
   reindex(t, ins.at, static_cast<int>(t.seq.size()));
   t.cost += ins.delta;
+  mark_around(t, ins.at);
 }
 
 Cost Ops::removal_gain(const Tour& t, int i) const {
@@ -86,6 +182,8 @@ void Ops::remove_at(Tour& t, int i) const {
   t.pos[cl(t.seq[static_cast<std::size_t>(i)]).index()] = -1;
   t.seq.erase(t.seq.begin() + i);
   reindex(t, i, static_cast<int>(t.seq.size()));
+  mark(t, i - 1);
+  mark(t, i);
 }
 
 // Reinsertion (Or-opt of one cluster with node re-selection), e.g. cluster C in
@@ -96,21 +194,34 @@ bool Ops::reinsertion_pass(Tour& t) const {
   const int L = static_cast<int>(t.seq.size());
   for (int c = 0; c < m_ && L > 1; ++c) {
     if (ClusterId(c) == p_.start_cluster()) continue;
+    if (!t.dirty[static_cast<std::size_t>(c)]) continue;
+    t.dirty[static_cast<std::size_t>(c)] = 0;
     const int i = t.pos[static_cast<std::size_t>(c)];
+    const int touched_before = t.touched[static_cast<std::size_t>(c)];
     const Cost before = t.cost;
     const NodeId old = t.seq[static_cast<std::size_t>(i)];
+    // Flags of the neighbours, restored when the cluster goes back where it was.
+    const int Lc = static_cast<int>(t.seq.size());
+    const std::size_t nprev = cl(t.seq[static_cast<std::size_t>(i - 1)]).index();
+    const std::size_t nnext = cl(t.seq[static_cast<std::size_t>((i + 1) % Lc)]).index();
+    const int saved[4] = {t.dirty[nprev], t.touched[nprev], t.dirty[nnext], t.touched[nnext]};
     remove_at(t, i);
-    Insertion ins = best_insertion(t, ClusterId(c), 0.0, nullptr);
+    Insertion ins = best_local_insertion(t, ClusterId(c), i);
     // Keep the old place on ties so that a pass without improvement leaves the route unchanged.
     if (t.cost + ins.delta >= before) {
       Tour& u = t;
       const NodeId prev = u.seq[static_cast<std::size_t>(i - 1)];
       const NodeId next = i < static_cast<int>(u.seq.size()) ? u.seq[static_cast<std::size_t>(i)] : (closed_ ? u.seq[0] : NodeId{});
       ins = {i, old, link(prev, old) + (next.valid() ? link(old, next) - link(prev, next) : 0)};
+      insert(t, ins);
+      t.dirty[nprev] = static_cast<char>(saved[0]), t.touched[nprev] = saved[1];
+      t.dirty[nnext] = static_cast<char>(saved[2]), t.touched[nnext] = saved[3];
+      t.dirty[static_cast<std::size_t>(c)] = 0;
+      t.touched[static_cast<std::size_t>(c)] = touched_before;
     } else {
       improved = true;
+      insert(t, ins);
     }
-    insert(t, ins);
   }
   return improved;
 }
@@ -122,6 +233,32 @@ bool Ops::two_opt_pass(Tour& t) const {
   if (!p_.symmetric()) return false;
   const int L = static_cast<int>(t.seq.size());
   bool improved = false;
+  if (!prec_ && static_cast<int>(kn_) * 4 < L) {
+    // Neighbour-list 2-opt: the new arc (a, c) or (b, d) joins a cluster to one of its neighbours.
+    auto try_move = [&](int i, int j) {
+      if (j <= i || j >= L) return;
+      const NodeId a = t.seq[static_cast<std::size_t>(i - 1)], b = t.seq[static_cast<std::size_t>(i)];
+      const NodeId c = t.seq[static_cast<std::size_t>(j)];
+      const NodeId d = after(t, j);
+      Cost delta = p_.arc_cost(a, c) - p_.arc_cost(a, b);
+      if (d.valid()) delta += p_.arc_cost(b, d) - p_.arc_cost(c, d);
+      if (delta < 0) {
+        std::reverse(t.seq.begin() + i, t.seq.begin() + j + 1);
+        reindex(t, i, j + 1);
+        t.cost += delta;
+        improved = true;
+        mark_around(t, i);
+        mark_around(t, j);
+      }
+    };
+    for (int i = 1; i + 1 < L; ++i) {
+      const std::size_t ca = cl(t.seq[static_cast<std::size_t>(i - 1)]).index(), cb = cl(t.seq[static_cast<std::size_t>(i)]).index();
+      if (!touched(t, ca) && !touched(t, cb)) continue;
+      for (ClusterId x : succs(cl(t.seq[static_cast<std::size_t>(i - 1)]))) try_move(i, t.pos[x.index()]);
+      for (ClusterId x : succs(cl(t.seq[static_cast<std::size_t>(i)]))) try_move(i, t.pos[x.index()] - 1);
+    }
+    return improved;
+  }
   for (int i = 1; i + 1 < L; ++i) {
     for (int j = i + 1; j < L; ++j) {
       const NodeId a = t.seq[static_cast<std::size_t>(i - 1)], b = t.seq[static_cast<std::size_t>(i)];
@@ -145,13 +282,16 @@ bool Ops::two_opt_pass(Tour& t) const {
         reindex(t, i, j + 1);
         t.cost += delta;
         improved = true;
+        mark_around(t, i);
+        mark_around(t, j);
       }
     }
   }
   return improved;
 }
 
-// Or-opt: move a segment of k = 2 or 3 clusters, same direction, e.g. (k = 2)
+// Or-opt: move a segment of k = 2 or 3 clusters (reversed too on symmetric problems without
+// precedence, S a [b c] d e f -> S a d e [c b] f), e.g. (k = 2, same direction)
 //   S a [b c] d e f -> S a d e [b c] f.
 // Moving forward over a cluster y is refused when a segment cluster must precede y; moving backward
 // over y when y must precede a segment cluster.
@@ -161,6 +301,9 @@ bool Ops::or_opt_pass(Tour& t) const {
   for (int k = 2; k <= 3; ++k) {
     for (int i = 1; i + k <= L; ++i) {
       const int e = i + k - 1;
+      if (!touched(t, cl(t.seq[static_cast<std::size_t>(i)]).index()) && !touched(t, cl(t.seq[static_cast<std::size_t>(e)]).index()) &&
+          !touched(t, cl(t.seq[static_cast<std::size_t>(i - 1)]).index()))
+        continue;
       const NodeId prev = t.seq[static_cast<std::size_t>(i - 1)];
       const NodeId f = t.seq[static_cast<std::size_t>(i)], l = t.seq[static_cast<std::size_t>(e)];
       const NodeId next = after(t, e);
@@ -168,6 +311,28 @@ bool Ops::or_opt_pass(Tour& t) const {
       const Cost gain = link(prev, f) + (next.valid() ? link(l, next) - link(prev, next) : 0);
       Cost best = 0;
       int best_t = -1;
+      bool best_rev = false;
+      if (!prec_ && static_cast<int>(kn_) * 4 < L) {
+        // Only next to the neighbours of the segment's end clusters.
+        auto eval = [&](int tt) {
+          if (tt < 0 || tt >= L || (tt >= i - 1 && tt <= e)) return;
+          const NodeId y = t.seq[static_cast<std::size_t>(tt)];
+          const NodeId z = tt > e ? after(t, tt) : t.seq[static_cast<std::size_t>(tt + 1)];
+          const Cost add = link(y, f) + (z.valid() ? link(l, z) - link(y, z) : 0);
+          if (add - gain < best) best = add - gain, best_t = tt, best_rev = false;
+          if (p_.symmetric()) {
+            // Reversed insertion, S a [b c] d e f -> S a d e [c b] f: with symmetric arcs only the
+            // boundary arcs change (inner costs: the same nodes are entered).
+            const Cost gain_arcs = p_.arc_cost(prev, f) + (next.valid() ? p_.arc_cost(l, next) - p_.arc_cost(prev, next) : 0);
+            const Cost add_rev = p_.arc_cost(y, l) + (z.valid() ? p_.arc_cost(f, z) - p_.arc_cost(y, z) : 0);
+            if (add_rev - gain_arcs < best) best = add_rev - gain_arcs, best_t = tt, best_rev = true;
+          }
+        };
+        for (ClusterId x : preds(cl(l))) eval(t.pos[x.index()]);
+        for (ClusterId x : succs(cl(f))) eval(t.pos[x.index()] - 1);
+        for (ClusterId x : preds(cl(f))) eval(t.pos[x.index()]);
+        for (ClusterId x : succs(cl(l))) eval(t.pos[x.index()] - 1);
+      } else {
       // Forward: insert after seq[tt], tt > e.
       for (int tt = e + 1; tt < L; ++tt) {
         const NodeId y = t.seq[static_cast<std::size_t>(tt)];
@@ -193,16 +358,81 @@ bool Ops::or_opt_pass(Tour& t) const {
         const Cost add = link(y, f) + link(l, z) - link(y, z);
         if (add - gain < best) best = add - gain, best_t = tt;
       }
+      }
       if (best_t < 0) continue;
       if (best_t > e) {
         std::rotate(t.seq.begin() + i, t.seq.begin() + e + 1, t.seq.begin() + best_t + 1);
         reindex(t, i, best_t + 1);
+        if (best_rev) {
+          std::reverse(t.seq.begin() + best_t - k + 1, t.seq.begin() + best_t + 1);
+          reindex(t, best_t - k + 1, best_t + 1);
+        }
+        mark_around(t, i - 1);
+        mark_around(t, best_t - k + 1);
+        mark_around(t, best_t);
       } else {
         std::rotate(t.seq.begin() + best_t + 1, t.seq.begin() + i, t.seq.begin() + e + 1);
         reindex(t, best_t + 1, e + 1);
+        if (best_rev) {
+          std::reverse(t.seq.begin() + best_t + 1, t.seq.begin() + best_t + k + 1);
+          reindex(t, best_t + 1, best_t + k + 1);
+        }
+        mark_around(t, best_t + 1);
+        mark_around(t, best_t + k);
+        mark_around(t, e + 1);
       }
       t.cost += best;
       improved = true;
+    }
+  }
+  return improved;
+}
+
+// Swap: exchange two clusters, keeping their nodes, e.g. S a [b] c d [e] f -> S a [e] c d [b] f.
+// Needed on precedence-heavy routes (SOP) where single moves are blocked but exchanges are not.
+// Forbidden: b must not have to precede anything in (b, e], e nothing in [b, e) must precede.
+// O(m^2) a pass (each pair one O(1) evaluation plus the precedence look-ups).
+bool Ops::swap_pass(Tour& t) const {
+  const int L = static_cast<int>(t.seq.size());
+  bool improved = false;
+  auto val = [&](NodeId a, NodeId b) { return a.valid() && b.valid() ? link(a, b) : 0; };
+  for (int i = 1; i + 1 < L; ++i) {
+    if (!touched(t, cl(t.seq[static_cast<std::size_t>(i)]).index()) && !touched(t, cl(t.seq[static_cast<std::size_t>(i - 1)]).index()))
+      continue;
+    for (int j = i + 1; j < L; ++j) {
+      const NodeId x = t.seq[static_cast<std::size_t>(i)], y = t.seq[static_cast<std::size_t>(j)];
+      if (prec_) {
+        // x moves over everything in (i, j]: stop at the first cluster x must precede.
+        if (p_.must_precede(cl(x), cl(y))) break;
+        // y moves over everything in [i, j): skip it if one of them must precede y.
+        bool blocked = false;
+        for (ClusterId a : p_.all_before(cl(y))) {
+          const int pa = t.pos[a.index()];
+          if (pa >= i && pa < j) {
+            blocked = true;
+            break;
+          }
+        }
+        if (blocked) continue;
+      }
+      const NodeId a = t.seq[static_cast<std::size_t>(i - 1)];
+      const NodeId d = after(t, j);
+      Cost delta;
+      if (j == i + 1) {
+        delta = link(a, y) + link(y, x) + val(x, d) - link(a, x) - link(x, y) - val(y, d);
+      } else {
+        const NodeId b = t.seq[static_cast<std::size_t>(i + 1)], c = t.seq[static_cast<std::size_t>(j - 1)];
+        delta = link(a, y) + link(y, b) + link(c, x) + val(x, d) - link(a, x) - link(x, b) - link(c, y) - val(y, d);
+      }
+      if (delta < 0) {
+        std::swap(t.seq[static_cast<std::size_t>(i)], t.seq[static_cast<std::size_t>(j)]);
+        reindex(t, i, i + 1);
+        reindex(t, j, j + 1);
+        t.cost += delta;
+        improved = true;
+        mark_around(t, i);
+        mark_around(t, j);
+      }
     }
   }
   return improved;
@@ -290,18 +520,121 @@ bool Ops::cluster_optimise(Tour& t, double max_work) const {
     run(std::span<const NodeId>(&cur, 1));
   }
   if (best_seq.empty()) return false;
-  t.seq = std::move(best_seq);
+  for (int i = 0; i < L; ++i)
+    if (best_seq[static_cast<std::size_t>(i)] != t.seq[static_cast<std::size_t>(i)]) {
+      t.seq[static_cast<std::size_t>(i)] = best_seq[static_cast<std::size_t>(i)];
+      mark_around(t, i);
+    }
   t.cost = best;
   return true;
 }
 
+bool Ops::window_optimise(Tour& t, int lo, int hi) const {
+  const int L = static_cast<int>(t.seq.size());
+  lo = std::max(lo, 1);
+  hi = std::min(hi, L - 1);
+  if (lo > hi) return false;
+  const NodeId first = t.seq[static_cast<std::size_t>(lo - 1)];
+  const NodeId last = after(t, hi);
+  Cost old = last.valid() ? link(t.seq[static_cast<std::size_t>(hi)], last) : 0;
+  for (int i = lo; i <= hi; ++i) old += link(t.seq[static_cast<std::size_t>(i - 1)], t.seq[static_cast<std::size_t>(i)]);
+  thread_local std::vector<Cost> D;
+  thread_local std::vector<int> pred, off;
+  off.assign(1, 0);
+  for (int i = lo; i <= hi; ++i) off.push_back(off.back() + p_.cluster_size(cl(t.seq[static_cast<std::size_t>(i)])));
+  D.assign(static_cast<std::size_t>(off.back()), kHuge);
+  pred.assign(static_cast<std::size_t>(off.back()), -1);
+  for (int i = lo; i <= hi; ++i) {
+    const auto B = p_.nodes_of(cl(t.seq[static_cast<std::size_t>(i)]));
+    const std::size_t ob = static_cast<std::size_t>(off[static_cast<std::size_t>(i - lo)]);
+    if (i == lo) {
+      for (std::size_t b = 0; b < B.size(); ++b) D[ob + b] = link(first, B[b]);
+      continue;
+    }
+    const auto A = p_.nodes_of(cl(t.seq[static_cast<std::size_t>(i - 1)]));
+    const std::size_t oa = static_cast<std::size_t>(off[static_cast<std::size_t>(i - 1 - lo)]);
+    for (std::size_t b = 0; b < B.size(); ++b)
+      for (std::size_t a = 0; a < A.size(); ++a) {
+        const Cost v = D[oa + a] + link(A[a], B[b]);
+        if (v < D[ob + b]) D[ob + b] = v, pred[ob + b] = static_cast<int>(oa + a);
+      }
+  }
+  const auto Z = p_.nodes_of(cl(t.seq[static_cast<std::size_t>(hi)]));
+  const std::size_t oz = static_cast<std::size_t>(off[static_cast<std::size_t>(hi - lo)]);
+  Cost best = kHuge;
+  int arg = -1;
+  for (std::size_t z = 0; z < Z.size(); ++z) {
+    const Cost v = D[oz + z] + (last.valid() ? link(Z[z], last) : 0);
+    if (v < best) best = v, arg = static_cast<int>(oz + z);
+  }
+  if (best >= old) return false;
+  for (int i = hi; i >= lo; --i) {
+    const int li = arg - off[static_cast<std::size_t>(i - lo)];
+    const NodeId v = p_.nodes_of(cl(t.seq[static_cast<std::size_t>(i)]))[static_cast<std::size_t>(li)];
+    if (v != t.seq[static_cast<std::size_t>(i)]) {
+      t.seq[static_cast<std::size_t>(i)] = v;
+      mark_around(t, i);
+    }
+    arg = pred[static_cast<std::size_t>(arg)];
+  }
+  t.cost += best - old;
+  return true;
+}
+
+bool Ops::windows_optimise(Tour& t, int since_epoch) const {
+  // Windows of +-2 positions around every cluster changed since `since_epoch`, merged when they overlap.
+  const int L = static_cast<int>(t.seq.size());
+  bool improved = false;
+  int lo = -1, hi = -1;
+  for (int i = 0; i <= L; ++i) {
+    const bool changed = i < L && t.touched[cl(t.seq[static_cast<std::size_t>(i)]).index()] >= since_epoch;
+    if (changed) {
+      if (lo >= 0 && i - 2 <= hi + 1) hi = i + 2;
+      else {
+        if (lo >= 0) improved = window_optimise(t, lo, hi) || improved;
+        lo = i - 2, hi = i + 2;
+      }
+    }
+  }
+  if (lo >= 0) improved = window_optimise(t, lo, hi) || improved;
+  return improved;
+}
+
 void Ops::local_search(Tour& t) const {
-  for (int guard = 0; guard < 1000; ++guard) {
-    bool improved = reinsertion_pass(t);
-    improved = two_opt_pass(t) || improved;
-    improved = or_opt_pass(t) || improved;
-    improved = cluster_optimise(t, 2.0e6) || improved;
-    if (!improved) break;
+  if (expensive_co_) {
+    // Large clusters: a full cluster optimisation costs more than all other moves together, so only
+    // the stretches around what changed are re-optimised (solve_heuristic runs full passes at the
+    // start and on the final route).
+    const int start_epoch = t.pass_start;
+    windows_optimise(t, start_epoch);
+    for (int guard = 0; guard < 100; ++guard) {
+      const int round_epoch = t.epoch;
+      for (int inner = 0; inner < 100 && !stopped(); ++inner) {
+        bool improved = reinsertion_pass(t);
+        begin_round(t);
+        improved = two_opt_pass(t) || improved;
+        improved = or_opt_pass(t) || improved;
+        if (prec_) improved = swap_pass(t) || improved;
+        if (!improved) break;
+      }
+      if (stopped() || !windows_optimise(t, round_epoch)) break;
+    }
+    return;
+  }
+  // Cluster optimisation first (a perturbed order often only pays off with other nodes; the sequence
+  // moves, which keep nodes, would otherwise undo it), then sequence moves until none improves, then
+  // cluster optimisation again; repeat while it improves. Bounded so a plateau cannot loop forever.
+  cluster_optimise(t, 2.0e6);
+  for (int guard = 0; guard < 100; ++guard) {
+    for (int inner = 0; inner < 100 && !stopped(); ++inner) {
+      bool improved = reinsertion_pass(t);
+      begin_round(t);
+      improved = two_opt_pass(t) || improved;
+      improved = or_opt_pass(t) || improved;
+      if (prec_) improved = swap_pass(t) || improved;
+      if (!improved) break;
+    }
+    if (stopped() || !cluster_optimise(t, 2.0e6)) break;
   }
 }
 
@@ -320,8 +653,7 @@ void Ops::construct(Tour& t, Rng& rng) const {
   for (NodeId v : p_.nodes_of(s))
     if (p_.inner_cost(v) < p_.inner_cost(first)) first = v;
   t.seq.assign(1, first);
-  t.pos.assign(static_cast<std::size_t>(m_), -1);
-  t.pos[s.index()] = 0;
+  init(t);
   t.cost = p_.inner_cost(first);  // one-node route, closed or open
   while (!avail.empty()) {
     const std::size_t k = rng.below(avail.size());

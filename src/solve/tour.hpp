@@ -2,10 +2,12 @@
 // operators of solve/heuristic.hpp working on it without reallocating.
 #pragma once
 
+#include <span>
 #include <utility>
 #include <vector>
 
 #include <cutroute/core/random.hpp>
+#include <cutroute/core/stop.hpp>
 #include <cutroute/solve/problem.hpp>
 
 namespace cutroute::solve::detail {
@@ -13,22 +15,40 @@ namespace cutroute::solve::detail {
 // A route over some (partial) or all (complete) clusters; seq[0] is always in the start cluster.
 // Cost convention: closed tour = sum of link() around the cycle; open path = inner(seq[0]) + sum of
 // link() along it. link(a, a) = inner(a) makes the one-node cycle consistent.
+// Don't-look flags (Bentley 1992): local search only re-examines clusters whose neighbourhood in the
+// route changed since they were last examined without success; a pass over a route that a small
+// destroy/repair changed in a few places then costs O(changes), not O(m).
 struct Tour {
   std::vector<NodeId> seq;
-  std::vector<int> pos;  // by cluster: index in seq, -1 when absent
+  std::vector<int> pos;          // by cluster: index in seq, -1 when absent
+  std::vector<char> dirty;       // by cluster: reinsertion should look at it again
+  std::vector<int> touched;      // by cluster: epoch of the last change next to it (2-opt / Or-opt)
+  int epoch = 1;                 // current change epoch
+  int since = 0;                 // 2-opt / Or-opt look at clusters touched at or after this epoch
+  int pass_start = 1;            // epoch at which the last 2-opt / Or-opt round began
   Cost cost = 0;
 };
 
 class Ops {
  public:
-  explicit Ops(const Problem& p);
+  // `stop` (optional) ends local search early: on huge routes one descent can take seconds.
+  explicit Ops(const Problem& p, const StopToken* stop = nullptr);
+  bool stopped() const { return stop_ && stop_->stop_requested(); }
 
   const Problem& problem() const { return p_; }
   Cost link(NodeId a, NodeId b) const { return a == b ? p_.inner_cost(b) : p_.step(a, b); }
   ClusterId cl(NodeId v) const { return p_.cluster_of(v); }
 
   Cost full_cost(const std::vector<NodeId>& seq) const;
-  void init(Tour& t) const;                      // pos and cost from seq
+  void init(Tour& t) const;                      // pos and cost from seq; every cluster dirty
+  void mark(Tour& t, int i) const;               // flags the cluster at index i (wraps on a tour)
+  void mark_around(Tour& t, int i) const { mark(t, i - 1), mark(t, i), mark(t, i + 1); }
+  static bool touched(const Tour& t, std::size_t c) { return t.touched[c] >= t.since; }
+  // Starts a 2-opt / Or-opt round: it looks at what changed since the previous round began.
+  static void begin_round(Tour& t) {
+    t.since = t.pass_start;
+    t.pass_start = ++t.epoch;
+  }
   void reindex(Tour& t, int from, int to) const; // pos for seq[from, to)
   // The node after index i: the next one, the first one (closed tour), or an invalid id (path end).
   NodeId after(const Tour& t, int i) const {
@@ -44,24 +64,40 @@ class Ops {
   };
   // Indices at which cluster c may be inserted keeping precedence with the clusters present: [lo, hi].
   std::pair<int, int> window(const Tour& t, ClusterId c) const;
-  // Best (position, node) for c; with noise > 0 each position's cost is multiplied by 1 + noise * u.
+  // Best (position, node) for c; with noise > 0 each position's cost gets + noise * u (u uniform in [0, 1)).
   Insertion best_insertion(const Tour& t, ClusterId c, double noise, Rng* rng) const;
+  // Like best_insertion, but only next to c's neighbour clusters and at old_at (the local-search move).
+  Insertion best_local_insertion(const Tour& t, ClusterId c, int old_at) const;
   void insert(Tour& t, const Insertion& ins) const;
   Cost removal_gain(const Tour& t, int i) const;
   void remove_at(Tour& t, int i) const;
 
+  // Candidate lists (LKH-style): the clusters with the cheapest arcs into c (preds) and out of c
+  // (succs), measured between up to 12 sampled nodes per cluster; moves are only tried next to them.
+  std::span<const ClusterId> preds(ClusterId c) const { return {pred_.data() + static_cast<std::size_t>(c.value()) * kn_, kn_}; }
+  std::span<const ClusterId> succs(ClusterId c) const { return {succ_.data() + static_cast<std::size_t>(c.value()) * kn_, kn_}; }
+
   bool reinsertion_pass(Tour& t) const;
   bool two_opt_pass(Tour& t) const;
   bool or_opt_pass(Tour& t) const;
+  bool swap_pass(Tour& t) const;
   bool cluster_optimise(Tour& t, double max_work) const;
+  // Best nodes for positions [lo, hi] with the nodes around them fixed. O(sum |C_i||C_i+1|) there.
+  bool window_optimise(Tour& t, int lo, int hi) const;
+  // window_optimise around every cluster touched at or after `since_epoch`.
+  bool windows_optimise(Tour& t, int since_epoch) const;
   void local_search(Tour& t) const;
   void construct(Tour& t, Rng& rng) const;
 
  private:
   const Problem& p_;
+  const StopToken* stop_;
   int m_;
   bool closed_;
   bool prec_;
+  std::size_t kn_ = 0;
+  bool expensive_co_ = false;
+  std::vector<ClusterId> pred_, succ_;
 };
 
 }  // namespace cutroute::solve::detail

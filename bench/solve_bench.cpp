@@ -1,0 +1,90 @@
+// Solver benchmarks: the exact DP on the issue's 16-cluster x 8-node instance with 10 precedence
+// pairs, and the heuristic on GTSPLIB files (the accuracy tables come from bench/gtsp_bench.py).
+#include <benchmark/benchmark.h>
+
+#include <sys/resource.h>
+
+#include <cutroute/io/instance.hpp>
+#include <cutroute/solve/exact_dp.hpp>
+#include <cutroute/solve/solve.hpp>
+
+#include <cmath>
+#include <vector>
+
+#include <cutroute/core/random.hpp>
+
+namespace {
+
+using namespace cutroute;
+
+solve::Problem issue_instance(std::uint64_t seed, bool symmetric) {
+  // Exactly 16 clusters x 8 nodes (test::random_problem draws cluster sizes at random), random
+  // points (symmetric) or a random matrix (asymmetric), 10 precedence pairs from a hidden order.
+  Rng rng(seed);
+  const int m = 16, k = 8, n = m * k, pairs = 10;
+  std::vector<solve::Cost> cost(static_cast<std::size_t>(n * n));
+  std::vector<double> x(static_cast<std::size_t>(n)), y(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) x[static_cast<std::size_t>(i)] = static_cast<double>(rng.below(1000)), y[static_cast<std::size_t>(i)] = static_cast<double>(rng.below(1000));
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      cost[static_cast<std::size_t>(i * n + j)] =
+          symmetric ? static_cast<solve::Cost>(std::hypot(x[static_cast<std::size_t>(i)] - x[static_cast<std::size_t>(j)], y[static_cast<std::size_t>(i)] - y[static_cast<std::size_t>(j)]) + 0.5)
+                    : static_cast<solve::Cost>(rng.below(1000));
+  solve::ProblemBuilder b(n);
+  b.set_cost_matrix(std::move(cost));
+  for (int c = 0; c < m; ++c) {
+    std::vector<solve::NodeId> nodes;
+    for (int j = 0; j < k; ++j) nodes.push_back(solve::NodeId(c * k + j));
+    b.add_cluster(nodes);
+  }
+  std::vector<int> order;
+  for (int c = 1; c < m; ++c) order.push_back(c);
+  rng.shuffle(order.begin(), order.end());
+  for (int p = 0; p < pairs; ++p) {
+    const auto i = rng.below(order.size() - 1);
+    const auto j = i + 1 + rng.below(order.size() - 1 - i);
+    b.add_precedence(solve::ClusterId(order[i]), solve::ClusterId(order[j]));
+  }
+  return std::move(b.build()).value();
+}
+
+void BM_ExactDp_16x8_10Precedence(benchmark::State& state) {
+  const auto p = issue_instance(static_cast<std::uint64_t>(state.range(0)), state.range(1) != 0);
+  solve::SolveParams params;
+  params.solver = solve::SolverKind::exact;
+  params.threads = 1;
+  params.time_limit_s = 0;
+  solve::Solution s;
+  for (auto _ : state) {
+    s = solve::solve(p, params);
+    benchmark::DoNotOptimize(s.cost);
+  }
+  rusage ru{};
+  getrusage(RUSAGE_SELF, &ru);
+  state.counters["optimal"] = s.status == solve::SolveStatus::optimal ? 1 : 0;
+  state.counters["cost"] = static_cast<double>(s.cost);
+  state.counters["table_MB"] = static_cast<double>(solve::estimate_exact_memory(p)) / 1048576.0;
+  state.counters["max_rss_MB"] = static_cast<double>(ru.ru_maxrss) / 1024.0;
+}
+BENCHMARK(BM_ExactDp_16x8_10Precedence)->Args({1, 1})->Args({2, 1})->Args({3, 0})->Unit(benchmark::kSecond)->Iterations(1);
+
+void BM_Heuristic_Gtsplib(benchmark::State& state, const char* name) {
+  auto inst = io::read_instance(std::string(CUTROUTE_SHARED_DIR) + "/data/gtsplib/" + name + ".gtsp");
+  if (!inst) {
+    state.SkipWithError(inst.error().message.c_str());
+    return;
+  }
+  solve::SolveParams params;
+  params.solver = solve::SolverKind::heuristic;
+  params.threads = 2;
+  params.time_limit_s = 0;
+  solve::Solution s;
+  for (auto _ : state) s = solve::solve(inst->problem, params);
+  state.counters["cost"] = static_cast<double>(s.cost);
+  state.counters["iterations"] = static_cast<double>(s.stats.iterations);
+}
+BENCHMARK_CAPTURE(BM_Heuristic_Gtsplib, 40d198, "40d198")->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_Heuristic_Gtsplib, 89pcb442, "89pcb442")->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_Heuristic_Gtsplib, 132d657, "132d657")->Unit(benchmark::kMillisecond)->Iterations(1);
+
+}  // namespace

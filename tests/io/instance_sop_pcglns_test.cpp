@@ -1,0 +1,125 @@
+// SOP and PCGLNS readers, the tiny instances of data/instances/, and malformed files (line numbers).
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include <cutroute/io/instance.hpp>
+#include <cutroute/solve/exact_dp.hpp>
+#include <cutroute/solve/solve.hpp>
+
+#include "support/paths.hpp"
+
+namespace cutroute::io {
+namespace {
+
+using solve::ClusterId;
+using solve::NodeId;
+
+
+std::string instances_dir() { return std::string(CUTROUTE_INSTANCES_DIR) + "/"; }
+
+solve::Cost stated_optimum(const std::string& path) {
+  std::ifstream f(path);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  std::smatch m;
+  const std::string text = ss.str();
+  if (!std::regex_search(text, m, std::regex("optimum ([0-9]+)"))) return -1;
+  return std::stoll(m[1].str());
+}
+
+TEST(InstanceFiles, TinyInstancesSolveToTheirStatedOptimum) {
+  for (const char* name : {"tiny.gtsp", "tiny.pcglns", "tiny.sop"}) {
+    const std::string path = instances_dir() + name;
+    auto r = read_instance(path);
+    ASSERT_TRUE(r.ok()) << name << ": " << r.error().message;
+    const solve::Cost opt = stated_optimum(path);
+    ASSERT_GT(opt, 0) << name;
+    const auto ex = solve::solve_exact(r->problem, std::size_t{1} << 30, StopToken{});
+    EXPECT_EQ(ex.status, solve::SolveStatus::optimal) << name;
+    EXPECT_EQ(ex.cost, opt) << name;
+    solve::SolveParams hp;
+    hp.solver = solve::SolverKind::heuristic;
+    hp.threads = 1;
+    EXPECT_EQ(solve::solve(r->problem, hp).cost, opt) << name;
+  }
+}
+
+TEST(InstanceSop, MinusOneIsPrecedenceAndPathRunsFromFirstToLast) {
+  auto r = read_instance(instances_dir() + "tiny.sop");
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  const auto& p = r->problem;
+  EXPECT_EQ(r->format, InstanceFormat::sop);
+  EXPECT_FALSE(p.closed());
+  EXPECT_EQ(p.start_cluster(), ClusterId(0));
+  EXPECT_EQ(p.cluster_count(), 6);
+  EXPECT_TRUE(p.must_precede(ClusterId(2), ClusterId(1)));  // c[2][3] = -1: node 3 before node 2
+  EXPECT_TRUE(p.must_precede(ClusterId(3), ClusterId(5)));  // everything before node 6
+  EXPECT_TRUE(p.forbidden(NodeId(1), NodeId(2)));
+}
+
+TEST(InstancePcglns, ForbiddenArcsOrderingAndStartGroup) {
+  auto r = read_instance(instances_dir() + "tiny.pcglns");
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  const auto& p = r->problem;
+  EXPECT_EQ(r->format, InstanceFormat::pcglns);
+  EXPECT_TRUE(p.closed());
+  EXPECT_EQ(p.start_cluster(), ClusterId(1));
+  EXPECT_TRUE(p.forbidden(NodeId(0), NodeId(6)));  // entry (1, 7) is -1
+  EXPECT_TRUE(p.forbidden(NodeId(2), NodeId(4)));
+  EXPECT_FALSE(p.forbidden(NodeId(4), NodeId(2)));
+  EXPECT_TRUE(p.must_precede(ClusterId(0), ClusterId(3)));  // 1 before 3 before 4
+  const auto s = solve::solve(p, solve::SolveParams{});
+  ASSERT_FALSE(s.route.empty());
+  EXPECT_EQ(p.cluster_of(s.route[0]), ClusterId(1));
+}
+
+TEST(InstancePcglns, OrderingLineWithSeveralSuccessors) {
+  const std::string text =
+      "NAME : m\nTYPE : PCGLNS\nDIMENSION : 4\nGTSP_SETS : 4\nEDGE_WEIGHT_TYPE : EXPLICIT\nEDGE_WEIGHT_FORMAT : FULL_MATRIX\n"
+      "EDGE_WEIGHT_SECTION\n0 1 1 1\n1 0 1 1\n1 1 0 1\n1 1 1 0\nGTSP_SET_SECTION\n1 1 -1\n2 2 -1\n3 3 -1\n4 4 -1\n"
+      "GTSP_SET_ORDERING\n2 3 4 -1\nSTART_GROUP_SECTION\n1\nEOF\n";
+  auto r = parse_instance(text, "m.pcglns");
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_TRUE(r->problem.must_precede(ClusterId(1), ClusterId(2)));
+  EXPECT_TRUE(r->problem.must_precede(ClusterId(1), ClusterId(3)));
+  EXPECT_FALSE(r->problem.must_precede(ClusterId(2), ClusterId(3)));
+}
+
+// One defect per case; the message must name the line.
+TEST(InstanceErrors, MalformedFilesGiveLineNumbers) {
+  const std::string good_head = "NAME : b\nTYPE : GTSP\nDIMENSION : 3\nGTSP_SETS : 2\nEDGE_WEIGHT_TYPE : EUC_2D\n";  // lines 1-5
+  struct Case {
+    const char* what;
+    std::string text;
+    long line;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"bad coordinate", good_head + "NODE_COORD_SECTION\n1 0 0\n2 x 0\n3 1 1\nGTSP_SET_SECTION\n1 1 -1\n2 2 3 -1\n", 8, "expected a number"},
+      {"node id out of range", good_head + "NODE_COORD_SECTION\n1 0 0\n2 1 0\n3 1 1\nGTSP_SET_SECTION\n1 1 -1\n2 2 9 -1\n", 12, "node 9"},
+      {"truncated coordinates", good_head + "NODE_COORD_SECTION\n1 0 0\n2 1 0\nGTSP_SET_SECTION\n1 1 -1\n2 2 3 -1\n", 9, "ended early"},
+      {"bad dimension", "NAME : b\nTYPE : GTSP\nDIMENSION : -3\n", 3, "DIMENSION"},
+      {"unknown metric", "NAME : b\nTYPE : GTSP\nDIMENSION : 3\nGTSP_SETS : 2\nEDGE_WEIGHT_TYPE : SPHERE\nNODE_COORD_SECTION\n1 0 0\n2 1 0\n3 1 1\n"
+                         "GTSP_SET_SECTION\n1 1 -1\n2 2 3 -1\n", 5, "unsupported EDGE_WEIGHT_TYPE"},
+      {"node in two sets", good_head + "NODE_COORD_SECTION\n1 0 0\n2 1 0\n3 1 1\nGTSP_SET_SECTION\n1 1 2 -1\n2 2 3 -1\nEOF\n", 0, "in clusters"},
+      {"stray number", "NAME : b\n42\n", 2, "outside of any section"},
+  };
+  for (const auto& c : cases) {
+    auto r = parse_instance(c.text, "bad.gtsp");
+    ASSERT_FALSE(r.ok()) << c.what;
+    EXPECT_NE(r.error().message.find(c.message), std::string::npos) << c.what << ": " << r.error().message;
+    EXPECT_EQ(r.error().file, "bad.gtsp") << c.what;
+    if (c.line > 0) {
+      ASSERT_TRUE(r.error().line.has_value()) << c.what;
+      EXPECT_EQ(*r.error().line, c.line) << c.what << ": " << format(r.error());
+    }
+  }
+  auto missing = read_instance("/nonexistent/x.gtsp");
+  EXPECT_FALSE(missing.ok());
+}
+
+}  // namespace
+}  // namespace cutroute::io

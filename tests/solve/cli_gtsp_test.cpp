@@ -1,0 +1,56 @@
+// `cutroute gtsp`: JSON output, optimal status on small files, exit 2 with a line number on bad files.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "support/paths.hpp"
+
+namespace cutroute {
+namespace {
+
+std::string instances_dir() { return std::string(CUTROUTE_INSTANCES_DIR) + "/"; }
+
+TEST(CliGtsp, JsonForTinyPcglns) {
+  const auto r = test::run_command(test::cli_path() + " gtsp " + instances_dir() + "tiny.pcglns --json --seed 3");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["objective"], 15);
+  EXPECT_EQ(j["status"], "optimal");
+  EXPECT_EQ(j["lower_bound"], 15);
+  ASSERT_EQ(j["tour"].size(), 4u);
+  EXPECT_EQ(j["tour"][0], 3);  // node 3 is the only node of start group 2
+  EXPECT_TRUE(j["time_s"].is_number());
+}
+
+TEST(CliGtsp, HeuristicOnAGtsplibFile) {
+  const auto r = test::run_command(test::cli_path() + " gtsp " + test::shared("data/gtsplib/20kroA100.gtsp") +
+                                   " --solver heuristic --threads 2 --seed 1 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["status"], "feasible");
+  EXPECT_GE(j["objective"].get<long>(), 9711);  // best known (optimal) value
+  EXPECT_EQ(j["tour"].size(), 20u);
+}
+
+TEST(CliGtsp, MalformedFileExitsTwoWithLine) {
+  const auto path = std::filesystem::temp_directory_path() / "cutroute_bad_instance.gtsp";
+  std::ofstream(path) << "NAME : b\nTYPE : GTSP\nDIMENSION : 2\nGTSP_SETS : 1\nEDGE_WEIGHT_TYPE : EUC_2D\n"
+                         "NODE_COORD_SECTION\n1 0 0\n2 zero 0\n";
+  const auto r = test::run_command(test::cli_path() + " gtsp " + path.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(path.string() + ":8: error:"), std::string::npos) << r.err;
+  std::filesystem::remove(path);
+}
+
+TEST(CliGtsp, TextOutput) {
+  const auto r = test::run_command(test::cli_path() + " gtsp " + instances_dir() + "tiny.sop");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("objective: 14"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("status:    optimal"), std::string::npos) << r.out;
+}
+
+}  // namespace
+}  // namespace cutroute

@@ -1,0 +1,111 @@
+// The metaheuristic: deterministic per seed and thread count, honours stop token and target.
+#include <gtest/gtest.h>
+
+#include <cutroute/solve/heuristic.hpp>
+#include <cutroute/solve/solve.hpp>
+
+#include "random_instance.hpp"
+
+namespace cutroute::solve {
+namespace {
+
+Problem instance(std::uint64_t seed, bool precedence) {
+  Rng rng(seed);
+  test::RandomSpec spec;
+  spec.clusters = 40;
+  spec.max_nodes = 4;
+  spec.symmetric = !precedence;
+  spec.precedence_pairs = precedence ? 25 : 0;
+  spec.inner_costs = precedence;
+  return test::random_problem(spec, rng);
+}
+
+TEST(Heuristic, SameSeedAndThreadsGiveTheSameRoute) {
+  for (bool prec : {false, true}) {
+    const Problem p = instance(11, prec);
+    SolveParams sp;
+    sp.solver = SolverKind::heuristic;
+    sp.seed = 42;
+    sp.threads = 2;
+    sp.time_limit_s = 0;
+    sp.min_stagnation_work = 10000;  // keep the test short (also under sanitizers)
+    const Solution a = solve(p, sp);
+    const Solution b = solve(p, sp);
+    EXPECT_EQ(a.route, b.route);
+    EXPECT_EQ(a.cost, b.cost);
+    EXPECT_EQ(a.stats.iterations, b.stats.iterations);
+    EXPECT_TRUE(validate(p, a).empty());
+  }
+}
+
+TEST(Heuristic, CancelledTokenStillReturnsAValidRoute) {
+  const Problem p = instance(12, true);
+  StopToken stop;
+  stop.request_stop();
+  SolveParams sp;
+  sp.solver = SolverKind::heuristic;
+  const Solution s = solve(p, sp, stop);
+  EXPECT_EQ(s.status, SolveStatus::feasible);
+  EXPECT_TRUE(validate(p, s).empty());
+  EXPECT_TRUE(s.stats.stopped_by_limit);
+}
+
+TEST(Heuristic, StopsAtTargetCost) {
+  const Problem p = instance(13, false);
+  SolveParams sp;
+  sp.solver = SolverKind::heuristic;
+  sp.threads = 1;
+  sp.min_stagnation_work = 10000;
+  const Solution full = solve(p, sp);
+  sp.target_cost = full.cost * 2;  // any route after construction + local search is below this
+  const Solution quick = solve(p, sp);
+  EXPECT_LE(quick.cost, full.cost * 2);
+  EXPECT_LT(quick.stats.iterations, full.stats.iterations);
+}
+
+TEST(Solve, AutomaticPicksExactOnSmallAndHeuristicOnLarge) {
+  Rng rng(3);
+  test::RandomSpec small;
+  small.clusters = 7;
+  const Problem ps = test::random_problem(small, rng);
+  const Solution a = solve(ps, SolveParams{});
+  EXPECT_EQ(a.status, SolveStatus::optimal);
+  EXPECT_EQ(a.stats.solver, "exact");
+  const Problem pl = instance(14, false);
+  const Solution b = solve(pl, SolveParams{});
+  EXPECT_EQ(b.status, SolveStatus::feasible);
+  EXPECT_EQ(b.stats.solver, "heuristic");
+}
+
+}  // namespace
+}  // namespace cutroute::solve
+
+namespace cutroute::solve {
+namespace {
+
+// One and two clusters, open and closed, every solver: the degenerate sizes must not break anything.
+TEST(Solve, DegenerateSizes) {
+  for (int clusters : {1, 2}) {
+    for (RouteKind kind : {RouteKind::closed_tour, RouteKind::open_path}) {
+      ProblemBuilder b(2 * clusters);
+      std::vector<Cost> m(static_cast<std::size_t>(4 * clusters * clusters), 5);
+      b.set_cost_matrix(m);
+      for (int c = 0; c < clusters; ++c) b.add_cluster({NodeId(2 * c), NodeId(2 * c + 1)});
+      b.set_inner_cost(NodeId(1), 3).set_inner_cost(NodeId(0), 4);
+      b.set_kind(kind);
+      const Problem p = *b.build();
+      for (SolverKind k : {SolverKind::automatic, SolverKind::exact, SolverKind::heuristic}) {
+        SolveParams sp;
+        sp.solver = k;
+        const Solution s = solve(p, sp);
+        ASSERT_FALSE(s.route.empty());
+        EXPECT_TRUE(validate(p, s).empty());
+        const Cost expected = clusters == 1 ? 3 : (kind == RouteKind::closed_tour ? 3 + 5 + 5 : 3 + 5);
+        EXPECT_EQ(s.cost, expected) << clusters << " clusters, solver " << to_string(k);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace cutroute::solve

@@ -1,0 +1,84 @@
+// Local-search operators never worsen a route, never break it, and construction is always valid.
+#include <gtest/gtest.h>
+
+#include <cutroute/solve/heuristic.hpp>
+#include <cutroute/solve/solution.hpp>
+
+#include "random_instance.hpp"
+
+namespace cutroute::solve {
+namespace {
+
+void expect_valid(const Problem& p, const std::vector<NodeId>& r, const char* what) {
+  Solution s;
+  s.route = r;
+  s.cost = route_cost(p, r);
+  const auto errors = validate(p, s);
+  EXPECT_TRUE(errors.empty()) << what << ": " << (errors.empty() ? "" : errors.front());
+}
+
+TEST(Operators, NeverWorsenAndKeepPrecedence) {
+  Rng rng(99);
+  for (int k = 0; k < 60; ++k) {
+    test::RandomSpec spec;
+    spec.clusters = 5 + static_cast<int>(rng.below(60));
+    spec.max_nodes = 1 + static_cast<int>(rng.below(4));
+    spec.symmetric = k % 2 == 0;
+    spec.closed = k % 3 != 0;
+    spec.precedence_pairs = k % 4 == 0 ? 0 : static_cast<int>(rng.below(static_cast<std::uint64_t>(spec.clusters)));
+    spec.inner_costs = k % 5 == 0;
+    const Problem p = test::random_problem(spec, rng);
+    SCOPED_TRACE("instance " + std::to_string(k));
+    std::vector<NodeId> r = construct_route(p, rng);
+    expect_valid(p, r, "construction");
+    using Op = bool (*)(const Problem&, std::vector<NodeId>&);
+    const std::pair<const char*, Op> ops[] = {{"reinsertion", reinsertion_pass},
+                                              {"two_opt", two_opt_pass},
+                                              {"or_opt", or_opt_pass},
+                                              {"swap", swap_pass},
+                                              {"cluster_optimise", [](const Problem& q, std::vector<NodeId>& x) { return cluster_optimise(q, x); }}};
+    for (int round = 0; round < 3; ++round)
+      for (auto [name, op] : ops) {
+        const Cost before = route_cost(p, r);
+        const bool improved = op(p, r);
+        const Cost after = route_cost(p, r);
+        expect_valid(p, r, name);
+        EXPECT_LE(after, before) << name;
+        EXPECT_EQ(improved, after < before) << name;
+      }
+    const Cost before = route_cost(p, r);
+    local_search(p, r);
+    expect_valid(p, r, "local_search");
+    EXPECT_LE(route_cost(p, r), before);
+  }
+}
+
+// Cluster optimisation is exact for a fixed order: compare with enumerating every node choice.
+TEST(Operators, ClusterOptimiseFindsBestNodesForFixedOrder) {
+  Rng rng(5);
+  for (int k = 0; k < 30; ++k) {
+    test::RandomSpec spec;
+    spec.clusters = 2 + static_cast<int>(rng.below(4));
+    spec.max_nodes = 3;
+    spec.symmetric = k % 2 == 0;
+    spec.closed = k % 3 != 0;
+    spec.inner_costs = true;
+    const Problem p = test::random_problem(spec, rng);
+    std::vector<NodeId> r = construct_route(p, rng);
+    Cost best = route_cost(p, r);
+    std::vector<std::size_t> pick(r.size(), 0);
+    while (true) {
+      std::vector<NodeId> x;
+      for (std::size_t i = 0; i < r.size(); ++i) x.push_back(p.nodes_of(p.cluster_of(r[i]))[pick[i]]);
+      best = std::min(best, route_cost(p, x));
+      std::size_t i = 0;
+      while (i < pick.size() && ++pick[i] == p.nodes_of(p.cluster_of(r[i])).size()) pick[i++] = 0;
+      if (i == pick.size()) break;
+    }
+    cluster_optimise(p, r, 1e12);
+    EXPECT_EQ(route_cost(p, r), best) << "instance " << k;
+  }
+}
+
+}  // namespace
+}  // namespace cutroute::solve

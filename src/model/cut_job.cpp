@@ -6,6 +6,8 @@
 
 #include <cutroute/core/number_format.hpp>
 #include <cutroute/core/tolerances.hpp>
+#include <cutroute/geometry/intersect.hpp>
+#include <cutroute/geometry/segment_set.hpp>
 #include <cutroute/geometry/spatial_index.hpp>
 
 #include "path_ops.hpp"
@@ -62,10 +64,12 @@ struct EntryPlanner::Impl {
   geometry::StaticSpatialIndex index;  // over every contour's box, sheet included
   mutable std::vector<std::uint32_t> scratch;
 
-  // Per contour, computed once: orientation, length, and the contour reversed.
+  // Per contour, computed once: orientation, length, the contour reversed, and its segments
+  // indexed (queries against outlines of thousands of arcs cost O(log n), not O(n)).
   std::vector<char> stored_cw;
   std::vector<double> length;
   std::vector<Contour> reversed;
+  std::vector<geometry::SegmentSet> sets;
 
   Impl(const Nest& n, const EntryOptions& o) : nest(n), opt(o) {
     clearance = o.clearance_mm >= 0 ? o.clearance_mm : o.kerf_mm + 1.0;
@@ -76,6 +80,7 @@ struct EntryPlanner::Impl {
       stored_cw.push_back(geometry::orientation(c.source.contour) == geometry::Orientation::cw);
       length.push_back(geometry::length(c.source.contour));
       reversed.push_back(geometry::reversed(c.source.contour));
+      sets.push_back(geometry::make_segment_set(c.source.contour));
     }
     index = geometry::StaticSpatialIndex(boxes);
   }
@@ -101,7 +106,7 @@ struct EntryPlanner::Impl {
     for (auto i : scratch) {
       const ContourId id(static_cast<std::int32_t>(i));
       const auto& c = nc(id);
-      const auto loc = geometry::locate(c.source.contour, p, tol::kSamePointMm);
+      const auto loc = geometry::locate(sets[i], p, tol::kSamePointMm);
       if (c.role == ContourRole::sheet) {
         if (loc != geometry::Location::inside) return false;
         continue;
@@ -117,18 +122,19 @@ struct EntryPlanner::Impl {
   // at its last point (lead-in) or first point (lead-out)?
   bool path_clear(const Contour& path, ContourId own, bool touches_at_end) const {
     if (path.vertices.size() < 2) return true;
-    const Box box = geometry::bounding_box(path).inflated(clearance);
+    const geometry::SegmentSet lead = geometry::make_segment_set(path);
+    const Box box = lead.box.inflated(clearance);
     index.query(box, scratch);
     for (auto i : scratch) {
-      const ContourId id(static_cast<std::int32_t>(i));
-      if (id == own) continue;
-      if (geometry::intersects(path, nc(id).source.contour, clearance)) return false;
+      if (i == own.index()) continue;
+      if (geometry::count_close_segment_pairs(lead, sets[i], clearance, 1) > 0) return false;
     }
     // Own contour: trim the touching end by a little, then no contact at all is allowed.
     const double len = geometry::length(path);
     const double trim = std::min(0.05 * len, 0.1);
     const Contour own_part = touches_at_end ? detail::sub_path(path, 0, len - trim) : detail::sub_path(path, trim, len - trim);
-    return !geometry::intersects(own_part, nc(own).source.contour, tol::kSamePointMm);
+    return geometry::count_close_segment_pairs(geometry::make_segment_set(own_part), sets[own.index()],
+                                               tol::kSamePointMm, 1) == 0;
   }
 
   // A lead-out starts on its contour, so not crossing any boundary is not enough: it must also
@@ -138,14 +144,23 @@ struct EntryPlanner::Impl {
     return in_scrap(lead.vertices.back().p) && path_clear(lead, own, false);
   }
 
+  // Is some segment of the set closer to p than d? Only segments whose box is near are measured.
+  static bool closer_than(const geometry::SegmentSet& set, Vec2 p, double d) {
+    bool hit = false;
+    set.index.visit(Box{p.x, p.y, p.x, p.y}.inflated(d), [&](std::uint32_t k) {
+      hit = geometry::closest_point(set.segments[k], p).distance < d;
+      return !hit;
+    });
+    return hit;
+  }
+
   bool pierce_ok(Vec2 p, ContourId own, double own_min) const {
     if (!in_scrap(p)) return false;
     const Box box = Box{p.x, p.y, p.x, p.y}.inflated(clearance);
     index.query(box, scratch);
     for (auto i : scratch) {
-      const ContourId id(static_cast<std::int32_t>(i));
-      const double need = id == own ? own_min : clearance;
-      if (geometry::distance(nc(id).source.contour, p) < need) return false;
+      const double need = i == own.index() ? own_min : clearance;
+      if (closer_than(sets[i], p, need)) return false;
     }
     return true;
   }
@@ -303,7 +318,7 @@ struct EntryPlanner::Impl {
 
   std::optional<EntryCandidate> centre_pierce(ContourId id, const Contour& path, bool clockwise, double total) const {
     const Vec2 centre = nc(id).box.center();
-    if (geometry::locate(nc(id).source.contour, centre, tol::kSamePointMm) != geometry::Location::inside) return std::nullopt;
+    if (geometry::locate(sets[id.index()], centre, tol::kSamePointMm) != geometry::Location::inside) return std::nullopt;
     const auto cp = geometry::closest_point(path, centre);
     EntryCandidate e;
     e.contour = id;

@@ -6,6 +6,8 @@
 #include <set>
 
 #include <cutroute/core/number_format.hpp>
+#include <cutroute/geometry/intersect.hpp>
+#include <cutroute/geometry/segment_set.hpp>
 #include <cutroute/geometry/spatial_index.hpp>
 
 namespace cutroute::test {
@@ -40,8 +42,20 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
   }
   const geometry::StaticSpatialIndex index(boxes);
   std::vector<std::uint32_t> hits;
+  std::vector<geometry::SegmentSet> sets;
+  sets.reserve(cut.size());
+  for (const auto* c : cut) sets.push_back(geometry::make_segment_set(c->source.contour));
 
-  auto dist_to = [&](int k, Vec2 q) { return geometry::distance(cut[static_cast<std::size_t>(k)]->source.contour, q); };
+  // Distance from q to contour k, exact where it is below `cap` (else some value >= cap).
+  auto dist_to = [&](int k, Vec2 q, double cap = 1.0) {
+    double best = cap;
+    const auto& set = sets[static_cast<std::size_t>(k)];
+    set.index.visit(geometry::Box{q.x, q.y, q.x, q.y}.inflated(cap), [&](std::uint32_t s) {
+      best = std::min(best, geometry::closest_point(set.segments[s], q).distance);
+      return true;
+    });
+    return best;
+  };
 
   // Which contours does a move lie on? All whose distance stays within the tolerance at five
   // points along it (parts placed edge to edge share a stretch: a move there lies on both).
@@ -56,7 +70,7 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
       for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
         Vec2 q;
         probe_point(m, t, q.x, q.y);
-        if (dist_to(k, q) > opt.on_contour_mm) {
+        if (dist_to(k, q, 2 * opt.on_contour_mm) > opt.on_contour_mm) {
           all = false;
           break;
         }
@@ -72,7 +86,7 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
     index.query(geometry::Box{q.x, q.y, q.x, q.y}, hits);
     int inside = 0;
     for (auto h : hits) {
-      inside += geometry::locate(cut[h]->source.contour, q, 1e-9) == geometry::Location::inside;
+      inside += geometry::locate(sets[h], q, 1e-9) == geometry::Location::inside;
     }
     return inside % 2 == 1;
   };
@@ -95,7 +109,11 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
       run_moves.emplace_back();
       run_on.emplace_back();
       const Vec2 pierce{m.x0, m.y0};
-      if (in_material(pierce)) {
+      // The last-resort fallback pierces on the contour itself (said in the diagnostics).
+      bool on_a_contour = false;
+      index.query(geometry::Box{pierce.x, pierce.y, pierce.x, pierce.y}.inflated(opt.on_contour_mm), hits);
+      for (auto h : hits) on_a_contour |= dist_to(static_cast<int>(h), pierce, opt.on_contour_mm) < opt.on_contour_mm;
+      if (!on_a_contour && in_material(pierce)) {
         out.failures.push_back(at(m) + ": pierce at (" + format_fixed(m.x0, 3) + ", " + format_fixed(m.y0, 3) +
                                ") inside a part");
       }
@@ -192,7 +210,7 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
         probe_point(*m, t, q.x, q.y);
         // Its own contour: a tangential lead arc grazes it near the join (within the output
         // resolution); what it must never do is enter the part's material.
-        if (dist_to(own, q) > 0.002 && in_material(q)) {
+        if (dist_to(own, q, 0.01) > 0.002 && in_material(q)) {
           out.failures.push_back(at(*m) + ": lead enters material at t=" + format_fixed(t, 2) + " (" +
                                  format_fixed(q.x, 4) + ", " + format_fixed(q.y, 4) + ")");
           break;
@@ -201,7 +219,7 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
         for (auto h : hits) {
           const int kk = static_cast<int>(h);
           if (kk == own) continue;
-          const double d = dist_to(kk, q);
+          const double d = dist_to(kk, q, opt.clearance_mm);
           if (d < opt.clearance_mm * 0.999) {
             out.failures.push_back(at(*m) + ": lead comes " + format_fixed(d, 4) + " mm close to contour " +
                                    std::to_string(kk + 1) + (kk == own ? " (its own)" : "") + " at t=" +

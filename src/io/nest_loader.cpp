@@ -9,6 +9,20 @@
 
 namespace cutroute::io {
 
+namespace {
+
+// A chained contour is named after its first entity (layer, handle, line) in messages.
+void take_origin(const std::vector<DxfEntity>& ents, const std::vector<std::int32_t>& sources, std::string& layer,
+                 std::string& handle, std::optional<long>& line) {
+  if (sources.empty()) return;
+  const auto& first = ents[static_cast<std::size_t>(sources.front())];
+  layer = first.layer;
+  handle = first.handle;
+  line = first.line;
+}
+
+}  // namespace
+
 LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
   LoadedNest out;
   out.file = drawing.file;
@@ -39,23 +53,13 @@ LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
     model::SourceContour sc;
     sc.contour = std::move(c.contour);
     sc.sources = std::move(c.sources);
-    if (!sc.sources.empty()) {
-      const auto& first = ents[static_cast<std::size_t>(sc.sources.front())];
-      sc.layer = first.layer;
-      sc.handle = first.handle;
-      sc.line = first.line;
-    }
+    take_origin(ents, sc.sources, sc.layer, sc.handle, sc.line);
     closed.push_back(std::move(sc));
   }
   for (auto& c : chained.open) {
     OpenPath p;
     p.path = std::move(c.contour);
-    if (!c.sources.empty()) {
-      const auto& first = ents[static_cast<std::size_t>(c.sources.front())];
-      p.layer = first.layer;
-      p.handle = first.handle;
-      p.line = first.line;
-    }
+    take_origin(ents, c.sources, p.layer, p.handle, p.line);
     if (!p.path.vertices.empty()) {
       const auto a = p.path.vertices.front().p;
       const auto b = p.path.vertices.back().p;

@@ -56,6 +56,17 @@ std::string SvgDocument::path_data(const geometry::Contour& c) const {
   return d;
 }
 
+void SvgDocument::append_xy_attributes(std::string& out, const char* x_name, const char* y_name, geometry::Vec2 p) const {
+  out += x_name;
+  out += "=\"";
+  append_fixed(out, p.x - world_.xmin + margin_mm_, kDecimals);
+  out += "\" ";
+  out += y_name;
+  out += "=\"";
+  append_fixed(out, world_.ymax - p.y + margin_mm_, kDecimals);
+  out += '"';
+}
+
 void SvgDocument::begin_group(const std::string& attributes) { body_ += "<g " + attributes + ">\n"; }
 void SvgDocument::end_group() { body_ += "</g>\n"; }
 
@@ -78,22 +89,18 @@ void SvgDocument::add_line(geometry::Vec2 a, geometry::Vec2 b, const std::string
 }
 
 void SvgDocument::add_circle(geometry::Vec2 center, double radius_mm, const std::string& attributes) {
-  std::string s = "<circle cx=\"";
-  append_fixed(s, center.x - world_.xmin + margin_mm_, kDecimals);
-  s += "\" cy=\"";
-  append_fixed(s, world_.ymax - center.y + margin_mm_, kDecimals);
-  s += "\" r=\"";
+  std::string s = "<circle ";
+  append_xy_attributes(s, "cx", "cy", center);
+  s += " r=\"";
   append_fixed(s, radius_mm, kDecimals);
   s += "\" " + attributes + "/>\n";
   body_ += s;
 }
 
 void SvgDocument::add_text(geometry::Vec2 at, const std::string& text, double size_mm, const std::string& attributes) {
-  std::string s = "<text x=\"";
-  append_fixed(s, at.x - world_.xmin + margin_mm_, kDecimals);
-  s += "\" y=\"";
-  append_fixed(s, world_.ymax - at.y + margin_mm_, kDecimals);
-  s += "\" font-size=\"";
+  std::string s = "<text ";
+  append_xy_attributes(s, "x", "y", at);
+  s += " font-size=\"";
   append_fixed(s, size_mm, kDecimals);
   s += "\" " + attributes + ">" + xml_escape(text) + "</text>\n";
   body_ += s;

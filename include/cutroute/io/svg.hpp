@@ -34,6 +34,8 @@ class SvgDocument {
 
  private:
   void append_point(std::string& out, geometry::Vec2 p) const;
+  // x_name="..." y_name="..." of a world point in document coordinates.
+  void append_xy_attributes(std::string& out, const char* x_name, const char* y_name, geometry::Vec2 p) const;
 
   geometry::Box world_;
   double margin_mm_;

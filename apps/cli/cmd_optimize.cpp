@@ -8,6 +8,7 @@
 #include <thread>
 
 #include <cutroute/core/number_format.hpp>
+#include <cutroute/core/stop.hpp>
 #include <cutroute/io/output_file.hpp>
 #include <cutroute/io/route_picture.hpp>
 #include <cutroute/pipeline/optimize.hpp>
@@ -154,6 +155,12 @@ int run(const Opts& o) {
   std::atomic<std::size_t> next{0};
   auto work = [&] {
     for (std::size_t i = next++; i < o.nests.size(); i = next++) {
+      // After Ctrl-C the nests already under way still write their best program; the rest do not start.
+      if (StopToken::global().cancelled()) {
+        messages[i] = o.nests[i] + ": not started (interrupted)";
+        codes[i] = kInputError;
+        continue;
+      }
       auto loaded = io::load_nest(o.nests[i], *load_options);
       if (!loaded) {
         messages[i] = format(loaded.error());

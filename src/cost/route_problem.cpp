@@ -46,10 +46,7 @@ Result<RouteProblem> build_route_problem(const model::CutJob& job, const RoutePr
       members.emplace_back(static_cast<std::int32_t>(rp.nodes.size()));
       rp.nodes.push_back({static_cast<std::int32_t>(c), static_cast<std::int32_t>(k)});
       rp.pierce.push_back(e.pierce);
-      geometry::Vec2 off = e.lead_out.vertices.empty()
-                               ? (e.path.vertices.empty() ? e.pierce : e.path.vertices.back().p)
-                               : e.lead_out.vertices.back().p;
-      rp.tool_off.push_back(off);
+      rp.tool_off.push_back(model::tool_off_point(e));
       const double cut_mm = geometry::length(e.lead_in) + geometry::length(e.path) + geometry::length(e.lead_out);
       inner.push_back(to_ticks(prices.cut_price(cut_mm) + prices.pierce_price()));
     }

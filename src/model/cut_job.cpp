@@ -29,6 +29,12 @@ const char* to_string(LeadKind k) {
   return "none";
 }
 
+geometry::Vec2 tool_off_point(const EntryCandidate& e) {
+  if (!e.lead_out.vertices.empty()) return e.lead_out.vertices.back().p;
+  if (!e.path.vertices.empty()) return e.path.vertices.back().p;
+  return e.pierce;
+}
+
 const char* to_string(Fallback f) {
   switch (f) {
     case Fallback::none: return "none";

@@ -7,12 +7,6 @@
 
 namespace cutroute::pipeline {
 
-geometry::Vec2 tool_off(const model::EntryCandidate& e) {
-  if (!e.lead_out.vertices.empty()) return e.lead_out.vertices.back().p;
-  if (!e.path.vertices.empty()) return e.path.vertices.back().p;
-  return e.pierce;
-}
-
 namespace {
 
 double local_price(const cost::RoutePrices& prices, geometry::Vec2 prev, const std::optional<geometry::Vec2>& next,
@@ -39,11 +33,11 @@ int refine_entries(const model::EntryPlanner& planner, const cost::RoutePrices& 
       if (stop.stop_requested()) return moved;
       auto& cur = seq[k];
       if (cur.fallback != model::Fallback::none) continue;  // fallbacks stay where they were put
-      const geometry::Vec2 prev = k == 0 ? start : tool_off(seq[k - 1]);
+      const geometry::Vec2 prev = k == 0 ? start : model::tool_off_point(seq[k - 1]);
       const std::optional<geometry::Vec2> next = k + 1 < seq.size() ? std::optional(seq[k + 1].pierce) : park;
       const double len = planner.contour_length(cur.contour);
       if (len <= 0) continue;
-      const double current = local_price(prices, prev, next, cur.pierce, tool_off(cur),
+      const double current = local_price(prices, prev, next, cur.pierce, model::tool_off_point(cur),
                                          geometry::length(cur.lead_in) + geometry::length(cur.lead_out));
       tried.clear();
       auto eval = [&](double s) {
@@ -82,7 +76,7 @@ int refine_entries(const model::EntryPlanner& planner, const cost::RoutePrices& 
       for (std::size_t i = 0; i < std::min(kValidated, tried.size()); ++i) {
         if (tried[i].first >= current - 1e-9) break;
         if (auto e = planner.entry_at(cur.contour, tried[i].second, cur.clockwise)) {
-          const double v = local_price(prices, prev, next, e->pierce, tool_off(*e),
+          const double v = local_price(prices, prev, next, e->pierce, model::tool_off_point(*e),
                                        geometry::length(e->lead_in) + geometry::length(e->lead_out));
           if (v < current - 1e-9) {
             cur = std::move(*e);

@@ -19,7 +19,4 @@ int refine_entries(const model::EntryPlanner& planner, const cost::RoutePrices& 
                    std::optional<geometry::Vec2> park, std::vector<model::EntryCandidate>& sequence, int passes,
                    const StopToken& stop);
 
-// The point where cutting an entry ends (end of lead-out, else of the contour).
-geometry::Vec2 tool_off(const model::EntryCandidate& e);
-
 }  // namespace cutroute::pipeline

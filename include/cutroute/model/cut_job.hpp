@@ -59,6 +59,10 @@ struct EntryCandidate {
   bool corner = false;               // entry at a corner
 };
 
+// Where cutting this entry ends and the head lifts: end of the lead-out, else of the cut path,
+// else the pierce point [mm].
+geometry::Vec2 tool_off_point(const EntryCandidate& e);
+
 struct ContourEntries {
   ContourId contour;
   std::vector<EntryCandidate> candidates;  // never empty for a cut contour

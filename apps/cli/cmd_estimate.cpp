@@ -64,6 +64,7 @@ cost::ProgramTotals totals_of(const nc::ProgramStats& s) {
   t.feed_off_time_s = s.feed_off_time_s;
   t.feed_off_length_no_feed_mm = s.feed_off_length_no_feed_mm;
   t.dwell_s = s.dwell_s;
+  t.pierce_dwells = s.pierce_dwells;
   t.pierces = s.pierces;
   t.frames = s.frames;
   return t;
@@ -162,8 +163,13 @@ int run_estimate(const EstimateOptions& o) {
     j["t_cut_s"] = e.t_cut_s;
     j["cost"] = e.cost;
     j["cost_unit"] = e.cost_unit;
-    j["breakdown"] = {{"cutting_s", e.cutting_s}, {"rapid_s", e.rapid_s},       {"pierce_s", e.pierce_s},
-                      {"dwell_s", e.dwell_s},     {"feed_off_s", e.feed_off_s}, {"head_s", e.head_s},
+    j["breakdown"] = {{"cutting_s", e.cutting_s},
+                      {"rapid_s", e.rapid_s},
+                      {"pierce_s", e.pierce_s},
+                      {"dwell_s", e.dwell_s},
+                      {"pierce_replaced_s", e.pierce_replaced_s},
+                      {"feed_off_s", e.feed_off_s},
+                      {"head_s", e.head_s},
                       {"total_s", e.total_s}};
     j["dwells"] = stats->dwells;
     j["cut_time_at_programmed_feed_s"] = stats->cut_time_at_feed_s;
@@ -195,8 +201,9 @@ int run_estimate(const EstimateOptions& o) {
             << "  T_cut, eq. 10 (V_on*(n))   " << fixed(e.t_cut_s, 2) << " s\n"
             << "    cutting " << fixed(e.cutting_s, 2) << " s, rapid " << fixed(e.rapid_s, 2) << " s, pierce "
             << fixed(e.pierce_s, 2) << " s\n"
-            << "  outside eq. 10: dwell " << fixed(e.dwell_s, 2) << " s, beam-off feed "
-            << fixed(e.feed_off_s, 2) << " s, head " << fixed(e.head_s, 2) << " s\n"
+            << "  outside eq. 10: dwell " << fixed(e.dwell_s, 2) << " s (pierce dwells replace "
+            << fixed(e.pierce_replaced_s, 2) << " s of t_pt), beam-off feed " << fixed(e.feed_off_s, 2)
+            << " s, head " << fixed(e.head_s, 2) << " s\n"
             << "  total               " << fixed(e.total_s, 2) << " s\n";
   if (motion) {
     std::cout << "  motion model: cutting " << fixed(motion->time_s, 2) << " s, mean cut speed "

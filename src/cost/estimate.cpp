@@ -1,5 +1,6 @@
 #include <cutroute/cost/estimate.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -104,7 +105,8 @@ TimeEstimate estimate_time(const ProgramTotals& p, const CuttingConditions& c) {
   e.dwell_s = p.dwell_s;
   e.feed_off_s = p.feed_off_time_s + p.feed_off_length_no_feed_mm / units::kMmPerM / c.v_set_m_s;
   e.head_s = n_pt * c.head_lift_lower_s;
-  e.total_s = e.t_cut_s + e.dwell_s + e.feed_off_s + e.head_s;
+  e.pierce_replaced_s = static_cast<double>(std::min(p.pierce_dwells, p.pierces)) * c.pierce_time_s;
+  e.total_s = e.t_cut_s + e.dwell_s - e.pierce_replaced_s + e.feed_off_s + e.head_s;
   if (c.costs) {
     e.cost = l_off_m * c.costs->c_off_per_m + l_on_m * c.costs->c_on_per_m + n_pt * c.costs->c_pt;
     e.cost_unit = c.costs->unit;

@@ -292,6 +292,7 @@ class Reader {
           ++st_.pierces;
           repierce_ = false;
           new_cut_ = true;
+          pierce_dwelled_ = false;
         }
       } else if (opt_.dialect.switches_off(m)) {
         beam_on_ = false;
@@ -306,8 +307,14 @@ class Reader {
       if (!b.has_word('P')) return error("G4 dwell without P");
       const double p = b.word('P');
       if (p < 0.0) return error("negative dwell G4 P" + num(p));
-      st_.dwell_s += opt_.dialect.dwell_p_unit == DwellUnit::milliseconds ? p / 1000.0 : p;
+      const double t = opt_.dialect.dwell_p_unit == DwellUnit::milliseconds ? p / 1000.0 : p;
+      st_.dwell_s += t;
       ++st_.dwells;
+      if (beam_on_ && new_cut_) {
+        st_.pierce_dwell_s += t;
+        if (!pierce_dwelled_) ++st_.pierce_dwells;
+        pierce_dwelled_ = true;
+      }
     }
     const bool axes = b.has_word('X') || b.has_word('Y') || b.has_word('Z');
     const bool centre = b.has_word('I') || b.has_word('J') || b.has_word('R');
@@ -499,6 +506,7 @@ class Reader {
   bool beam_on_ = false;
   bool repierce_ = false;     // a rapid was made with the beam on: the next cut pierces again
   bool skip_motion_ = false;  // the current block holds an unknown G code
+  bool pierce_dwelled_ = false;  // a dwell was counted for the current pierce
   bool new_cut_ = false;      // a beam-on code was executed: the next recorded cut starts from a pierce
   double feed_mm_min_ = 0.0;  // 0 = not programmed yet
   double x_ = 0.0;            // [mm] current position; programs start at the origin

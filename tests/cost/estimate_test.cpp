@@ -94,6 +94,17 @@ TEST(Estimate, TermsOutsideEq10GoToTotalOnly) {
   EXPECT_NEAR(e.t_cut_s, e.cutting_s + e.rapid_s + e.pierce_s, 1e-12);
 }
 
+TEST(Estimate, ProgrammedPierceDwellsAreNotCountedTwiceInTotal) {
+  const auto c = conditions("AMg3M", 2);
+  auto p = totals(1000.0, 500.0, 4, 50);
+  p.dwell_s = 4 * 0.3;
+  p.pierce_dwells = 3;  // three of the four pierces are programmed as dwells
+  const auto e = estimate_time(p, c);
+  EXPECT_NEAR(e.pierce_s, 4 * c.pierce_time_s, 1e-12);  // eq. 10 itself is unchanged
+  EXPECT_NEAR(e.pierce_replaced_s, 3 * c.pierce_time_s, 1e-12);
+  EXPECT_NEAR(e.total_s, e.cutting_s + e.rapid_s + c.pierce_time_s + 4 * 0.3 + e.head_s, 1e-12);
+}
+
 TEST(Estimate, ProfileSetSpeedScalesTheTable) {
   MachineProfile p = fx().profile;
   for (auto& c : p.cutting)

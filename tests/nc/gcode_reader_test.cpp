@@ -89,7 +89,20 @@ TEST(GcodeReader, DwellCommentsLowerCaseCrlf) {
   EXPECT_EQ(s.pierces, 1u);
   EXPECT_EQ(s.dwells, 2u);
   EXPECT_NEAR(s.dwell_s, 1.75, 1e-12);
+  // Only the dwell between the beam-on and the first cut is the pierce's.
+  EXPECT_EQ(s.pierce_dwells, 1u);
+  EXPECT_NEAR(s.pierce_dwell_s, 0.5, 1e-12);
   EXPECT_EQ(s.frames, 9u);  // the N5-only line is not a frame
+}
+
+TEST(GcodeReader, SeveralDwellsAtOnePierceCountOncePerPierce) {
+  auto r = read_gcode("G0 X0 Y0\nM3\nG4 P0.25\nG4 P0.5\nG1 X5\nG4 P2\nM5\nG0 X10\nM3\nG1 X20\nM5\nM30\n",
+                      "p.nc", ReadOptions{});
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r->pierces, 2u);
+  EXPECT_EQ(r->pierce_dwells, 1u);  // the second pierce has no dwell; the dwell after G1 is no pierce's
+  EXPECT_NEAR(r->pierce_dwell_s, 0.75, 1e-12);
+  EXPECT_NEAR(r->dwell_s, 2.75, 1e-12);
 }
 
 TEST(GcodeReader, DwellInMillisecondsDialect) {

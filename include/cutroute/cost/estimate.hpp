@@ -20,6 +20,7 @@ struct ProgramTotals {
   double feed_off_time_s = 0.0;             // the part of those with a programmed feed, at that feed [s]
   double feed_off_length_no_feed_mm = 0.0;  // the part without a programmed feed [mm]
   double dwell_s = 0.0;                     // programmed dwells [s]
+  std::size_t pierce_dwells = 0;            // pierces whose time is programmed as a dwell
   std::size_t pierces = 0;                  // N_pt
   std::size_t frames = 0;                   // n
 };
@@ -60,9 +61,11 @@ struct TimeEstimate {
   double pierce_s = 0.0;             // N_pt t_pt [s]
   // Terms outside eq. 10, added in total_s only:
   double dwell_s = 0.0;     // programmed G4 dwells [s]
+  // A pierce whose dwell is programmed takes that dwell, not t_pt: total_s counts it once.
+  double pierce_replaced_s = 0.0;  // pierce_dwells × t_pt, taken out of total_s [s]
   double feed_off_s = 0.0;  // feed moves with the beam off, at their F (else at V_on) [s]
   double head_s = 0.0;      // N_pt × head lift/lower [s]
-  double total_s = 0.0;     // t_cut_s + dwell_s + feed_off_s + head_s [s]
+  double total_s = 0.0;     // t_cut_s + dwell_s − pierce_replaced_s + feed_off_s + head_s [s]
   double cost = 0.0;        // eq. 3 with V_on*(n) in the time form [cost_unit]
   std::string cost_unit;    // "s" in the time form, else Costs::unit
 };

@@ -67,6 +67,10 @@ struct ProgramStats {
   double cut_length_no_feed_mm = 0.0;       // cutting length before any F was programmed [mm]
   double dwell_s = 0.0;                     // sum of G4 dwells [s]
   std::size_t dwells = 0;
+  // The part of dwell_s programmed at a pierce: after a beam-on, before its first cutting move.
+  // That dwell is the pierce itself, so a time estimate must not add t_pt for it again.
+  double pierce_dwell_s = 0.0;              // [s]
+  std::size_t pierce_dwells = 0;            // pierces with such a dwell (several dwells count once)
   std::size_t rapid_moves = 0;     // G0 blocks with XY motion
   std::size_t cut_moves = 0;       // G1/G2/G3 blocks with XY motion and the beam on
   std::size_t arc_moves = 0;       // G2/G3 blocks (beam on or off)

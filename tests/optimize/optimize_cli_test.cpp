@@ -140,25 +140,26 @@ TEST_P(CorpusOptimize, ProgramIsAdmissible) {
 // The same with --kerf-mode cam: every cut point at kerf/2 from its drawn contour on the scrap
 // side. Besides kOverlapping (whose crossing contours also have crossing toolpaths), drawings
 // that cannot be cut with the default kerf (0.15 mm) are refused with the stated code, then cut
-// with the stated options where that is possible.
+// with the stated options, and two spline drawings are cut with the deviation their warnings state.
 class CorpusOptimizeCam : public ::testing::TestWithParam<std::string> {};
 
-struct KerfRefusal {
-  const char* code_text;  // what the error says
-  const char* anyway;     // options that let it be cut; empty: cannot be cut in cam mode
+struct KerfException {
+  const char* refused;    // what the refusal with the defaults says; empty: not refused
+  const char* anyway;     // options that let it be cut
+  double on_contour_mm;   // how far from kerf/2 a cut point may lie
   const char* why;
 };
-const std::map<std::string, KerfRefusal> kKerfRefused = {
+const std::map<std::string, KerfException> kKerfExceptions = {
     {"bryanduxbury_pongbox_panelized_3mm",
-     {"too small for the kerf", "--kerf 0.08", "cross-shaped holes 0.1 mm wide: a 0.15 mm kerf cannot cut them"}},
+     {"too small for the kerf", "--kerf 0.08", 1e-3, "cross-shaped holes 0.1 mm wide: a 0.15 mm kerf cannot cut them"}},
     {"deepnestsharp_TopsNest",
-     {"closer than the kerf", "--allow-kerf-overlap", "parts placed edge to edge (shared edges)"}},
+     {"closer than the kerf", "--allow-kerf-overlap", 1e-3, "parts placed edge to edge (shared edges)"}},
     {"d2g_Lueftergitter_R14",
-     {"kerf offset of contour 8 (part 8) failed", "",
-      "NOT DONE: spline outlines fitted into arcs of ~0.002 mm radius; the offset's loop removal loses a side"}},
+     {"", "", 8e-3, "splines fitted into arcs of ~0.002 mm: the offset needs them straightened (kerf.simplified) "
+                    "and still cuts up to 0.0034 mm into the kerf/2 band there (kerf.gouge)"}},
     {"d2g_DRAAK",
-     {"kerf offset of contour 45 (part 2) failed", "",
-      "NOT DONE: as d2g_Lueftergitter_R14 (splines); also touching splines"}},
+     {"", "", 8e-3, "splines fitted into arcs of ~0.002 mm: the offset needs them straightened or left out "
+                    "(kerf.simplified, measured deviation up to 0.0068 mm; kerf.gouge up to 0.0023 mm)"}},
 };
 
 TEST_P(CorpusOptimizeCam, EveryCutPointAtHalfTheKerf) {
@@ -166,21 +167,27 @@ TEST_P(CorpusOptimizeCam, EveryCutPointAtHalfTheKerf) {
   const auto dir = temp_dir("cam-" + GetParam());
   std::string extra = "--kerf-mode cam --dialect " + fine_dialect(dir);
   if (kOverlapping.count(GetParam())) extra += " --allow-crossing --allow-kerf-overlap";
-  if (const auto it = kKerfRefused.find(GetParam()); it != kKerfRefused.end()) {
-    const OptRun refused = optimize(dxf, dir, extra);
-    EXPECT_EQ(refused.cmd.exit_code, 2) << it->second.why;
-    EXPECT_NE(refused.cmd.err.find(it->second.code_text), std::string::npos) << refused.cmd.err;
-    if (std::string(it->second.anyway).empty()) {
-      RecordProperty("not_cut", it->second.why);
-      fs::remove_all(dir);
-      return;
+  double on_contour_mm = 1e-3;
+  if (const auto it = kKerfExceptions.find(GetParam()); it != kKerfExceptions.end()) {
+    const KerfException& x = it->second;
+    if (*x.refused) {
+      const OptRun refused = optimize(dxf, dir, extra);
+      EXPECT_EQ(refused.cmd.exit_code, 2) << x.why;
+      EXPECT_NE(refused.cmd.err.find(x.refused), std::string::npos) << refused.cmd.err;
     }
-    extra += std::string(" ") + it->second.anyway;
+    extra += std::string(" ") + x.anyway;
+    on_contour_mm = x.on_contour_mm;
   }
   const OptRun run = optimize(dxf, dir, extra);
   ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
-  expect_admissible(dxf, run, run.report["kerf_mm"].get<double>() / 2);
+  expect_admissible(dxf, run, run.report["kerf_mm"].get<double>() / 2, nullptr, on_contour_mm);
   EXPECT_EQ(run.program.find("G41"), std::string::npos);
+  bool simplified = false;
+  for (const auto& d : run.report["diagnostics"]) {
+    const std::string code = d.value("code", "");
+    simplified |= code == "kerf.simplified" || code == "kerf.gouge";
+  }
+  EXPECT_EQ(simplified, on_contour_mm > 1e-3) << "the deviation is allowed where, and only where, the report says so";
   fs::remove_all(dir);
 }
 

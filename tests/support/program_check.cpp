@@ -198,13 +198,14 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
         const Vec2 left = geometry::perp(seg.tangent_at(t));
         const Vec2 n = (hole == ccw) ? left : -left;
         const Vec2 centre = q + n * off;
-        bool fits = true;
+        // At a micro-zigzag of a fitted spline the local normal can point into the material.
+        bool fits = on_scrap_side(static_cast<int>(k), centre);
         index.query(geometry::Box{centre.x, centre.y, centre.x, centre.y}.inflated(off), hits);
         for (auto h : hits) fits = fits && dist_to(static_cast<int>(h), centre, off) > off - 1e-4;
         if (!fits) continue;
         double best = 1e300;
         for (const auto& s : path) best = std::min(best, geometry::closest_point(s, q).distance);
-        if (best > off + 0.002) {
+        if (best > off + opt.on_contour_mm + 0.001) {
           if (missed++ == 0) first_missed = q;
         }
       }

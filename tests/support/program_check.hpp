@@ -40,7 +40,7 @@ struct ProgramCheck {
 // every pierce point lies in scrap; no feed move is made with the beam off. With a kerf offset,
 // "whole" means: wherever a tool of radius kerf_offset_mm fits against the drawn contour on its
 // scrap side (sampled at three points per drawn segment), the contour's cut passes within
-// kerf_offset_mm + 2 µm; and "not more than once": its cut is no longer than the offset curve can
+// kerf_offset_mm + on_contour_mm + 1 µm; and "not more than once": its cut is no longer than the offset curve can
 // be (drawn length ± 2π · offset, + for outer contours, - for holes, plus the overcut).
 ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, const ProgramCheckOptions& options);
 

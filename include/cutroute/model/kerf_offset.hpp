@@ -17,12 +17,16 @@ struct KerfNest {
   // Per contour, with its line, handle and layer, and a stable code:
   //  error   "kerf.collapsed"  a hole too small for the kerf: no offset loop is left;
   //  error   "kerf.failed"     the offset algorithm lost a contour that cannot vanish (an outer
-  //                            contour, or a hole with area > perimeter * kerf/2): outlines with
-  //                            details far below the kerf (fitted splines) are its known weak spot;
+  //                            contour, or a hole with area > perimeter * kerf/2), even without
+  //                            its tiny details (see kerf.simplified);
   //  error   "kerf.split"      a hole with a neck narrower than the kerf: its toolpath falls
   //                            apart into several loops;
   //  error   "kerf.overlap"    the toolpaths of two contours cross or touch: the parts are closer
   //                            than the kerf (or drawn touching), so cutting one cuts into the other;
+  //  warning "kerf.simplified" the offset needed the contour's tiny arcs straightened or tiny
+  //                            segments left out (chords under 0.2 kerf); gives the deviation;
+  //  warning "kerf.gouge"     the toolpath comes closer than kerf/2 to the drawing by more than
+  //                            1 µm somewhere (offset inaccuracy at details far below the kerf);
   //  warning "kerf.trimmed"    a feature narrower than the kerf (a slot, an inside corner
   //                            cavity) cannot be followed; the toolpath passes it by.
   // A contour that collapsed or split keeps its drawn geometry in `nest` (so the nest stays whole

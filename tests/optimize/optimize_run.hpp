@@ -92,6 +92,13 @@ inline std::string fine_dialect(const std::filesystem::path& dir) {
   return path.string();
 }
 
+// LinuxCNC's interpreter (package linuxcnc-uspace) accepts the program; nothing to check without it.
+inline void expect_rs274_accepts(const std::filesystem::path& program) {
+  if (std::system("command -v rs274 >/dev/null 2>&1") != 0) return;
+  const auto rs = run_command("rs274 -g " + program.string() + " < /dev/null");
+  EXPECT_EQ(rs.exit_code, 0) << program << ": " << rs.out;
+}
+
 // The stems of every DXF file of ../shared/data/dxf, sorted.
 inline std::vector<std::string> corpus() {
   std::vector<std::string> names;

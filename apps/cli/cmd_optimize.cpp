@@ -39,6 +39,7 @@ struct Opts {
   double entry_step = 0;
   bool quiet = false;
   bool allow_crossing = false;
+  bool allow_kerf_overlap = false;
   InputOptions input;
 };
 
@@ -112,12 +113,10 @@ int run(const Opts& o) {
     po.start = *p;
   }
   if (o.kerf >= 0) po.kerf_mm = o.kerf;
-  if (o.kerf_mode == "cam") {
-    std::cerr << "cutroute: --kerf-mode cam (toolpath offset by the program) is not implemented yet; use "
-                 "--kerf-mode controller (G41/G42) or none\n";
-    return kUsageError;
-  }
-  po.kerf_mode = o.kerf_mode == "none" ? nc::KerfMode::none : nc::KerfMode::controller;
+  po.kerf_mode = o.kerf_mode == "none"  ? nc::KerfMode::none
+                 : o.kerf_mode == "cam" ? nc::KerfMode::cam
+                                        : nc::KerfMode::controller;
+  po.allow_kerf_overlap = o.allow_kerf_overlap;
   po.dialect = o.dialect;
   po.entry_step_mm = o.entry_step;
   po.allow_crossing = o.allow_crossing;
@@ -238,13 +237,17 @@ void add_optimize(CLI::App& root, Commands& out) {
   app->add_option("--solver", o->solver, "auto, exact or heuristic")->check(CLI::IsMember({"auto", "exact", "heuristic"}));
   app->add_option("--start", o->start, "Machine start and park position X,Y [mm] (default 0,0)");
   app->add_option("--kerf", o->kerf, "Kerf width [mm] (default from the machine profile)")->check(CLI::Range(0.0, 20.0));
-  app->add_option("--kerf-mode", o->kerf_mode, "controller (G41/G42), cam, or none")
+  app->add_option("--kerf-mode", o->kerf_mode,
+                  "controller: G41/G42, the machine offsets the drawn contours; cam: the program offsets the "
+                  "toolpath by kerf/2 to the scrap side (arcs stay G2/G3, no G41/G42); none: the drawn contours")
       ->check(CLI::IsMember({"controller", "cam", "none"}));
   app->add_option("--dialect", o->dialect, "Post-processor: generic, plasma-thc, or a dialect JSON file");
   app->add_option("--entry-step", o->entry_step, "Spacing of entry candidates along edges [mm] (0: adaptive)")
       ->check(CLI::Range(0.0, 1e6));
   app->add_flag("--allow-crossing", o->allow_crossing,
                 "Cut a drawing whose contours cross each other (each contour once, with warnings)");
+  app->add_flag("--allow-kerf-overlap", o->allow_kerf_overlap,
+                "With --kerf-mode cam, cut contours closer than the kerf anyway (one cuts into the other; warnings)");
   app->add_flag("-q,--quiet", o->quiet, "No progress and no summary");
   add_input_options(app, o->input);
   out.push_back({app, [o] { return run(*o); }});

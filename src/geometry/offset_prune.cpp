@@ -101,7 +101,7 @@ Slice extract_slice(const std::vector<Piece>& path, const Split& from, const Spl
 // `near` holds the source boxes grown by |d|.
 bool slice_is_valid(const Slice& slice, const std::vector<Piece>& source, const std::vector<Box>& source_boxes,
                     const BoxGrid& near, double abs_offset) {
-  const double min_dist = abs_offset - tol::kOffsetPruneMm;
+  const double min_dist = abs_offset - tol::kOffsetGougeMm;
   for (const Piece& q : slice.pieces) {
     for (double t : {0.25, 0.5, 0.75}) {
       const Vec2 x = point_at(q, t);

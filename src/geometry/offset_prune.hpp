@@ -13,7 +13,7 @@ struct PrunedLoops {
 };
 
 // Splits the closed joined raw offset `path` at its self-intersections, keeps the slices that
-// stay at least abs_offset (minus tol::kOffsetPruneMm) away from `source` without crossing it,
+// stay at least abs_offset (minus tol::kOffsetGougeMm) away from `source` without crossing it,
 // and stitches them into closed loops. Orientation is not checked here.
 PrunedLoops prune_invalid_loops(const std::vector<Piece>& path, const std::vector<Piece>& source,
                                 double abs_offset);

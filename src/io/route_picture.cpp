@@ -107,6 +107,12 @@ std::vector<std::pair<std::string, std::string>> report_summary(const nlohmann::
                                                       format_fixed(b.value("pierce", 0.0), 1) + " s");
   }
   rows.emplace_back("lead-in", str("lead_in"));
+  if (r.contains("kerf_mode")) {
+    const std::string mode = str("kerf_mode");
+    rows.emplace_back("kerf", num("kerf_mm", 3) + " mm, " +
+                                  (mode == "cam" ? std::string("cam (toolpath drawn offset by kerf/2)")
+                                   : mode == "controller" ? std::string("controller (G41/G42)") : mode));
+  }
   if (r.contains("solver")) {
     const auto& sv = r["solver"];
     rows.emplace_back("solver", sv.value("name", std::string("-")) + ", " + sv.value("status", std::string("-")));

@@ -10,6 +10,7 @@
 #include <cutroute/cost/speed_table.hpp>
 #include <cutroute/io/inspect_report.hpp>
 #include <cutroute/model/cut_job.hpp>
+#include <cutroute/model/kerf_offset.hpp>
 #include <cutroute/nc/frames.hpp>
 #include <cutroute/nc/post_dialect.hpp>
 #include <cutroute/solve/solve.hpp>
@@ -112,6 +113,36 @@ Evaluated evaluate(const model::Nest& nest, const std::vector<model::EntryCandid
   return ev;
 }
 
+const char* to_string(nc::KerfMode m) {
+  switch (m) {
+    case nc::KerfMode::none: return "none";
+    case nc::KerfMode::cam: return "cam";
+    case nc::KerfMode::controller: return "controller";
+  }
+  return "none";
+}
+
+// The first kerf error, naming how many more there are; overlaps become warnings when allowed.
+std::optional<Diagnostic> kerf_errors(Diagnostics& ds, bool allow_overlap) {
+  std::optional<Diagnostic> first;
+  std::size_t more = 0;
+  for (auto& d : ds) {
+    if (d.severity != Severity::error) continue;
+    if (d.code == "kerf.overlap" && allow_overlap) {
+      d.severity = Severity::warning;
+      continue;
+    }
+    if (first) {
+      ++more;
+    } else {
+      first = d;
+    }
+  }
+  if (first && first->code == "kerf.overlap") first->message += " (use --allow-kerf-overlap to cut such a nest anyway)";
+  if (first && more > 0) first->message += "; " + std::to_string(more) + " more kerf errors";
+  return first;
+}
+
 nlohmann::json sequence_json(const model::Nest& nest, const std::vector<model::EntryCandidate>& seq) {
   auto arr = nlohmann::json::array();
   for (const auto& e : seq) {
@@ -158,8 +189,19 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   for (const auto& w : s.conditions.warnings) result.diagnostics.push_back(make_warning(w));
   if (progress) progress({"entries", -1, {}});
 
-  // 2. Cut job.
-  const model::CutJob job = model::make_cut_job(nest, s.entries);
+  // 2. Cut job, on the path the torch centre follows: with cam kerf the offset contours.
+  model::KerfNest kerf;
+  if (o.kerf_mode == nc::KerfMode::cam) {
+    kerf = model::offset_for_kerf(nest, s.entries.kerf_mm);
+    if (auto e = kerf_errors(kerf.diagnostics, o.allow_kerf_overlap)) {
+      if (e->file.empty()) e->file = loaded.file;
+      return *e;
+    }
+    for (const auto& d : kerf.diagnostics) result.diagnostics.push_back(d);
+    lap("kerf");
+  }
+  const model::Nest& cut_nest = o.kerf_mode == nc::KerfMode::cam ? kerf.nest : nest;
+  const model::CutJob job = model::make_cut_job(cut_nest, s.entries);
   for (const auto& d : job.diagnostics) result.diagnostics.push_back(d);
   lap("entries");
 
@@ -181,7 +223,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   for (const auto* e : cost::route_entries(job, *rp, sol.route)) seq.push_back(*e);
 
   // 4. Continuous refinement of the entries for the fixed order.
-  model::EntryPlanner planner(nest, s.entries);
+  model::EntryPlanner planner(cut_nest, s.entries);
   int moved = 0;
   if (o.refine_entries) {
     if (progress) progress({"refine", -1, {}});
@@ -190,7 +232,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   lap("refine");
 
   // 5-6. Program, frames, V_on*(n); lead types compared by the corrected objective.
-  Evaluated best = evaluate(nest, seq, s, o);
+  Evaluated best = evaluate(cut_nest, seq, s, o);
   std::string lead_name = model::to_string(s.entries.lead.in_kind);
   auto leads_json = nlohmann::json::array();
   leads_json.push_back({{"lead_in", lead_name}, {"frames", best.frames}, {"t_cut_s", best.estimate.t_cut_s},
@@ -200,13 +242,13 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
       if (kind == s.entries.lead.in_kind) continue;
       model::EntryOptions alt_opt = s.entries;
       alt_opt.lead.in_kind = kind;
-      model::EntryPlanner alt(nest, alt_opt);
+      model::EntryPlanner alt(cut_nest, alt_opt);
       std::vector<model::EntryCandidate> alt_seq = seq;
       for (auto& e : alt_seq) {
         if (e.fallback != model::Fallback::none) continue;
         if (auto moved_e = alt.entry_at(e.contour, e.s_mm, e.clockwise)) e = std::move(*moved_e);
       }
-      Evaluated ev = evaluate(nest, alt_seq, s, o);
+      Evaluated ev = evaluate(cut_nest, alt_seq, s, o);
       leads_json.push_back({{"lead_in", model::to_string(kind)}, {"frames", ev.frames}, {"t_cut_s", ev.estimate.t_cut_s},
                             {"objective", ev.objective}});
       if (ev.objective < best.objective - 1e-9) {
@@ -225,6 +267,8 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   r["material"] = s.conditions.material;
   r["thickness_mm"] = s.conditions.thickness_mm;
   r["measured_speed_row"] = s.conditions.speed.measured;
+  r["kerf_mode"] = to_string(o.kerf_mode);
+  r["kerf_mm"] = s.entries.kerf_mm;
   r["objective_kind"] = o.objective == cost::Objective::time ? "time" : "cost";
   r["pierces"] = best.program.pierces;
   r["cut_length_mm"] = best.program.cut_length_mm;

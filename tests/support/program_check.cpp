@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <set>
 
 #include <cutroute/core/number_format.hpp>
@@ -16,6 +17,22 @@ namespace {
 using geometry::Vec2;
 
 std::string at(const ProbeMove& m) { return "line " + std::to_string(m.line); }
+
+// A probe move as a geometry segment (bulge = tan(sweep / 4), sweep signed by the arc's turn).
+geometry::Segment probe_segment(const ProbeMove& m) {
+  geometry::Segment s{{m.x0, m.y0}, {m.x1, m.y1}, 0.0};
+  if (m.arc == 0) return s;
+  const double a0 = std::atan2(m.y0 - m.cy, m.x0 - m.cx), a1 = std::atan2(m.y1 - m.cy, m.x1 - m.cx);
+  double sweep = a1 - a0;
+  const double two_pi = 2 * std::numbers::pi;
+  if (m.arc > 0) {
+    while (sweep <= 0) sweep += two_pi;
+  } else {
+    while (sweep >= 0) sweep -= two_pi;
+  }
+  s.bulge = std::tan(sweep / 4);
+  return s;
+}
 
 }  // namespace
 
@@ -57,20 +74,27 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
     return best;
   };
 
-  // Which contours does a move lie on? All whose distance stays within the tolerance at five
-  // points along it (parts placed edge to edge share a stretch: a move there lies on both).
+  // Which contours does a move lie on? All whose distance stays within the tolerance (of the
+  // kerf offset, on the contour's scrap side) at five points along it (parts placed edge to edge
+  // share a stretch: a move there lies on both).
+  const double off = opt.kerf_offset_mm;
+  auto on_scrap_side = [&](int k, Vec2 q) {
+    if (off <= 0) return true;
+    const bool inside = geometry::locate(sets[static_cast<std::size_t>(k)], q, 1e-9) == geometry::Location::inside;
+    return cut[static_cast<std::size_t>(k)]->role == model::ContourRole::hole ? inside : !inside;
+  };
   auto contours_of = [&](const ProbeMove& m) {
     std::vector<int> on;
     Vec2 mid;
     probe_point(m, 0.5, mid.x, mid.y);
-    index.query(geometry::Box{mid.x, mid.y, mid.x, mid.y}.inflated(opt.on_contour_mm), hits);
+    index.query(geometry::Box{mid.x, mid.y, mid.x, mid.y}.inflated(off + opt.on_contour_mm), hits);
     for (auto h : hits) {
       const int k = static_cast<int>(h);
       bool all = true;
       for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
         Vec2 q;
         probe_point(m, t, q.x, q.y);
-        if (dist_to(k, q, 2 * opt.on_contour_mm) > opt.on_contour_mm) {
+        if (std::abs(dist_to(k, q, off + 2 * opt.on_contour_mm) - off) > opt.on_contour_mm || !on_scrap_side(k, q)) {
           all = false;
           break;
         }
@@ -94,6 +118,7 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
   // Group the beam-on moves into runs (pierce to beam off), then give each move the contour its
   // run cuts when it lies on it (a shared edge belongs to the part being cut), else the lowest.
   std::vector<double> covered(cut.size(), 0.0);
+  out.arc_moves.assign(cut.size(), 0);
   std::vector<std::set<int>> runs_of(cut.size());
   bool beam = false;
   std::vector<std::vector<std::pair<const ProbeMove*, int>>> run_moves;
@@ -111,8 +136,9 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
       const Vec2 pierce{m.x0, m.y0};
       // The last-resort fallback pierces on the contour itself (said in the diagnostics).
       bool on_a_contour = false;
-      index.query(geometry::Box{pierce.x, pierce.y, pierce.x, pierce.y}.inflated(opt.on_contour_mm), hits);
-      for (auto h : hits) on_a_contour |= dist_to(static_cast<int>(h), pierce, opt.on_contour_mm) < opt.on_contour_mm;
+      index.query(geometry::Box{pierce.x, pierce.y, pierce.x, pierce.y}.inflated(off + opt.on_contour_mm), hits);
+      for (auto h : hits)
+        on_a_contour |= std::abs(dist_to(static_cast<int>(h), pierce, off + 2 * opt.on_contour_mm) - off) < opt.on_contour_mm;
       if (!on_a_contour && in_material(pierce)) {
         out.failures.push_back(at(m) + ": pierce at (" + format_fixed(m.x0, 3) + ", " + format_fixed(m.y0, 3) +
                                ") inside a part");
@@ -141,12 +167,53 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
       run_moves[r][i].second = k;
       if (k >= 0) {
         covered[static_cast<std::size_t>(k)] += run_moves[r][i].first->length;
+        out.arc_moves[static_cast<std::size_t>(k)] += run_moves[r][i].first->arc != 0;
         runs_of[static_cast<std::size_t>(k)].insert(static_cast<int>(r));
       }
     }
   }
   // A pierce starts a run even where the probe saw the beam switched on without a move.
   out.runs = static_cast<int>(run_moves.size());
+
+  // With a kerf offset: the run passes within `off` of every drawn point where the tool fits, and
+  // is no longer than the offset curve can be.
+  auto check_offset_cover = [&](std::size_t k, int run, const std::string& name, double cut_len, double len) {
+    const bool hole = cut[k]->role == model::ContourRole::hole;
+    const double most = len + (hole ? -1 : 1) * 2 * std::numbers::pi * off + opt.max_overcut_mm + 1e-3;
+    if (cut_len > most) out.failures.push_back(name + " is cut over " + format_fixed(cut_len, 3) + " mm (at most " +
+                                               format_fixed(most, 3) + " with the kerf offset): twice?");
+    std::vector<geometry::Segment> path;
+    for (const auto& [m, on] : run_moves[static_cast<std::size_t>(run)]) {
+      if (on == static_cast<int>(k)) path.push_back(probe_segment(*m));
+    }
+    const auto& drawn = cut[k]->source.contour;
+    const bool ccw = geometry::signed_area(drawn) > 0;
+    int missed = 0;
+    Vec2 first_missed;
+    for (std::size_t i = 0; i < geometry::segment_count(drawn); ++i) {
+      const auto seg = geometry::segment(drawn, i);
+      for (double t : {0.25, 0.5, 0.75}) {
+        const Vec2 q = seg.point_at(t);
+        // The scrap-side normal: left of travel is inside for a counter-clockwise contour.
+        const Vec2 left = geometry::perp(seg.tangent_at(t));
+        const Vec2 n = (hole == ccw) ? left : -left;
+        const Vec2 centre = q + n * off;
+        // At a micro-zigzag of a fitted spline the local normal can point into the material.
+        bool fits = on_scrap_side(static_cast<int>(k), centre);
+        index.query(geometry::Box{centre.x, centre.y, centre.x, centre.y}.inflated(off), hits);
+        for (auto h : hits) fits = fits && dist_to(static_cast<int>(h), centre, off) > off - 1e-4;
+        if (!fits) continue;
+        double best = 1e300;
+        for (const auto& s : path) best = std::min(best, geometry::closest_point(s, q).distance);
+        if (best > off + opt.on_contour_mm + 0.001) {
+          if (missed++ == 0) first_missed = q;
+        }
+      }
+    }
+    if (missed > 0)
+      out.failures.push_back(name + ": its cut misses " + std::to_string(missed) + " drawn points where the tool fits, e.g. (" +
+                             format_fixed(first_missed.x, 4) + ", " + format_fixed(first_missed.y, 4) + ")");
+  };
 
   // Every contour once, whole, in one run.
   std::vector<int> run_of(cut.size(), -1);
@@ -160,10 +227,14 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
     }
     if (runs_of[k].size() > 1) out.failures.push_back(name + " is cut in " + std::to_string(runs_of[k].size()) + " runs");
     run_of[k] = *runs_of[k].begin();
-    // Every vertex is rounded to the dialect's resolution (1 µm), so a contour's cut length may
-    // differ from the drawing's by a few µm; a real gap would be a tenth of a kerf or more.
-    if (covered[k] < len - 0.01 - len * 1e-5) out.failures.push_back(name + " is cut only over " + format_fixed(covered[k], 3) + " mm");
-    if (covered[k] > len + opt.max_overcut_mm + 1e-3) out.failures.push_back(name + " is cut over " + format_fixed(covered[k], 3) + " mm: twice?");
+    if (off > 0) {
+      check_offset_cover(k, run_of[k], name, covered[k], len);
+    } else {
+      // Every vertex is rounded to the dialect's resolution (1 µm), so a contour's cut length may
+      // differ from the drawing's by a few µm; a real gap would be a tenth of a kerf or more.
+      if (covered[k] < len - 0.01 - len * 1e-5) out.failures.push_back(name + " is cut only over " + format_fixed(covered[k], 3) + " mm");
+      if (covered[k] > len + opt.max_overcut_mm + 1e-3) out.failures.push_back(name + " is cut over " + format_fixed(covered[k], 3) + " mm: twice?");
+    }
     ++out.contours_cut;
   }
 

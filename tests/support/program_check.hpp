@@ -15,6 +15,10 @@ struct ProgramCheckOptions {
   double clearance_mm = 0.5;      // leads must keep this far from other contours
   double max_lead_mm = 20.0;      // lead-in + lead-out length per pierce
   double max_overcut_mm = 2.0;    // extra length cut along a contour past one full loop
+  // Kerf offset of the toolpath (--kerf-mode cam: kerf / 2): a contour's cut moves lie this far
+  // (± on_contour_mm) from the drawn contour, on its scrap side (outside an outer contour, inside
+  // a hole). 0: on the drawn contour.
+  double kerf_offset_mm = 0.0;
 };
 
 struct ProgramCheck {
@@ -23,6 +27,7 @@ struct ProgramCheck {
   int contours_cut = 0;
   double cut_length = 0;               // [mm]
   double rapid_length = 0;             // [mm]
+  std::vector<int> arc_moves;          // per cut contour (nest order, sheet left out): G2/G3 moves on it
   ProbeResult probe;
 };
 
@@ -32,7 +37,11 @@ struct ProgramCheck {
 // (holes before their outer contour, inner parts before the hole around them); moves that lie on
 // no contour (leads) stand only at the start and end of a run and are short; no lead comes closer
 // than the clearance to any other contour, and none touches its own contour before its end;
-// every pierce point lies in scrap; no feed move is made with the beam off.
+// every pierce point lies in scrap; no feed move is made with the beam off. With a kerf offset,
+// "whole" means: wherever a tool of radius kerf_offset_mm fits against the drawn contour on its
+// scrap side (sampled at three points per drawn segment), the contour's cut passes within
+// kerf_offset_mm + on_contour_mm + 1 µm; and "not more than once": its cut is no longer than the offset curve can
+// be (drawn length ± 2π · offset, + for outer contours, - for holes, plus the overcut).
 ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, const ProgramCheckOptions& options);
 
 }  // namespace cutroute::test

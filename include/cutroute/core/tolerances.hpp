@@ -83,4 +83,11 @@ inline constexpr double kOffsetMinLoopAreaMm2 = 1e-9;
 // [dimensionless]; well below kConstraintSlackRel so that boundary points count as active.
 inline constexpr double kBoundaryBisectRel = 1e-14;
 
+// Kerf offset, invalid-loop removal: a slice of the raw offset is still kept when it comes up to
+// this much closer than |offset| to the source [mm]. kOffsetPruneMm (rounding only) is too tight
+// for spline-fitted outlines: tiny arcs (radius ~0.002 mm) next to a join arc make the exact
+// offset dip by ~1e-5 mm, and dropping such a slice lost a whole side of the contour (the offset
+// then "collapsed"). A gouge of 0.1 µm is far below any machine's resolution (G-code: 1 µm).
+inline constexpr double kOffsetGougeMm = 1e-4;
+
 }  // namespace cutroute::tol

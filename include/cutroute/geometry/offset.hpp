@@ -36,7 +36,7 @@
 //  3. Closed contours only: the joined path crosses itself where the source has features
 //     narrower than 2|d| (thin slots, small holes). Split it at every self-intersection into
 //     slices; keep a slice only if it does not cross the source and its sampled distance to
-//     the source is >= |d| - tol::kOffsetPruneMm; stitch the kept slices end to start into
+//     the source is >= |d| - tol::kOffsetGougeMm; stitch the kept slices end to start into
 //     closed loops; keep the loops with the source's orientation and an area above
 //     tol::kOffsetMinLoopAreaMm2.
 //

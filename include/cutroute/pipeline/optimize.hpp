@@ -31,7 +31,14 @@ struct OptimizeOptions {
   solve::SolverKind solver = solve::SolverKind::automatic;
   std::optional<geometry::Vec2> start;       // default (0, 0) [mm]
   std::optional<double> kerf_mm;             // default: the profile's for this material
+  // controller: the drawn contours with G41/G42 on the scrap side; cam: the toolpath offset by
+  // kerf / 2 to the scrap side with exact arcs (model::offset_for_kerf), entries and leads planned
+  // on it; none: the drawn contours as they are.
   nc::KerfMode kerf_mode = nc::KerfMode::controller;
+  // With kerf_mode cam, toolpaths of neighbouring contours that meet (parts closer than the kerf,
+  // code "kerf.overlap") are an input error by default: one cut would cut into the other part.
+  // With this set they are cut anyway, with a warning per pair.
+  bool allow_kerf_overlap = false;
   std::string dialect = "generic";           // name or JSON file
   double entry_step_mm = 0.0;                // 0: adaptive
   int max_candidates = 12;                   // entry candidates per contour
@@ -59,7 +66,10 @@ struct OptimizeResult {
 //  5. toolpath -> G-code in the dialect; frames n counted on the written program;
 //  6. T_cut with V_on*(n) (eq. 10); lead types that change n compared by that corrected objective;
 //  7. the report.
-// Errors: unknown material/thickness, invalid profile or dialect, crossing contours in the nest.
+//  (with kerf_mode cam, step 2 plans on model::offset_for_kerf(nest): the torch centre's path)
+// Errors: unknown material/thickness, invalid profile or dialect, crossing contours in the nest;
+// with kerf_mode cam: a contour too small for the kerf ("kerf.collapsed", "kerf.split") and,
+// unless allowed, toolpaths that meet ("kerf.overlap").
 Result<OptimizeResult> optimize_nest(const io::LoadedNest& nest, const OptimizeOptions& options,
                                      const StopToken& stop = {}, const ProgressFn& progress = {});
 

@@ -1,0 +1,112 @@
+// Runs `cutroute optimize` in a test: temporary folders, the program and report read back.
+#pragma once
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cutroute/io/nest_loader.hpp>
+
+#include "support/paths.hpp"
+#include "support/program_check.hpp"
+
+namespace cutroute::test {
+
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+inline std::filesystem::path temp_dir(const std::string& name) {
+  auto d = std::filesystem::temp_directory_path() / ("cutroute-opt-" + name + "-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+inline bool sanitized() { return std::getenv("CUTROUTE_SANITIZED") != nullptr; }
+
+struct OptRun {
+  CommandOutput cmd;
+  std::string program;
+  nlohmann::json report;
+};
+
+// Writes dir/out.ngc and dir/out.json (1 s solver limit, 3 s under the sanitizers).
+inline OptRun optimize(const std::string& dxf, const std::filesystem::path& dir, const std::string& extra = "") {
+  OptRun r;
+  const auto prog = dir / "out.ngc", rep = dir / "out.json";
+  r.cmd = run_command(cli_path() + " optimize " + dxf + " -o " + prog.string() + " --report " + rep.string() +
+                      " --quiet --time-limit " + (sanitized() ? "3" : "1") + " " + extra);
+  if (r.cmd.exit_code == 0) {
+    r.program = slurp(prog);
+    r.report = nlohmann::json::parse(slurp(rep));
+  }
+  return r;
+}
+
+// The program re-parsed and checked against the nest (support/program_check.hpp): every contour
+// once, one pierce each; the report agrees with the program. kerf_offset_mm: --kerf-mode cam.
+inline void expect_admissible(const std::string& dxf, const OptRun& run, double kerf_offset_mm = 0.0,
+                              ProgramCheck* result = nullptr, double on_contour_mm = 1e-3) {
+  auto loaded = io::load_nest(dxf, io::NestLoadOptions{});
+  ASSERT_TRUE(loaded.ok());
+  ProgramCheckOptions opt;
+  opt.clearance_mm = 1.0;  // kerf 0.15 + 1 mm for the default AMg3M 1 mm job
+  opt.kerf_offset_mm = kerf_offset_mm;
+  if (kerf_offset_mm > 0) opt.on_contour_mm = on_contour_mm;
+  const auto check = check_program(loaded->nest, run.program, opt);
+  for (const auto& f : check.failures) ADD_FAILURE() << dxf << ": " << f;
+  std::size_t cut_contours = 0;
+  for (const auto& c : loaded->nest.contours) cut_contours += c.role != model::ContourRole::sheet;
+  EXPECT_EQ(static_cast<std::size_t>(check.contours_cut), cut_contours);
+  EXPECT_EQ(static_cast<std::size_t>(check.runs), cut_contours);  // one pierce per contour
+  // The report agrees with the re-parsed program.
+  EXPECT_EQ(run.report["pierces"].get<int>(), check.probe.pierces);
+  EXPECT_NEAR(run.report["cut_length_mm"].get<double>(), check.cut_length, 1e-6 * check.cut_length + 1e-6);
+  EXPECT_NEAR(run.report["rapid_length_mm"].get<double>(), check.rapid_length, 1e-6 * check.rapid_length + 1e-6);
+  EXPECT_EQ(run.report["frames"].get<int>(), check.probe.frames);
+  if (result) *result = check;
+}
+
+// The generic dialect with 4 decimals (0.1 µm), written to `dir`: with 3 the written end points
+// and arc centres (I, J) are rounded by up to 0.7 µm each, too coarse to measure kerf/2 ± 1 µm.
+inline std::string fine_dialect(const std::filesystem::path& dir) {
+  auto j = nlohmann::json::parse(slurp(test_data("../../data/dialects/generic.json")));
+  j["name"] = "generic-0.1um";
+  j["decimals"] = 4;
+  const auto path = dir / "generic4.json";
+  std::ofstream(path) << j.dump(2);
+  return path.string();
+}
+
+// LinuxCNC's interpreter (package linuxcnc-uspace) accepts the program; nothing to check without it.
+inline void expect_rs274_accepts(const std::filesystem::path& program) {
+  if (std::system("command -v rs274 >/dev/null 2>&1") != 0) return;
+  const auto rs = run_command("rs274 -g " + program.string() + " < /dev/null");
+  EXPECT_EQ(rs.exit_code, 0) << program << ": " << rs.out;
+}
+
+// The stems of every DXF file of ../shared/data/dxf, sorted.
+inline std::vector<std::string> corpus() {
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(shared("data/dxf"))) {
+    if (e.path().extension() == ".dxf") names.push_back(e.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+}  // namespace cutroute::test

@@ -156,6 +156,44 @@ std::optional<Vec2> missed_point(const Contour& drawn, const geometry::SegmentSe
   return std::nullopt;
 }
 
+// The contour's offset by d. When it lost a contour that cannot vanish, or cuts into the
+// drawing, the offset is tried again without the outline's tiny details (its known weak spot:
+// fitted splines) and the better result kept; warnings say by how much the cut deviates.
+geometry::OffsetResult offset_with_retries(const NestContour& c, const std::string& label, double d, double kerf_mm,
+                                           Diagnostics& diagnostics) {
+  const double half = kerf_mm / 2;
+  geometry::OffsetResult r = geometry::offset_contour(c.source.contour, d);
+  const geometry::SegmentSet drawn_set = geometry::make_segment_set(c.source.contour);
+  Gouge gouge = deepest_gouge(r, drawn_set, half);
+  for (int step = 0; step < 2; ++step) {
+    const bool lost = r.contours.empty() && offset_cannot_vanish(c, half);
+    if (!lost && gouge.depth <= kGougeWarnMm) break;
+    const double chord = (step == 0 ? kTinyArcRel / 3 : kTinyArcRel) * kerf_mm;
+    const Contour plain = without_tiny_segments(c.source.contour, chord, step);
+    if (plain.vertices.size() < 2 || plain == c.source.contour) continue;
+    geometry::OffsetResult again = geometry::offset_contour(plain, d);
+    if (again.contours.size() != 1) continue;
+    const Gouge g = deepest_gouge(again, drawn_set, half);
+    if (!lost && g.depth >= gouge.depth) continue;
+    r = std::move(again);
+    gouge = g;
+    diagnostics.push_back(diagnostic(Severity::warning, "kerf.simplified",
+                                     label + ": details shorter than " + format_fixed(chord, 3) + " mm " +
+                                         (step == 0 ? "straightened" : "left out") +
+                                         " for the kerf offset; the toolpath deviates by up to " +
+                                         format_fixed(deviation(plain, c.source.contour), 4) + " mm from kerf/2 there",
+                                     c));
+  }
+  if (r.contours.size() == 1 && gouge.depth > kGougeWarnMm) {
+    diagnostics.push_back(diagnostic(Severity::warning, "kerf.gouge",
+                                     "the toolpath of " + label + " comes " + format_fixed(gouge.depth, 4) +
+                                         " mm closer than kerf/2 to the drawing near " + point(gouge.where) +
+                                         " (kerf offset inaccuracy at outline details far below the kerf)",
+                                     c));
+  }
+  return r;
+}
+
 }  // namespace
 
 KerfNest offset_for_kerf(const Nest& drawn, double kerf_mm) {
@@ -173,42 +211,7 @@ KerfNest offset_for_kerf(const Nest& drawn, double kerf_mm) {
     const NestContour& c = drawn.contours[id];
     if (c.role == ContourRole::sheet) continue;
     const double d = scrap_side_distance(c, half);
-    geometry::OffsetResult r = geometry::offset_contour(c.source.contour, d);
-    // The offset lost a contour that cannot vanish: its known weak spot is arcs far below the
-    // kerf (fitted splines). Straighten those and try again, saying by how much the cut deviates.
-    // The offset lost a contour that cannot vanish, or cuts into the drawing: its known weak spot
-    // is outline details far below the kerf (fitted splines). Try without them and keep what is
-    // better, saying by how much the cut deviates.
-    const geometry::SegmentSet drawn_set = geometry::make_segment_set(c.source.contour);
-    Gouge gouge = deepest_gouge(r, drawn_set, half);
-    for (int step = 0; step < 2; ++step) {
-      const bool lost = r.contours.empty() && offset_cannot_vanish(c, half);
-      if (!lost && gouge.depth <= kGougeWarnMm) break;
-      const double chord = (step == 0 ? kTinyArcRel / 3 : kTinyArcRel) * kerf_mm;
-      const Contour plain = without_tiny_segments(c.source.contour, chord, step);
-      if (plain.vertices.size() < 2 || plain == c.source.contour) continue;
-      geometry::OffsetResult again = geometry::offset_contour(plain, d);
-      if (again.contours.size() != 1) continue;
-      const Gouge g = deepest_gouge(again, drawn_set, half);
-      if (!lost && g.depth >= gouge.depth) continue;
-      r = std::move(again);
-      gouge = g;
-      out.diagnostics.push_back(diagnostic(Severity::warning, "kerf.simplified",
-                                           name(drawn, id) + ": details shorter than " + format_fixed(chord, 3) +
-                                               " mm " + (step == 0 ? "straightened" : "left out") +
-                                               " for the kerf offset; the toolpath deviates by up to " +
-                                               format_fixed(deviation(plain, c.source.contour), 4) +
-                                               " mm from kerf/2 there",
-                                           c));
-    }
-    if (r.contours.size() == 1 && gouge.depth > kGougeWarnMm) {
-      out.diagnostics.push_back(diagnostic(Severity::warning, "kerf.gouge",
-                                           "the toolpath of " + name(drawn, id) + " comes " +
-                                               format_fixed(gouge.depth, 4) + " mm closer than kerf/2 to the drawing near " +
-                                               point(gouge.where) +
-                                               " (kerf offset inaccuracy at outline details far below the kerf)",
-                                           c));
-    }
+    const geometry::OffsetResult r = offset_with_retries(c, name(drawn, id), d, kerf_mm, out.diagnostics);
     // A hole smaller than the kerf: the beam would burn it larger than drawn, so the part is out
     // of tolerance. A shop must decide that (redraw, drill, or accept a bigger hole), not the
     // program silently: it is an error, and no program is written while it stands.

@@ -83,4 +83,9 @@ inline constexpr double kOffsetMinLoopAreaMm2 = 1e-9;
 // [dimensionless]; well below kConstraintSlackRel so that boundary points count as active.
 inline constexpr double kBoundaryBisectRel = 1e-14;
 
+// Two edges of adjacent parts run together (common-line cutting) when their distance equals 0 or
+// the kerf within this at both ends of the shared stretch [mm]. Nests drawn for common-line
+// cutting are exact to ~1e-6; 0.01 mm also accepts hand-made ones and is far below a kerf.
+inline constexpr double kCommonLineMm = 0.01;
+
 }  // namespace cutroute::tol

@@ -199,18 +199,19 @@ std::vector<std::vector<EntryCandidate>> plan_common_entries(const Nest& nest, c
     const auto& t = plan.segments[i];
     if (t.kind != CommonSegmentKind::trail) continue;
     auto& cands = out[i];
+    // Leads from every end that may be entered; a pierce on the line only when none fits.
     for (const bool forward : {true, false}) {
-      if (!(forward ? t.enter_at_start : t.enter_at_end)) continue;
-      const bool far_on_loop = forward ? t.end_on_loop : t.start_on_loop;
-      std::vector<EntryCandidate> found;
-      if (!t.pierce_on_line) found = leads.enter(t, forward, far_on_loop);
-      if (found.empty()) found.push_back(leads.on_line(t, forward, far_on_loop));
-      if (!t.pierce_on_line && found.front().fallback == Fallback::on_contour) {
-        Diagnostic dg = make_warning("common line from " + detail::point_text(found.front().point) + ": no room for a lead-in; pierced on the line");
-        dg.code = "common.pierce_on_line";
-        diagnostics.push_back(std::move(dg));
-      }
-      for (auto& c : found) cands.push_back(std::move(c));
+      if (!(forward ? t.enter_at_start : t.enter_at_end) || t.pierce_on_line) continue;
+      for (auto& c : leads.enter(t, forward, forward ? t.end_on_loop : t.start_on_loop)) cands.push_back(std::move(c));
+    }
+    if (!cands.empty()) continue;
+    const bool forward = t.enter_at_start;
+    cands.push_back(leads.on_line(t, forward, forward ? t.end_on_loop : t.start_on_loop));
+    if (!t.pierce_on_line) {
+      Diagnostic dg = make_warning("common line from " + detail::point_text(cands.front().point) +
+                                   ": no room for a lead-in; pierced on the line");
+      dg.code = "common.pierce_on_line";
+      diagnostics.push_back(std::move(dg));
     }
   }
   for (std::size_t i = 0; i < out.size(); ++i)

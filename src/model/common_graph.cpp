@@ -271,15 +271,32 @@ std::vector<Walk> trace_loops(const Graph& g) {
   return out;
 }
 
-// The path of a walk, with connectors through the node positions where pieces do not meet.
-Contour walk_path(const Graph& g, const Walk& w, bool closed) {
-  detail::PathJoiner j;
-  j.move_to(g.nodes[static_cast<std::size_t>(w.first)]);
+// The pieces of a walk: its edges, with connectors through the node positions where they do
+// not meet (parts drawn kerf apart).
+std::vector<CommonPiece> walk_pieces(const Graph& g, const Walk& w, const std::vector<CommonStretch>& stretches) {
+  std::vector<CommonPiece> out;
+  Vec2 at = g.nodes[static_cast<std::size_t>(w.first)];
+  const auto connect = [&](Vec2 to) {
+    if (geometry::distance(at, to) > tol::kSamePointMm) out.push_back({ContourId(), -1, Contour{{{at, 0}, {to, 0}}, false}});
+    at = to;
+  };
   for (const auto& [e, fwd] : w.steps) {
     const Edge& ed = g.edges[static_cast<std::size_t>(e)];
-    j.append(fwd ? ed.path : geometry::reversed(ed.path));
-    j.line_to(g.nodes[static_cast<std::size_t>(fwd ? ed.to : ed.from)]);
+    CommonPiece p;
+    p.stretch = ed.stretch;
+    p.contour = ed.stretch >= 0 ? stretches[static_cast<std::size_t>(ed.stretch)].first : ed.contour;
+    p.path = fwd ? ed.path : geometry::reversed(ed.path);
+    connect(p.path.vertices.front().p);
+    at = p.path.vertices.back().p;
+    out.push_back(std::move(p));
+    connect(g.nodes[static_cast<std::size_t>(fwd ? ed.to : ed.from)]);
   }
+  return out;
+}
+
+Contour join(const std::vector<CommonPiece>& pieces, bool closed) {
+  detail::PathJoiner j;
+  for (const auto& p : pieces) j.append(p.path);
   return closed ? j.closed() : j.open();
 }
 
@@ -351,6 +368,7 @@ CommonLinePlan plan_common_lines(const Nest& nest, const CommonLineOptions& opti
     if (nest.contours[id].role == ContourRole::sheet || shares[i]) continue;
     CommonSegment s;
     s.path = nest.contours[id].source.contour;
+    s.pieces = {CommonPiece{id, -1, detail::sub_path(s.path, 0, geometry::length(s.path))}};
     s.contours = {id};
     plan.segments.push_back(std::move(s));
   }
@@ -361,7 +379,8 @@ CommonLinePlan plan_common_lines(const Nest& nest, const CommonLineOptions& opti
   for (const Walk& w : trace_loops(g)) {
     CommonSegment s;
     s.kind = CommonSegmentKind::loop;
-    s.path = walk_path(g, w, true);
+    s.pieces = walk_pieces(g, w, plan.stretches);
+    s.path = join(s.pieces, true);
     if (w.last != w.first) {
       // Cannot happen when every contour is closed: each node has as many own edges in as out.
       plan.diagnostics.push_back(make_warning("common lines: a boundary near " +
@@ -369,7 +388,8 @@ CommonLinePlan plan_common_lines(const Nest& nest, const CommonLineOptions& opti
                                               " does not close; closed by a straight cut"));
       plan.diagnostics.back().code = "common.open_loop";
     }
-    for (const auto& st : w.steps) s.contours.push_back(g.edges[static_cast<std::size_t>(st.first)].contour);
+    for (const auto& p : s.pieces)
+      if (!p.connector()) s.contours.push_back(p.contour);
     finish(s.contours);
     s.group = group_of(s.contours.front());
     plan.segments.push_back(std::move(s));
@@ -379,7 +399,8 @@ CommonLinePlan plan_common_lines(const Nest& nest, const CommonLineOptions& opti
   for (const Walk& w : trails) {
     CommonSegment s;
     s.kind = CommonSegmentKind::trail;
-    s.path = walk_path(g, w, false);
+    s.pieces = walk_pieces(g, w, plan.stretches);
+    s.path = join(s.pieces, false);
     for (const auto& st : w.steps) {
       const auto& str = plan.stretches[static_cast<std::size_t>(g.edges[static_cast<std::size_t>(st.first)].stretch)];
       s.contours.push_back(str.first);

@@ -11,6 +11,7 @@
 #include <cutroute/geometry/spatial_index.hpp>
 
 #include "common_detail.hpp"
+#include "path_ops.hpp"
 
 namespace cutroute::model {
 
@@ -71,6 +72,46 @@ geometry::Contour PathJoiner::closed() const {
 }
 
 }  // namespace detail
+
+std::vector<CommonPiece> pieces_along(const CommonSegment& segment, double s_mm, bool forward, double length_mm) {
+  std::vector<CommonPiece> order = segment.pieces;
+  if (!forward) {
+    std::reverse(order.begin(), order.end());
+    for (auto& p : order) p.path = geometry::reversed(p.path);
+    s_mm = geometry::length(segment.path) - s_mm;
+  }
+  std::vector<double> len;
+  double total = 0;
+  for (const auto& p : order) {
+    len.push_back(geometry::length(p.path));
+    total += len.back();
+  }
+  std::vector<CommonPiece> out;
+  if (order.empty() || !(total > 0)) return out;
+  if (segment.path.closed) {
+    s_mm = std::fmod(s_mm, total);
+    if (s_mm < 0) s_mm += total;
+  }
+  // The piece holding s (the first one on a tie with a piece end), then onwards.
+  std::size_t k = 0;
+  while (k + 1 < order.size() && s_mm >= len[k]) s_mm -= len[k++];
+  double remaining = length_mm;
+  for (std::size_t guard = 0; remaining > tol::kSamePointMm && guard < 2 * order.size() + 2; ++guard) {
+    const double take = std::min(remaining, len[k] - s_mm);
+    if (take > tol::kSamePointMm) {
+      CommonPiece p = order[k];
+      p.path = detail::sub_path(order[k].path, s_mm, take);
+      out.push_back(std::move(p));
+      remaining -= take;
+    }
+    s_mm = 0;
+    if (++k == order.size()) {
+      if (!segment.path.closed) break;
+      k = 0;
+    }
+  }
+  return out;
+}
 
 namespace {
 

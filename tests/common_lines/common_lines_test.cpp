@@ -149,12 +149,54 @@ std::size_t outer_loop(const CommonLinePlan& plan) {
   return best;
 }
 
+// Each segment's pieces make up its path, lie on the contours they name (connectors: short, at
+// most the gap), and pieces_along() cuts the path from any point, both ways, with an overcut.
+void expect_pieces_consistent(const Nest& nest, const CommonLinePlan& plan, double tol) {
+  for (const auto& seg : plan.segments) {
+    ASSERT_FALSE(seg.pieces.empty());
+    double len = 0;
+    for (std::size_t k = 0; k < seg.pieces.size(); ++k) {
+      const auto& p = seg.pieces[k];
+      len += geometry::length(p.path);
+      if (k > 0) {
+        EXPECT_LT(geometry::distance(seg.pieces[k - 1].path.vertices.back().p, p.path.vertices.front().p), 1e-9);
+      }
+      const Vec2 mid = geometry::point_at_length(p.path, geometry::length(p.path) / 2);
+      if (p.connector()) {
+        EXPECT_LE(geometry::length(p.path), 2 * tol + 1e-9);
+        continue;
+      }
+      EXPECT_LE(geometry::distance(nest.contours[p.contour].source.contour, mid), tol);
+      if (p.stretch >= 0) {
+        const auto& st = plan.stretches[static_cast<std::size_t>(p.stretch)];
+        EXPECT_EQ(p.contour, st.first);
+        EXPECT_LE(geometry::distance(nest.contours[st.second].source.contour, mid), tol);
+      }
+    }
+    EXPECT_NEAR(len, geometry::length(seg.path), 1e-6);
+    const double total = geometry::length(seg.path);
+    for (const bool fwd : {true, false}) {
+      const double s0 = seg.path.closed ? 0.37 * total : (fwd ? 0.0 : total);
+      const double extra = seg.path.closed ? 2.0 : 0.0;
+      const auto cut = pieces_along(seg, s0, fwd, total + extra);
+      ASSERT_FALSE(cut.empty());
+      double got = 0;
+      for (const auto& p : cut) got += geometry::length(p.path);
+      EXPECT_NEAR(got, total + extra, 1e-6);
+      EXPECT_LT(geometry::distance(cut.front().path.vertices.front().p, geometry::point_at_length(seg.path, s0)), 1e-6);
+      for (std::size_t k = 1; k < cut.size(); ++k)
+        EXPECT_LT(geometry::distance(cut[k - 1].path.vertices.back().p, cut[k].path.vertices.front().p), 1e-6);
+    }
+  }
+}
+
 // Everything a grid's decomposition must satisfy, with the shared length computed by the caller.
 void check_grid(const Nest& nest, const CommonLinePlan& plan, double shared, double gap_crossings, double tol) {
   EXPECT_NEAR(plan.shared_length_mm, shared, 1e-6);
   EXPECT_NEAR(cut_length(plan), perimeter_sum(nest) - shared + gap_crossings, 1e-6);
   expect_every_edge_cut(nest, plan, tol);
   expect_no_double_cut(plan);
+  expect_pieces_consistent(nest, plan, tol);
   const auto before = closure(plan);
   const std::size_t outer = outer_loop(plan);
   ASSERT_LT(outer, plan.segments.size());

@@ -54,6 +54,15 @@ enum class CommonSegmentKind {
 };
 const char* to_string(CommonSegmentKind k);
 
+// One piece of a segment's path and what it cuts.
+struct CommonPiece {
+  ContourId contour;        // boundary piece: its contour; common stretch: the stretch's first
+                            // contour; invalid for a connector across a kerf gap
+  int stretch = -1;         // common stretch: index into CommonLinePlan::stretches; else -1
+  geometry::Contour path;   // open, in the segment's direction [mm]
+  bool connector() const { return !contour.valid(); }
+};
+
 // One basic segment of the common-line decomposition (PAPERS.md §2): geometry without leads.
 struct CommonSegment {
   CommonSegmentKind kind = CommonSegmentKind::contour;
@@ -61,6 +70,7 @@ struct CommonSegment {
   // boundary runs counter-clockwise, a boundary around enclosed scrap clockwise). trail: open.
   // Where two parts are drawn kerf apart the path crosses the gap by a short connector.
   geometry::Contour path;
+  std::vector<CommonPiece> pieces;   // `path` piece by piece (kind contour: one piece)
   std::vector<ContourId> contours;  // nest contours whose boundary it cuts (all or in part), ascending
   int group = -1;                   // the group of parts joined by common lines; -1 for kind contour
   double shared_mm = 0.0;           // trail: length of the common stretches it cuts once for two parts [mm]
@@ -99,6 +109,11 @@ struct CommonLinePlan {
 //  5. entry ends of trails and precedence (see CommonLinePlan::precedence).
 // Contours of a nest without stretches come out as one contour segment each, in nest order.
 CommonLinePlan plan_common_lines(const Nest& nest, const CommonLineOptions& options);
+
+// The pieces a cut of the segment passes, starting at arc length s_mm of its path, along the path
+// (forward) or against it, for length_mm (on a closed segment it may wrap past s: the overcut).
+// Each piece is cut exactly where it lies on the way; empty pieces are left out.
+std::vector<CommonPiece> pieces_along(const CommonSegment& segment, double s_mm, bool forward, double length_mm);
 
 // Entry candidates for every segment of a plan, aligned with plan.segments (never empty).
 // Contours and loops: model::EntryPlanner on a derived nest whose contours are the closed

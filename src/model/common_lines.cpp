@@ -113,6 +113,23 @@ std::vector<CommonPiece> pieces_along(const CommonSegment& segment, double s_mm,
   return out;
 }
 
+EnteredContour entered_contour(const Nest& nest, const std::vector<CommonPiece>& pieces) {
+  EnteredContour out;
+  const auto it = std::find_if(pieces.begin(), pieces.end(), [](const CommonPiece& p) { return !p.connector(); });
+  if (it == pieces.end()) return out;
+  const geometry::Contour& c = nest.contours[it->contour].source.contour;
+  out.contour = it->contour;
+  out.s_mm = geometry::closest_point(c, it->path.vertices.front().p).length_along;
+  // Along the stored contour or against it: compare the directions in the middle of the piece.
+  const double half = 0.5 * geometry::length(it->path);
+  const auto mid = detail::at_length(it->path, half);
+  const auto on = detail::at_length(c, geometry::closest_point(c, mid.point).length_along);
+  const bool along = geometry::dot(mid.tangent, on.tangent) > 0;
+  const bool stored_cw = geometry::orientation(c) == geometry::Orientation::cw;
+  out.clockwise = along == stored_cw;
+  return out;
+}
+
 namespace {
 
 constexpr double kTwoPi = 2 * std::numbers::pi;

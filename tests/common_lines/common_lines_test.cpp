@@ -456,6 +456,29 @@ TEST(CommonLines, InnerPartSharingHoleEdge) {
     }
 }
 
+// The contour a loop enters and its direction on it: what the kerf side is taken from.
+TEST(CommonLines, EnteredContourAndDirection) {
+  const Nest nest = make_nest({rect(0, 0, 100, 50), rect(100, 0, 250, 50, false)});
+  const auto plan = plan_common_lines(nest, CommonLineOptions{});
+  for (const auto& seg : plan.segments) {
+    if (seg.kind != CommonSegmentKind::loop) continue;
+    // The loop runs counter-clockwise: on each part's outline it runs counter-clockwise too.
+    for (const double s : {10.0, 120.0, 260.0, 380.0}) {
+      for (const bool fwd : {true, false}) {
+        const auto cut = pieces_along(seg, s, fwd, geometry::length(seg.path));
+        const auto e = entered_contour(nest, cut);
+        ASSERT_TRUE(e.contour.valid());
+        EXPECT_EQ(e.clockwise, !fwd) << s;
+        const Vec2 p = geometry::point_at_length(nest.contours[e.contour].source.contour, e.s_mm);
+        EXPECT_LT(geometry::distance(p, cut.front().path.vertices.front().p), 1e-6);
+        // The part's material lies inside that contour: its first point is on its boundary.
+        EXPECT_LT(geometry::distance(nest.contours[e.contour].source.contour, geometry::point_at_length(seg.path, s)),
+                  1e-6);
+      }
+    }
+  }
+}
+
 TEST(CommonLines, Deterministic) {
   const auto build = [] {
     return make_nest({rect(0, 0, 100, 60), rect(100, 0, 200, 60), rect(0, 60, 100, 120), rect(100, 60, 200, 120)});

@@ -115,6 +115,16 @@ CommonLinePlan plan_common_lines(const Nest& nest, const CommonLineOptions& opti
 // Each piece is cut exactly where it lies on the way; empty pieces are left out.
 std::vector<CommonPiece> pieces_along(const CommonSegment& segment, double s_mm, bool forward, double length_mm);
 
+// The nest contour a cut over these pieces enters first (its first piece that is not a
+// connector; a common stretch counts as its first contour), the arc length of the entry point on
+// it, and whether the cut runs along it clockwise. What kerf side and labels are taken from.
+struct EnteredContour {
+  ContourId contour;
+  double s_mm = 0.0;        // [mm] along the stored contour
+  bool clockwise = true;
+};
+EnteredContour entered_contour(const Nest& nest, const std::vector<CommonPiece>& pieces);
+
 // Entry candidates for every segment of a plan, aligned with plan.segments (never empty).
 // Contours and loops: model::EntryPlanner on a derived nest whose contours are the closed
 // segments (so the scrap, clearance and fallback rules are the same as for plain contours).

@@ -41,11 +41,13 @@ struct OptRun {
   nlohmann::json report;
 };
 
-OptRun optimize(const std::string& dxf, const fs::path& dir, const std::string& extra = "") {
+OptRun optimize(const std::string& dxf, const fs::path& dir, const std::string& extra = "",
+               const char* time_limit = nullptr) {
   OptRun r;
   const auto prog = dir / "out.ngc", rep = dir / "out.json";
+  if (!time_limit) time_limit = sanitized() ? "3" : "1";
   r.cmd = run_command(cli_path() + " optimize " + dxf + " -o " + prog.string() + " --report " + rep.string() +
-                      " --quiet --time-limit " + (sanitized() ? "3" : "1") + " " + extra);
+                      " --quiet --time-limit " + time_limit + " " + extra);
   if (r.cmd.exit_code == 0) {
     r.program = slurp(prog);
     r.report = nlohmann::json::parse(slurp(rep));
@@ -63,7 +65,12 @@ void expect_admissible(const std::string& dxf, const OptRun& run) {
   std::size_t cut_contours = 0;
   for (const auto& c : loaded->nest.contours) cut_contours += c.role != model::ContourRole::sheet;
   EXPECT_EQ(static_cast<std::size_t>(check.contours_cut), cut_contours);
-  EXPECT_EQ(static_cast<std::size_t>(check.runs), cut_contours);  // one pierce per contour
+  // One pierce per basic segment; a chain of k contours has k - 1 bridges.
+  EXPECT_EQ(check.runs, run.report["basic_segments"].get<int>());
+  EXPECT_EQ(static_cast<std::size_t>(check.runs + check.bridges), cut_contours);
+  if (run.report["chosen"] == "standard") {
+    EXPECT_EQ(check.bridges, 0);
+  }
   // The report agrees with the re-parsed program.
   EXPECT_EQ(run.report["pierces"].get<int>(), check.probe.pierces);
   EXPECT_NEAR(run.report["cut_length_mm"].get<double>(), check.cut_length, 1e-6 * check.cut_length + 1e-6);
@@ -75,7 +82,7 @@ TEST(OptimizeCli, DemoSheetProgramIsAdmissibleAndReportIsHonest) {
   const auto dir = temp_dir("demo");
   const auto dxf = (dir / "demo.dxf").string();
   ASSERT_EQ(run_command(cli_path() + " demo " + dxf).exit_code, 0);
-  const OptRun run = optimize(dxf, dir);
+  const OptRun run = optimize(dxf, dir, "--technique standard");
   ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
   expect_admissible(dxf, run);
   EXPECT_EQ(run.report["pierces"], 21);
@@ -182,9 +189,34 @@ TEST_P(CorpusOptimize, ProgramIsAdmissible) {
     EXPECT_NE(refused.cmd.err.find("--allow-crossing"), std::string::npos) << refused.cmd.err;
     extra = "--allow-crossing";
   }
-  const OptRun run = optimize(dxf, dir, extra);
+  const OptRun run = optimize(dxf, dir, extra + " --technique standard");
   ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
   expect_admissible(dxf, run);
+  fs::remove_all(dir);
+}
+
+// Chain cutting and the GSCCP choice over the corpus, half a second of solver time each (CI stays
+// short): the same invariants (every contour once, holes first, pierces in scrap, bridges through
+// scrap only), the auto report lists what it compared and keeps the alternative it wrote.
+TEST_P(CorpusOptimize, ChainAndAutoProgramsAreAdmissible) {
+  const std::string dxf = shared("data/dxf/" + GetParam() + ".dxf");
+  const auto dir = temp_dir(GetParam() + "-chain");
+  const std::string extra = kOverlapping.count(GetParam()) ? "--allow-crossing " : "";
+  const char* limit = sanitized() ? "2" : "0.5";
+  const OptRun chain = optimize(dxf, dir, extra + "--technique chain", limit);
+  ASSERT_EQ(chain.cmd.exit_code, 0) << chain.cmd.err;
+  EXPECT_EQ(chain.report["chosen"], "chain");
+  expect_admissible(dxf, chain);
+  const OptRun autorun = optimize(dxf, dir, extra + "--technique auto", limit);
+  ASSERT_EQ(autorun.cmd.exit_code, 0) << autorun.cmd.err;
+  expect_admissible(dxf, autorun);
+  const auto& alts = autorun.report["alternatives"];
+  ASSERT_GE(alts.size(), 2u);
+  EXPECT_EQ(alts[0]["name"], "standard");
+  double best = 1e300;
+  for (const auto& a : alts)
+    if (a["available"].get<bool>()) best = std::min(best, a["objective"].get<double>());
+  EXPECT_EQ(autorun.report["t_cut_s"].get<double>(), best);  // time objective: the fastest is kept
   fs::remove_all(dir);
 }
 

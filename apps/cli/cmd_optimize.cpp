@@ -39,6 +39,8 @@ struct Opts {
   double entry_step = 0;
   bool quiet = false;
   bool allow_crossing = false;
+  std::string technique = "auto";
+  double chain_gap = 20;
   InputOptions input;
 };
 
@@ -121,6 +123,11 @@ int run(const Opts& o) {
   po.dialect = o.dialect;
   po.entry_step_mm = o.entry_step;
   po.allow_crossing = o.allow_crossing;
+  po.technique = o.technique == "standard" ? pipeline::Technique::standard
+                 : o.technique == "chain"  ? pipeline::Technique::chain
+                 : o.technique == "common" ? pipeline::Technique::common
+                                           : pipeline::Technique::automatic;
+  po.chain.max_gap_mm = o.chain_gap;
 
   // Output paths: one nest -> -o is the program file; several -> -o is a folder for all outputs.
   const bool batch = o.nests.size() > 1;
@@ -196,7 +203,8 @@ int run(const Opts& o) {
                     format_fixed(r["rapid_length_mm"].get<double>(), 1) + " mm, " +
                     std::to_string(r["frames"].get<std::size_t>()) + " frames, T_cut " +
                     format_fixed(r["t_cut_s"].get<double>(), 2) + " s (" +
-                    format_fixed(r["t_cut_const_speed_s"].get<double>(), 2) + " s at the set speed) -> " + outs[i].program;
+                    format_fixed(r["t_cut_const_speed_s"].get<double>(), 2) + " s at the set speed), technique " +
+                    r["chosen"].get<std::string>() + " -> " + outs[i].program;
     }
   };
   std::vector<std::thread> pool;
@@ -245,6 +253,14 @@ void add_optimize(CLI::App& root, Commands& out) {
       ->check(CLI::Range(0.0, 1e6));
   app->add_flag("--allow-crossing", o->allow_crossing,
                 "Cut a drawing whose contours cross each other (each contour once, with warnings)");
+  app->add_option("--technique", o->technique,
+                  "Basic segments: standard (one per contour), chain (neighbouring parts joined by bridges), "
+                  "common (shared edges cut once), auto (each available one solved, the fastest kept)")
+      ->check(CLI::IsMember({"standard", "chain", "common", "auto"}))
+      ->capture_default_str();
+  app->add_option("--chain-gap", o->chain_gap, "Chain cutting: largest gap between parts bridged [mm]")
+      ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str();
   app->add_flag("-q,--quiet", o->quiet, "No progress and no summary");
   add_input_options(app, o->input);
   out.push_back({app, [o] { return run(*o); }});

@@ -23,6 +23,8 @@ struct ProgramCheck {
   int contours_cut = 0;
   double cut_length = 0;               // [mm]
   double rapid_length = 0;             // [mm]
+  int bridges = 0;                     // moves through scrap from one contour of a run to the next
+  double bridge_length = 0;            // [mm]
   ProbeResult probe;
 };
 
@@ -32,7 +34,10 @@ struct ProgramCheck {
 // (holes before their outer contour, inner parts before the hole around them); moves that lie on
 // no contour (leads) stand only at the start and end of a run and are short; no lead comes closer
 // than the clearance to any other contour, and none touches its own contour before its end;
-// every pierce point lies in scrap; no feed move is made with the beam off.
+// every pierce point lies in scrap; no feed move is made with the beam off. A run may cut several
+// contours (chain cutting) joined by bridges: moves off the contours between a move on one contour
+// and a move on another, which must stay in scrap and keep the clearance from every other
+// contour (counted in `bridges`; a test of the standard technique expects none).
 ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, const ProgramCheckOptions& options);
 
 }  // namespace cutroute::test

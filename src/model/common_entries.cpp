@@ -44,6 +44,25 @@ Nest derived_nest(const Nest& nest, const CommonLinePlan& plan, std::vector<std:
   return d;
 }
 
+// The candidate's pieces: the segment's pieces from arc length s of its path, one way, for
+// `length` mm; its contour, arc length and direction those of the contour it enters.
+void set_pieces(EntryCandidate& c, const Nest& nest, const CommonSegment& seg, double s_mm, bool forward,
+                double length_mm) {
+  const auto pieces = pieces_along(seg, s_mm, forward, length_mm);
+  c.pieces.clear();
+  for (const auto& p : pieces) {
+    SegmentPiece sp;
+    sp.kind = p.connector() ? PieceKind::bridge : (p.stretch >= 0 ? PieceKind::common_edge : PieceKind::contour);
+    sp.contour = p.contour;
+    sp.path = p.path;
+    c.pieces.push_back(std::move(sp));
+  }
+  const EnteredContour entered = entered_contour(nest, pieces);
+  c.contour = entered.contour;
+  c.s_mm = entered.s_mm;
+  c.clockwise = entered.clockwise;
+}
+
 // Lead checks of trail ends against the original nest: every contour, the sheet border included.
 class TrailLeads {
  public:
@@ -68,10 +87,8 @@ class TrailLeads {
     for (double scale : {1.0, 0.5, 0.25}) {
       for (double turn : {0.0, kEighth, -kEighth}) {
         EntryCandidate c;
-        c.s_mm = forward ? 0.0 : geometry::length(t.path);
         c.point = e;
-        c.clockwise = forward;
-        c.path = path;
+        set_pieces(c, nest_, t, forward ? 0.0 : geometry::length(t.path), forward, geometry::length(t.path));
         const Vec2 back = geometry::rotated(-dir, turn);
         c.pierce = e + back * (full * scale);
         if (full > 0) c.lead_in.vertices = {Vertex{c.pierce, 0}, Vertex{e, 0}};
@@ -90,12 +107,11 @@ class TrailLeads {
   // Pierced on the trail's end itself (a junction with a line cut before, or no room for a lead).
   EntryCandidate on_line(const CommonSegment& t, bool forward, bool lead_out_at_far_end) const {
     EntryCandidate c;
-    c.path = forward ? t.path : geometry::reversed(t.path);
-    c.s_mm = forward ? 0.0 : geometry::length(t.path);
-    c.point = c.pierce = c.path.vertices.front().p;
-    c.clockwise = forward;
+    const Contour path = forward ? t.path : geometry::reversed(t.path);
+    set_pieces(c, nest_, t, forward ? 0.0 : geometry::length(t.path), forward, geometry::length(t.path));
+    c.point = c.pierce = path.vertices.front().p;
     c.fallback = Fallback::on_contour;
-    if (lead_out_at_far_end) c.lead_out = lead_out(c.path, t.contours);
+    if (lead_out_at_far_end) c.lead_out = lead_out(path, t.contours);
     return c;
   }
 
@@ -191,8 +207,17 @@ std::vector<std::vector<EntryCandidate>> plan_common_entries(const Nest& nest, c
     const std::size_t i = segment_of[d];
     auto& cands = out[i];
     cands = planner.candidates(ContourId(static_cast<std::int32_t>(d)), diagnostics);
-    const bool plain = plan.segments[i].kind == CommonSegmentKind::contour;
-    for (auto& c : cands) c.contour = plain ? plan.segments[i].contours.front() : ContourId();
+    const auto& seg = plan.segments[i];
+    const bool stored_cw = geometry::orientation(seg.path) == geometry::Orientation::cw;
+    for (auto& c : cands) {
+      if (seg.kind == CommonSegmentKind::contour) {
+        c.contour = c.pieces.front().contour = seg.contours.front();
+        continue;
+      }
+      // A loop: the planner's whole cut (with the overcut) as the pieces of the loop it passes.
+      const double s0 = geometry::closest_point(seg.path, c.point).length_along;
+      set_pieces(c, nest, seg, s0, c.clockwise == stored_cw, pieces_length(c));
+    }
   }
   const TrailLeads leads(nest, options);
   for (std::size_t i = 0; i < plan.segments.size(); ++i) {
@@ -218,12 +243,8 @@ std::vector<std::vector<EntryCandidate>> plan_common_entries(const Nest& nest, c
     if (out[i].empty()) {
       // Only when the derived nest dropped a loop (it never should): pierce on the path itself.
       EntryCandidate c;
-      c.path = plan.segments[i].path;
-      if (c.path.closed) {
-        c.path.closed = false;
-        c.path.vertices.push_back({c.path.vertices.front().p, 0});
-      }
-      c.point = c.pierce = c.path.vertices.front().p;
+      set_pieces(c, nest, plan.segments[i], 0.0, true, geometry::length(plan.segments[i].path));
+      c.point = c.pierce = plan.segments[i].path.vertices.front().p;
       c.fallback = Fallback::on_contour;
       out[i].push_back(std::move(c));
     }

@@ -1,5 +1,7 @@
 #include <cutroute/nc/build_toolpath.hpp>
 
+#include <algorithm>
+
 namespace cutroute::nc {
 
 std::string contour_label(const model::Nest& nest, model::ContourId id) {
@@ -31,7 +33,11 @@ Toolpath build_toolpath(const model::Nest& nest, const std::vector<const model::
       const std::string more = contour_label(nest, piece.contour);
       if (s.label.find(more) == std::string::npos) s.label += " + " + more;
     }
-    if (options.kerf == KerfMode::controller) {
+    // A common line (common_edge pieces, bridges across kerf gaps) is a centre line: cut without
+    // compensation, the kerf takes half from each part (or exactly the gap they were drawn apart).
+    const bool centre_line = std::none_of(e->pieces.begin(), e->pieces.end(),
+                                          [](const model::SegmentPiece& p) { return p.kind == model::PieceKind::contour; });
+    if (options.kerf == KerfMode::controller && !centre_line) {
       const auto role = nest.contours[e->contour].role;
       const bool scrap_left = role == model::ContourRole::outer ? e->clockwise : !e->clockwise;
       s.kerf = scrap_left ? KerfSide::left : KerfSide::right;

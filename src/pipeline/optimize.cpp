@@ -4,12 +4,14 @@
 #include <cmath>
 
 #include <cutroute/core/number_format.hpp>
+#include <cutroute/core/tolerances.hpp>
 #include <cutroute/core/units.hpp>
 #include <cutroute/cost/estimate.hpp>
 #include <cutroute/cost/machine_profile.hpp>
 #include <cutroute/cost/speed_table.hpp>
 #include <cutroute/io/inspect_report.hpp>
 #include <cutroute/model/chains.hpp>
+#include <cutroute/model/common_lines.hpp>
 #include <cutroute/model/cut_job.hpp>
 #include <cutroute/nc/frames.hpp>
 #include <cutroute/nc/post_dialect.hpp>
@@ -163,9 +165,7 @@ Result<model::CutJob> build_job(const model::Nest& nest, const model::EntryOptio
   switch (t) {
     case Technique::standard: return model::make_cut_job(nest, entries);
     case Technique::chain: return model::make_chain_job(nest, entries, o.chain);
-    case Technique::common:
-      // Hook for common-line cutting (model/common_lines, another branch): build its job here.
-      return make_error("common-line cutting is not available in this build");
+    case Technique::common: return model::make_common_job(nest, entries, model::CommonLineOptions{});
     case Technique::automatic: break;
   }
   return make_error("no cut job for technique 'auto'");
@@ -224,8 +224,11 @@ Result<Alternative> solve_alternative(const model::Nest& nest, const model::CutJ
         if (e.fallback != model::Fallback::none) continue;
         auto moved_e = other.entry_at(e.contour, e.s_mm, e.clockwise);
         if (!moved_e) continue;
-        // A multi-piece segment keeps its pieces and lead-out: only its lead-in changes.
+        // A multi-piece segment keeps its pieces and lead-out: only its lead-in changes, and only
+        // when the new one ends where its first piece starts (a common line's end may lie off
+        // the contour it is named after, in the middle of a kerf gap).
         if (model::is_multi_piece(e)) {
+          if (geometry::distance(moved_e->point, e.pieces.front().path.vertices.front().p) > tol::kSamePointMm) continue;
           e.lead_in = std::move(moved_e->lead_in);
           e.pierce = moved_e->pierce;
         } else {
@@ -289,8 +292,9 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
       alternatives.push_back({{"name", to_string(t)}, {"available", false}, {"reason", job.error().message}});
       continue;
     }
-    // A chain or common job that found nothing to join is the standard job again: not solved twice.
-    if (t != Technique::standard && o.technique == Technique::automatic && job->segments.size() == jobs.front().segments.size()) {
+    // A chain job that found nothing to join is the standard job again: not solved twice. (A
+    // common job always differs: without shared edges it is not built.)
+    if (t == Technique::chain && o.technique == Technique::automatic && job->segments.size() == jobs.front().segments.size()) {
       alternatives.push_back({{"name", to_string(t)}, {"available", false}, {"reason", "nothing to join: same basic segments as standard"}});
       continue;
     }

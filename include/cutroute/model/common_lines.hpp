@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <cutroute/core/diagnostic.hpp>
+#include <cutroute/core/result.hpp>
 #include <cutroute/core/tolerances.hpp>
 #include <cutroute/geometry/contour.hpp>
 #include <cutroute/model/cut_job.hpp>
@@ -16,6 +17,7 @@ namespace cutroute::model {
 struct CommonLineOptions {
   // Parts drawn this far apart share one cut on the centre line between them (the cut's width
   // removes exactly the gap); parts drawn touching (gap 0) share one cut on the common edge [mm].
+  // make_common_job() sets it from the job's kerf.
   double kerf_mm = 0.2;
   // Two edges run together when their distance equals 0 or kerf_mm within this at both ends of
   // the stretch (parallel lines, or arcs on concentric circles) [mm].
@@ -110,6 +112,11 @@ struct CommonLinePlan {
 // Contours of a nest without stretches come out as one contour segment each, in nest order.
 CommonLinePlan plan_common_lines(const Nest& nest, const CommonLineOptions& options);
 
+// The cut job of common-line cutting (one basic segment per loop, trail and untouched contour,
+// the plan's precedence, candidates from plan_common_entries()). The common lines are found with
+// the job's kerf (entries.kerf_mm). Error when no two parts share a stretch: nothing to cut once.
+Result<CutJob> make_common_job(const Nest& nest, const EntryOptions& entries, const CommonLineOptions& options);
+
 // The pieces a cut of the segment passes, starting at arc length s_mm of its path, along the path
 // (forward) or against it, for length_mm (on a closed segment it may wrap past s: the overcut).
 // Each piece is cut exactly where it lies on the way; empty pieces are left out.
@@ -131,8 +138,9 @@ EnteredContour entered_contour(const Nest& nest, const std::vector<CommonPiece>&
 // Trails: at each end that may be entered, a straight lead-in continuing the trail backwards
 // (else turned by ±45°, else shortened) whose pierce lies in scrap at `clearance` from every
 // contour and which touches no contour before its end; a lead-out continuing the trail past an
-// end on a loop. `contour` of each candidate: the nest contour for kind contour, invalid otherwise;
-// `clockwise` of a trail candidate: true when it is cut from its start to its end.
+// end on a loop. The candidates' pieces: contour pieces (own boundary), common_edge pieces (a
+// shared stretch, named after its first contour) and bridges (connectors across a kerf gap);
+// contour, s_mm and clockwise: those of the nest contour the cut enters (entered_contour()).
 std::vector<std::vector<EntryCandidate>> plan_common_entries(const Nest& nest, const CommonLinePlan& plan,
                                                              const EntryOptions& options, Diagnostics& diagnostics);
 

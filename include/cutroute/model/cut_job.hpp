@@ -84,8 +84,11 @@ struct EntryCandidate {
 const geometry::Contour& entry_path(const EntryCandidate& e);
 // Length of everything the candidate cuts between lead-in and lead-out [mm].
 double pieces_length(const EntryCandidate& e);
-// A candidate of more than one piece (a chain or a common-line segment): refinement leaves it alone.
-inline bool is_multi_piece(const EntryCandidate& e) { return e.pieces.size() > 1; }
+// A candidate of more than one piece (a chain or a common-line segment), or of one piece that is
+// not a whole contour (a single common line): refinement leaves it alone.
+inline bool is_multi_piece(const EntryCandidate& e) {
+  return e.pieces.size() > 1 || (!e.pieces.empty() && e.pieces.front().kind != PieceKind::contour);
+}
 
 // Where cutting this entry ends and the head lifts: end of the lead-out, else of the last piece,
 // else the pierce point [mm].

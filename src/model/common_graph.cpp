@@ -314,7 +314,8 @@ Vec2 sample_point(const Contour& c) {
   return geometry::segment(c, best).point_at(0.5);
 }
 
-// Step 5a: precedence by containment: each segment before the smallest closed segment around it.
+// Step 5a: precedence by containment: each segment before the smallest closed segment around its
+// sample point (and larger than it).
 void containment_precedence(CommonLinePlan& plan) {
   const auto& segs = plan.segments;
   std::vector<geometry::Box> boxes(segs.size());
@@ -334,7 +335,9 @@ void containment_precedence(CommonLinePlan& plan) {
     std::sort(hits.begin(), hits.end());
     int parent = -1;
     for (const auto h : hits) {
-      if (h == i || (parent >= 0 && area[h] >= area[static_cast<std::size_t>(parent)])) continue;
+      // A container is larger than what it holds: with contours that cross or overlap (allowed
+      // with a warning) each may hold a sample point of the other, and the order stays acyclic.
+      if (h == i || area[h] <= area[i] || (parent >= 0 && area[h] >= area[static_cast<std::size_t>(parent)])) continue;
       if (geometry::locate(segs[h].path, p, tol::kSamePointMm) == geometry::Location::inside) parent = static_cast<int>(h);
     }
     if (parent >= 0) plan.precedence.emplace_back(static_cast<std::int32_t>(i), parent);

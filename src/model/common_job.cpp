@@ -7,7 +7,7 @@ Result<CutJob> make_common_job(const Nest& nest, const EntryOptions& entries, co
   CommonLineOptions o = options;
   o.kerf_mm = entries.kerf_mm;
   CommonLinePlan plan = plan_common_lines(nest, o);
-  if (plan.stretches.empty()) return make_error("no two parts share an edge: nothing to cut once");
+  if (plan.stretches.empty()) return make_error("common-line cutting not available: no two parts share an edge");
   CutJob job;
   job.diagnostics = std::move(plan.diagnostics);
   auto candidates = plan_common_entries(nest, plan, entries, job.diagnostics);

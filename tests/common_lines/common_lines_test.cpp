@@ -479,6 +479,15 @@ TEST(CommonLines, EnteredContourAndDirection) {
   }
 }
 
+// Contours drawn crossing (cut anyway with --allow-crossing): each holds a sample point of the
+// other, yet the order stays acyclic (a container is always the larger one).
+TEST(CommonLines, CrossingContoursNoCycle) {
+  const Nest nest = make_nest({rect(0, 0, 100, 20), rect(40, -40, 60, 60), rect(200, 0, 300, 50), rect(300, 0, 400, 50)});
+  const auto plan = plan_common_lines(nest, CommonLineOptions{});
+  EXPECT_EQ(plan.stretches.size(), 1u);
+  closure(plan);
+}
+
 TEST(CommonLines, Deterministic) {
   const auto build = [] {
     return make_nest({rect(0, 0, 100, 60), rect(100, 0, 200, 60), rect(0, 60, 100, 120), rect(100, 60, 200, 120)});

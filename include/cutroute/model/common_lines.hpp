@@ -114,7 +114,7 @@ CommonLinePlan plan_common_lines(const Nest& nest, const CommonLineOptions& opti
 
 // The cut job of common-line cutting (one basic segment per loop, trail and untouched contour,
 // the plan's precedence, candidates from plan_common_entries()). The common lines are found with
-// the job's kerf (entries.kerf_mm). Error when no two parts share a stretch: nothing to cut once.
+// the job's kerf (entries.kerf_mm). Error ("not available") when no two parts share a stretch.
 Result<CutJob> make_common_job(const Nest& nest, const EntryOptions& entries, const CommonLineOptions& options);
 
 // The pieces a cut of the segment passes, starting at arc length s_mm of its path, along the path

@@ -308,7 +308,11 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   double solver_used = 0;  // [s]
   for (std::size_t k = 0; k < jobs.size(); ++k) {
     // The solver budget split evenly; whatever an earlier alternative did not use goes to the later ones.
-    const double budget = std::max(0.0, o.time_limit_s - solver_used) / static_cast<double>(jobs.size() - k);
+    // A solver that overran its share leaves the later ones a tenth of an even share, never 0
+    // (which the solver reads as "no limit"); no limit asked stays no limit.
+    const double n = static_cast<double>(jobs.size());
+    const double budget = o.time_limit_s <= 0 ? 0.0
+                          : std::max((o.time_limit_s - solver_used) / (n - static_cast<double>(k)), 0.1 * o.time_limit_s / n);
     auto alt = solve_alternative(nest, jobs[k], planner, s, o, budget, stop, progress);
     if (!alt) return alt.error();
     solver_used += alt->solution.stats.seconds;

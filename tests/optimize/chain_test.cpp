@@ -3,11 +3,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include <cutroute/cost/route_problem.hpp>
 #include <cutroute/geometry/shapes.hpp>
 #include <cutroute/model/chains.hpp>
 #include <cutroute/model/demo_nest.hpp>
+#include <cutroute/nc/build_toolpath.hpp>
+#include <cutroute/nc/gcode_writer.hpp>
+#include <cutroute/nc/post_dialect.hpp>
+
+#include "support/program_check.hpp"
 
 namespace cutroute::model {
 namespace {
@@ -145,6 +151,29 @@ TEST(Chains, RouteProblemChargesPiercesLeadsBridgesAndContours) {
   }
 }
 
+TEST(Chains, RunOfThreeAroundACorner) {
+  // A left of B, C below B, all 5 mm apart: B's lower left corner is near both, so one pierce can
+  // cut A, bridge to that corner, cut B, bridge down to C, cut C.
+  std::vector<SourceContour> cs{src(rect(0, 0, 50, 50)), src(rect(55, 0, 50, 50)), src(rect(55, -55, 50, 50))};
+  NestOptions no_sheet;
+  no_sheet.detect_sheet = false;
+  const Nest nest = build_nest(cs, no_sheet);
+  const ChainOptions opt;
+  const CutJob job = make_chain_job(nest, EntryOptions{}, opt);
+  ASSERT_EQ(job.segments.size(), 1u);
+  const auto& seg = job.segments[0];
+  ASSERT_EQ(seg.contours.size(), 3u);
+  ASSERT_FALSE(seg.candidates.empty());
+  for (const auto& e : seg.candidates) {
+    check_chain_candidate(nest, seg, e, opt.max_gap_mm);
+    EXPECT_EQ(e.pieces[2].contour, ContourId(1)) << "B is in the middle";
+  }
+  // Limited to pairs, the same nest gets one pair and one single contour.
+  ChainOptions pairs = opt;
+  pairs.max_contours = 2;
+  EXPECT_EQ(make_chain_job(nest, EntryOptions{}, pairs).segments.size(), 2u);
+}
+
 TEST(Chains, BridgeMustNotCrossAPartAndKeepsClearance) {
   // A and B 10 mm apart; C, a small part, sits in the gap near y = 20.
   std::vector<SourceContour> cs{src(rect(0, 0, 50, 50)), src(rect(60, 0, 50, 50)), src(rect(54, 18, 2, 4))};
@@ -202,6 +231,44 @@ TEST(Chains, NestedPartsChainOnlyWithPartsInTheSameHole) {
   std::sort(want.begin(), want.end());
   std::sort(got.begin(), got.end());
   EXPECT_EQ(got, want);
+}
+
+// The program check is the independent judge of chains: it accepts a bridge through scrap and
+// rejects one through a part, on the written G-code.
+TEST(Chains, ProgramCheckJudgesBridgesOnTheWrittenProgram) {
+  std::vector<SourceContour> cs{src(rect(0, 0, 50, 50)), src(rect(60, 0, 50, 50)), src(rect(54, 20, 2, 6))};
+  NestOptions no_sheet;
+  no_sheet.detect_sheet = false;
+  const Nest nest = build_nest(cs, no_sheet);
+  const EntryPlanner planner(nest, EntryOptions{});
+  const auto dialect = nc::find_post_dialect("generic");
+  ASSERT_TRUE(dialect.ok());
+  const auto program_with_bridge_to = [&](double y) {
+    // A entered at (50, 30) from outside, cut whole, bridge to (60, y), B cut whole; C alone.
+    const double s_a = planner.closest(ContourId(0), {50, 30}).first;
+    const double s_b = planner.closest(ContourId(1), {60, y}).first;
+    auto e = planner.entry_at(ContourId(0), s_a, true);
+    if (!e) throw std::runtime_error("no entry at (50, 30)");
+    e->pieces = {SegmentPiece{PieceKind::contour, ContourId(0), planner.whole_loop(ContourId(0), s_a, true, false)},
+                 SegmentPiece{PieceKind::bridge, ContourId(), Contour{{Vertex{{50, 30}, 0}, Vertex{{60, y}, 0}}, false}},
+                 SegmentPiece{PieceKind::contour, ContourId(1), planner.whole_loop(ContourId(1), s_b, true, true)}};
+    e->lead_out = planner.lead_out_at(ContourId(1), s_b, true);
+    Diagnostics diagnostics;
+    auto c = planner.candidates(ContourId(2), diagnostics);
+    const std::vector<const EntryCandidate*> seq{&c.front(), &*e};
+    return nc::write_gcode(nc::build_toolpath(nest, seq, nc::ToolpathOptions{}), *dialect, nc::GcodeWriteOptions{}).text;
+  };
+  test::ProgramCheckOptions opt;
+  opt.clearance_mm = 1.0;
+  const auto good = test::check_program(nest, program_with_bridge_to(30), opt);
+  EXPECT_TRUE(good.failures.empty()) << good.failures.front();
+  EXPECT_EQ(good.runs, 2);
+  EXPECT_EQ(good.bridges, 1);
+  EXPECT_NEAR(good.bridge_length, 10.0, 1e-3);
+  const auto bad = test::check_program(nest, program_with_bridge_to(18), opt);
+  bool said = false;
+  for (const auto& f : bad.failures) said |= f.find("bridge comes") != std::string::npos || f.find("bridge enters") != std::string::npos;
+  EXPECT_TRUE(said) << (bad.failures.empty() ? std::string("no failure") : bad.failures.front());
 }
 
 }  // namespace

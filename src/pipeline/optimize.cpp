@@ -158,11 +158,12 @@ nlohmann::json sequence_json(const model::Nest& nest, const std::vector<model::E
 using Clock = std::chrono::steady_clock;
 
 // The basic segments of one technique (SCCP); an error when the technique cannot be built here.
+// `standard`: the standard job when already built (other techniques start from its candidates).
 Result<model::CutJob> build_job(const model::Nest& nest, const model::EntryOptions& entries, const OptimizeOptions& o,
-                                Technique t) {
+                                Technique t, const model::CutJob* standard) {
   switch (t) {
     case Technique::standard: return model::make_cut_job(nest, entries);
-    case Technique::chain: return model::make_chain_job(nest, entries, o.chain);
+    case Technique::chain: return model::make_chain_job(nest, entries, o.chain, standard);
     case Technique::common:
       // Hook for common-line cutting (model/common_lines, another branch): build its job here.
       return make_error("common-line cutting is not available in this build");
@@ -283,7 +284,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   std::vector<std::size_t> slot;  // per built job: its place in `alternatives` (the order of `wanted`)
   auto alternatives = nlohmann::json::array();
   for (Technique t : wanted) {
-    auto job = build_job(nest, s.entries, o, t);
+    auto job = build_job(nest, s.entries, o, t, built.empty() || built.front() != Technique::standard ? nullptr : &jobs.front());
     if (!job) {
       if (o.technique != Technique::automatic) return job.error();
       alternatives.push_back({{"name", to_string(t)}, {"available", false}, {"reason", job.error().message}});

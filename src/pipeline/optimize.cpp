@@ -314,7 +314,16 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     const double n = static_cast<double>(jobs.size());
     const double budget = o.time_limit_s <= 0 ? 0.0
                           : std::max((o.time_limit_s - solver_used) / (n - static_cast<double>(k)), 0.1 * o.time_limit_s / n);
+    // After Ctrl-C the alternative solved so far is written; the others are not started.
+    if (best && stop.stop_requested()) {
+      alternatives[slot[k]] = {{"name", to_string(built[k])}, {"available", false}, {"reason", "not solved (interrupted)"}};
+      continue;
+    }
     auto alt = solve_alternative(nest, jobs[k], planner, s, o, budget, stop, progress);
+    if (!alt && best) {
+      alternatives[slot[k]] = {{"name", to_string(built[k])}, {"available", false}, {"reason", alt.error().message}};
+      continue;
+    }
     if (!alt) return alt.error();
     solver_used += alt->solution.stats.seconds;
     nlohmann::json j;

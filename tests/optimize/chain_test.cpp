@@ -9,6 +9,8 @@
 #include <cutroute/geometry/shapes.hpp>
 #include <cutroute/model/chains.hpp>
 #include <cutroute/model/demo_nest.hpp>
+
+#include "support/nest_facts.hpp"
 #include <cutroute/nc/build_toolpath.hpp>
 #include <cutroute/nc/gcode_writer.hpp>
 #include <cutroute/nc/post_dialect.hpp>
@@ -27,14 +29,14 @@ Contour rect(double x, double y, double w, double h) {
 }
 SourceContour src(Contour c) { return SourceContour{std::move(c), "0", {}, {}, {}}; }
 
-bool in_material(const Nest& nest, Vec2 p) {
-  int inside = 0;
-  for (const auto& c : nest.contours) {
-    if (c.role == ContourRole::sheet) continue;
-    inside += geometry::locate(c.source.contour, p, 1e-9) == geometry::Location::inside;
-  }
-  return inside % 2 == 1;
+// Small synthetic nests have no sheet border: none is looked for.
+Nest loose_nest(std::vector<SourceContour> cs) {
+  NestOptions no_sheet;
+  no_sheet.detect_sheet = false;
+  return build_nest(std::move(cs), no_sheet);
 }
+
+using test::in_material;
 
 // A chain candidate: pieces alternate contour, bridge, contour, ...; continuous; each contour
 // piece a whole loop of its contour; each bridge straight, in scrap, within the gap limit.
@@ -155,9 +157,7 @@ TEST(Chains, RunOfThreeAroundACorner) {
   // A left of B, C below B, all 5 mm apart: B's lower left corner is near both, so one pierce can
   // cut A, bridge to that corner, cut B, bridge down to C, cut C.
   std::vector<SourceContour> cs{src(rect(0, 0, 50, 50)), src(rect(55, 0, 50, 50)), src(rect(55, -55, 50, 50))};
-  NestOptions no_sheet;
-  no_sheet.detect_sheet = false;
-  const Nest nest = build_nest(cs, no_sheet);
+  const Nest nest = loose_nest(cs);
   const ChainOptions opt;
   const CutJob job = make_chain_job(nest, EntryOptions{}, opt);
   ASSERT_EQ(job.segments.size(), 1u);
@@ -177,9 +177,7 @@ TEST(Chains, RunOfThreeAroundACorner) {
 TEST(Chains, BridgeMustNotCrossAPartAndKeepsClearance) {
   // A and B 10 mm apart; C, a small part, sits in the gap near y = 20.
   std::vector<SourceContour> cs{src(rect(0, 0, 50, 50)), src(rect(60, 0, 50, 50)), src(rect(54, 18, 2, 4))};
-  NestOptions no_sheet;
-  no_sheet.detect_sheet = false;
-  const Nest nest = build_nest(cs, no_sheet);
+  const Nest nest = loose_nest(cs);
   const EntryPlanner planner(nest, EntryOptions{});
   const ContourId a(0), b(1);
   const auto line = [](Vec2 p, Vec2 q) { return Contour{{Vertex{p, 0}, Vertex{q, 0}}, false}; };
@@ -194,9 +192,7 @@ TEST(Chains, PrecedenceCycleIsDetected) {
   // P with hole H; Q lies inside H. A segment cutting Q and P together would need H both after
   // it (Q before H) and before it (H before P): no order exists.
   std::vector<SourceContour> cs{src(rect(0, 0, 100, 100)), src(rect(20, 20, 60, 60)), src(rect(40, 40, 20, 20))};
-  NestOptions no_sheet;
-  no_sheet.detect_sheet = false;
-  const Nest nest = build_nest(cs, no_sheet);
+  const Nest nest = loose_nest(cs);
   ASSERT_EQ(nest.contours[ContourId(2)].parent, ContourId(1));
   std::vector<BasicSegment> segs(2);
   segs[0].contours = {ContourId(0), ContourId(2)};
@@ -213,9 +209,7 @@ TEST(Chains, NestedPartsChainOnlyWithPartsInTheSameHole) {
   // Two parts 6 mm apart inside a big hole: they chain; neither chains with the frame around them.
   std::vector<SourceContour> cs{src(rect(0, 0, 300, 200)), src(rect(10, 10, 280, 180)), src(rect(20, 20, 100, 100)),
                                 src(rect(126, 20, 100, 100))};
-  NestOptions no_sheet;
-  no_sheet.detect_sheet = false;
-  const Nest nest = build_nest(cs, no_sheet);
+  const Nest nest = loose_nest(cs);
   const CutJob job = make_chain_job(nest, EntryOptions{}, ChainOptions{});
   ASSERT_EQ(job.segments.size(), 3u);
   int chain = -1, hole = -1, frame = -1;
@@ -237,9 +231,7 @@ TEST(Chains, NestedPartsChainOnlyWithPartsInTheSameHole) {
 // rejects one through a part, on the written G-code.
 TEST(Chains, ProgramCheckJudgesBridgesOnTheWrittenProgram) {
   std::vector<SourceContour> cs{src(rect(0, 0, 50, 50)), src(rect(60, 0, 50, 50)), src(rect(54, 20, 2, 6))};
-  NestOptions no_sheet;
-  no_sheet.detect_sheet = false;
-  const Nest nest = build_nest(cs, no_sheet);
+  const Nest nest = loose_nest(cs);
   const EntryPlanner planner(nest, EntryOptions{});
   const auto dialect = nc::find_post_dialect("generic");
   ASSERT_TRUE(dialect.ok());

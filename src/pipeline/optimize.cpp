@@ -172,6 +172,13 @@ Result<model::CutJob> build_job(const model::Nest& nest, const model::EntryOptio
   return make_error("no cut job for technique 'auto'");
 }
 
+// Does the job cut every contour on its own (nothing joined: the standard set again)?
+bool one_contour_each(const model::CutJob& job) {
+  for (const auto& seg : job.segments)
+    if (seg.contours.size() != 1 || seg.candidates.empty() || model::is_multi_piece(seg.candidates.front())) return false;
+  return true;
+}
+
 // One solved alternative: the route, its refinement and the program with the best lead type.
 struct Alternative {
   solve::Solution solution;
@@ -291,7 +298,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
       continue;
     }
     // A chain or common job that found nothing to join is the standard job again: not solved twice.
-    if (t != Technique::standard && o.technique == Technique::automatic && job->segments.size() == jobs.front().segments.size()) {
+    if (t != Technique::standard && o.technique == Technique::automatic && one_contour_each(*job)) {
       alternatives.push_back({{"name", to_string(t)}, {"available", false}, {"reason", "nothing to join: same basic segments as standard"}});
       continue;
     }

@@ -111,6 +111,17 @@ std::vector<std::pair<std::string, std::string>> report_summary(const nlohmann::
                                                       format_fixed(b.value("pierce", 0.0), 1) + " s");
   }
   rows.emplace_back("lead-in", str("lead_in"));
+  // GSCCP: each set of basic segments compared, the chosen one first named.
+  if (r.contains("alternatives") && r["alternatives"].is_array()) {
+    std::string alts;
+    for (const auto& a : r["alternatives"]) {
+      if (!a.is_object() || !a.value("available", false)) continue;
+      if (!alts.empty()) alts += "; ";
+      alts += a.value("name", std::string("?")) + " " + std::to_string(a.value("pierces", 0)) + " pierces " +
+              format_fixed(a.value("t_cut_s", 0.0), 2) + " s";
+    }
+    rows.emplace_back("technique", str("chosen") + (alts.empty() ? "" : " (" + alts + ")"));
+  }
   if (r.contains("solver")) {
     const auto& sv = r["solver"];
     rows.emplace_back("solver", sv.value("name", std::string("-")) + ", " + sv.value("status", std::string("-")));

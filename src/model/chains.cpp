@@ -210,8 +210,11 @@ std::vector<ChainLink> chain_links(const Nest& nest, const ChainOptions& options
   return out;
 }
 
-CutJob make_chain_job(const Nest& nest, const EntryOptions& entries, const ChainOptions& options) {
-  CutJob base = make_cut_job(nest, entries);
+CutJob make_chain_job(const Nest& nest, const EntryOptions& entries, const ChainOptions& options,
+                      const CutJob* standard) {
+  CutJob own;
+  if (!standard) own = make_cut_job(nest, entries);
+  const CutJob& base = standard ? *standard : own;
   const EntryPlanner planner(nest, entries);
   std::vector<std::int32_t> seg_of(nest.contours.size(), -1);
   for (std::size_t k = 0; k < base.segments.size(); ++k) seg_of[base.segments[k].contours[0].index()] = static_cast<std::int32_t>(k);

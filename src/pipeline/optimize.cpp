@@ -160,15 +160,23 @@ nlohmann::json sequence_json(const model::Nest& nest, const std::vector<model::E
 using Clock = std::chrono::steady_clock;
 
 // The basic segments of one technique (SCCP); an error when the technique cannot be built here.
+// `standard`: the standard job when already built (other techniques start from its candidates).
 Result<model::CutJob> build_job(const model::Nest& nest, const model::EntryOptions& entries, const OptimizeOptions& o,
-                                Technique t) {
+                                Technique t, const model::CutJob* standard) {
   switch (t) {
     case Technique::standard: return model::make_cut_job(nest, entries);
-    case Technique::chain: return model::make_chain_job(nest, entries, o.chain);
+    case Technique::chain: return model::make_chain_job(nest, entries, o.chain, standard);
     case Technique::common: return model::make_common_job(nest, entries, model::CommonLineOptions{});
     case Technique::automatic: break;
   }
   return make_error("no cut job for technique 'auto'");
+}
+
+// Does the job cut every contour on its own (nothing joined: the standard set again)?
+bool one_contour_each(const model::CutJob& job) {
+  for (const auto& seg : job.segments)
+    if (seg.contours.size() != 1 || seg.candidates.empty() || model::is_multi_piece(seg.candidates.front())) return false;
+  return true;
 }
 
 // One solved alternative: the route, its refinement and the program with the best lead type.
@@ -286,15 +294,14 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   std::vector<std::size_t> slot;  // per built job: its place in `alternatives` (the order of `wanted`)
   auto alternatives = nlohmann::json::array();
   for (Technique t : wanted) {
-    auto job = build_job(nest, s.entries, o, t);
+    auto job = build_job(nest, s.entries, o, t, built.empty() || built.front() != Technique::standard ? nullptr : &jobs.front());
     if (!job) {
       if (o.technique != Technique::automatic) return job.error();
       alternatives.push_back({{"name", to_string(t)}, {"available", false}, {"reason", job.error().message}});
       continue;
     }
-    // A chain job that found nothing to join is the standard job again: not solved twice. (A
-    // common job always differs: without shared edges it is not built.)
-    if (t == Technique::chain && o.technique == Technique::automatic && job->segments.size() == jobs.front().segments.size()) {
+    // A chain or common job that found nothing to join is the standard job again: not solved twice.
+    if (t != Technique::standard && o.technique == Technique::automatic && one_contour_each(*job)) {
       alternatives.push_back({{"name", to_string(t)}, {"available", false}, {"reason", "nothing to join: same basic segments as standard"}});
       continue;
     }
@@ -312,8 +319,21 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   double solver_used = 0;  // [s]
   for (std::size_t k = 0; k < jobs.size(); ++k) {
     // The solver budget split evenly; whatever an earlier alternative did not use goes to the later ones.
-    const double budget = std::max(0.0, o.time_limit_s - solver_used) / static_cast<double>(jobs.size() - k);
+    // A solver that overran its share leaves the later ones a tenth of an even share, never 0
+    // (which the solver reads as "no limit"); no limit asked stays no limit.
+    const double n = static_cast<double>(jobs.size());
+    const double budget = o.time_limit_s <= 0 ? 0.0
+                          : std::max((o.time_limit_s - solver_used) / (n - static_cast<double>(k)), 0.1 * o.time_limit_s / n);
+    // After Ctrl-C the alternative solved so far is written; the others are not started.
+    if (best && stop.stop_requested()) {
+      alternatives[slot[k]] = {{"name", to_string(built[k])}, {"available", false}, {"reason", "not solved (interrupted)"}};
+      continue;
+    }
     auto alt = solve_alternative(nest, jobs[k], planner, s, o, budget, stop, progress);
+    if (!alt && best) {
+      alternatives[slot[k]] = {{"name", to_string(built[k])}, {"available", false}, {"reason", alt.error().message}};
+      continue;
+    }
     if (!alt) return alt.error();
     solver_used += alt->solution.stats.seconds;
     nlohmann::json j;

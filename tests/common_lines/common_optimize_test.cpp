@@ -13,7 +13,7 @@
 #include <cutroute/geometry/shapes.hpp>
 #include <cutroute/io/nest_loader.hpp>
 
-#include "common_program_check.hpp"
+#include "support/common_program_check.hpp"
 #include "support/dxf_builder.hpp"
 #include "support/files.hpp"
 #include "support/paths.hpp"

@@ -6,7 +6,7 @@
 
 #include <cutroute/geometry/shapes.hpp>
 
-#include "common_program_check.hpp"
+#include "support/common_program_check.hpp"
 
 namespace cutroute::test {
 namespace {

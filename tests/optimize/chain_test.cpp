@@ -3,11 +3,19 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include <cutroute/cost/route_problem.hpp>
 #include <cutroute/geometry/shapes.hpp>
 #include <cutroute/model/chains.hpp>
 #include <cutroute/model/demo_nest.hpp>
+
+#include "support/nest_facts.hpp"
+#include <cutroute/nc/build_toolpath.hpp>
+#include <cutroute/nc/gcode_writer.hpp>
+#include <cutroute/nc/post_dialect.hpp>
+
+#include "support/program_check.hpp"
 
 namespace cutroute::model {
 namespace {
@@ -21,14 +29,14 @@ Contour rect(double x, double y, double w, double h) {
 }
 SourceContour src(Contour c) { return SourceContour{std::move(c), "0", {}, {}, {}}; }
 
-bool in_material(const Nest& nest, Vec2 p) {
-  int inside = 0;
-  for (const auto& c : nest.contours) {
-    if (c.role == ContourRole::sheet) continue;
-    inside += geometry::locate(c.source.contour, p, 1e-9) == geometry::Location::inside;
-  }
-  return inside % 2 == 1;
+// Small synthetic nests have no sheet border: none is looked for.
+Nest loose_nest(std::vector<SourceContour> cs) {
+  NestOptions no_sheet;
+  no_sheet.detect_sheet = false;
+  return build_nest(std::move(cs), no_sheet);
 }
+
+using test::in_material;
 
 // A chain candidate: pieces alternate contour, bridge, contour, ...; continuous; each contour
 // piece a whole loop of its contour; each bridge straight, in scrap, within the gap limit.
@@ -145,12 +153,31 @@ TEST(Chains, RouteProblemChargesPiercesLeadsBridgesAndContours) {
   }
 }
 
+TEST(Chains, RunOfThreeAroundACorner) {
+  // A left of B, C below B, all 5 mm apart: B's lower left corner is near both, so one pierce can
+  // cut A, bridge to that corner, cut B, bridge down to C, cut C.
+  std::vector<SourceContour> cs{src(rect(0, 0, 50, 50)), src(rect(55, 0, 50, 50)), src(rect(55, -55, 50, 50))};
+  const Nest nest = loose_nest(cs);
+  const ChainOptions opt;
+  const CutJob job = make_chain_job(nest, EntryOptions{}, opt);
+  ASSERT_EQ(job.segments.size(), 1u);
+  const auto& seg = job.segments[0];
+  ASSERT_EQ(seg.contours.size(), 3u);
+  ASSERT_FALSE(seg.candidates.empty());
+  for (const auto& e : seg.candidates) {
+    check_chain_candidate(nest, seg, e, opt.max_gap_mm);
+    EXPECT_EQ(e.pieces[2].contour, ContourId(1)) << "B is in the middle";
+  }
+  // Limited to pairs, the same nest gets one pair and one single contour.
+  ChainOptions pairs = opt;
+  pairs.max_contours = 2;
+  EXPECT_EQ(make_chain_job(nest, EntryOptions{}, pairs).segments.size(), 2u);
+}
+
 TEST(Chains, BridgeMustNotCrossAPartAndKeepsClearance) {
   // A and B 10 mm apart; C, a small part, sits in the gap near y = 20.
   std::vector<SourceContour> cs{src(rect(0, 0, 50, 50)), src(rect(60, 0, 50, 50)), src(rect(54, 18, 2, 4))};
-  NestOptions no_sheet;
-  no_sheet.detect_sheet = false;
-  const Nest nest = build_nest(cs, no_sheet);
+  const Nest nest = loose_nest(cs);
   const EntryPlanner planner(nest, EntryOptions{});
   const ContourId a(0), b(1);
   const auto line = [](Vec2 p, Vec2 q) { return Contour{{Vertex{p, 0}, Vertex{q, 0}}, false}; };
@@ -165,9 +192,7 @@ TEST(Chains, PrecedenceCycleIsDetected) {
   // P with hole H; Q lies inside H. A segment cutting Q and P together would need H both after
   // it (Q before H) and before it (H before P): no order exists.
   std::vector<SourceContour> cs{src(rect(0, 0, 100, 100)), src(rect(20, 20, 60, 60)), src(rect(40, 40, 20, 20))};
-  NestOptions no_sheet;
-  no_sheet.detect_sheet = false;
-  const Nest nest = build_nest(cs, no_sheet);
+  const Nest nest = loose_nest(cs);
   ASSERT_EQ(nest.contours[ContourId(2)].parent, ContourId(1));
   std::vector<BasicSegment> segs(2);
   segs[0].contours = {ContourId(0), ContourId(2)};
@@ -184,9 +209,7 @@ TEST(Chains, NestedPartsChainOnlyWithPartsInTheSameHole) {
   // Two parts 6 mm apart inside a big hole: they chain; neither chains with the frame around them.
   std::vector<SourceContour> cs{src(rect(0, 0, 300, 200)), src(rect(10, 10, 280, 180)), src(rect(20, 20, 100, 100)),
                                 src(rect(126, 20, 100, 100))};
-  NestOptions no_sheet;
-  no_sheet.detect_sheet = false;
-  const Nest nest = build_nest(cs, no_sheet);
+  const Nest nest = loose_nest(cs);
   const CutJob job = make_chain_job(nest, EntryOptions{}, ChainOptions{});
   ASSERT_EQ(job.segments.size(), 3u);
   int chain = -1, hole = -1, frame = -1;
@@ -202,6 +225,42 @@ TEST(Chains, NestedPartsChainOnlyWithPartsInTheSameHole) {
   std::sort(want.begin(), want.end());
   std::sort(got.begin(), got.end());
   EXPECT_EQ(got, want);
+}
+
+// The program check is the independent judge of chains: it accepts a bridge through scrap and
+// rejects one through a part, on the written G-code.
+TEST(Chains, ProgramCheckJudgesBridgesOnTheWrittenProgram) {
+  std::vector<SourceContour> cs{src(rect(0, 0, 50, 50)), src(rect(60, 0, 50, 50)), src(rect(54, 20, 2, 6))};
+  const Nest nest = loose_nest(cs);
+  const EntryPlanner planner(nest, EntryOptions{});
+  const auto dialect = nc::find_post_dialect("generic");
+  ASSERT_TRUE(dialect.ok());
+  const auto program_with_bridge_to = [&](double y) {
+    // A entered at (50, 30) from outside, cut whole, bridge to (60, y), B cut whole; C alone.
+    const double s_a = planner.closest(ContourId(0), {50, 30}).first;
+    const double s_b = planner.closest(ContourId(1), {60, y}).first;
+    auto e = planner.entry_at(ContourId(0), s_a, true);
+    if (!e) throw std::runtime_error("no entry at (50, 30)");
+    e->pieces = {SegmentPiece{PieceKind::contour, ContourId(0), planner.whole_loop(ContourId(0), s_a, true, false)},
+                 SegmentPiece{PieceKind::bridge, ContourId(), Contour{{Vertex{{50, 30}, 0}, Vertex{{60, y}, 0}}, false}},
+                 SegmentPiece{PieceKind::contour, ContourId(1), planner.whole_loop(ContourId(1), s_b, true, true)}};
+    e->lead_out = planner.lead_out_at(ContourId(1), s_b, true);
+    Diagnostics diagnostics;
+    auto c = planner.candidates(ContourId(2), diagnostics);
+    const std::vector<const EntryCandidate*> seq{&c.front(), &*e};
+    return nc::write_gcode(nc::build_toolpath(nest, seq, nc::ToolpathOptions{}), *dialect, nc::GcodeWriteOptions{}).text;
+  };
+  test::ProgramCheckOptions opt;
+  opt.clearance_mm = 1.0;
+  const auto good = test::check_program(nest, program_with_bridge_to(30), opt);
+  EXPECT_TRUE(good.failures.empty()) << good.failures.front();
+  EXPECT_EQ(good.runs, 2);
+  EXPECT_EQ(good.bridges, 1);
+  EXPECT_NEAR(good.bridge_length, 10.0, 1e-3);
+  const auto bad = test::check_program(nest, program_with_bridge_to(18), opt);
+  bool said = false;
+  for (const auto& f : bad.failures) said |= f.find("bridge comes") != std::string::npos || f.find("bridge enters") != std::string::npos;
+  EXPECT_TRUE(said) << (bad.failures.empty() ? std::string("no failure") : bad.failures.front());
 }
 
 }  // namespace

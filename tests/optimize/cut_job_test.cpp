@@ -8,6 +8,8 @@
 #include <cutroute/model/cut_job.hpp>
 #include <cutroute/model/demo_nest.hpp>
 
+#include "support/nest_facts.hpp"
+
 namespace cutroute::model {
 namespace {
 
@@ -35,15 +37,7 @@ double sampled_distance(const Contour& path, const Contour& other) {
   return best;
 }
 
-// Is p inside material: inside an odd number of the nest's part contours.
-bool in_material(const Nest& nest, Vec2 p) {
-  int inside = 0;
-  for (const auto& c : nest.contours) {
-    if (c.role == ContourRole::sheet) continue;
-    inside += geometry::locate(c.source.contour, p, 1e-9) == geometry::Location::inside;
-  }
-  return inside % 2 == 1;
-}
+using test::in_material;
 
 void check_job(const Nest& nest, const CutJob& job, const EntryOptions& opt) {
   const double clearance = opt.clearance_mm >= 0 ? opt.clearance_mm : opt.kerf_mm + 1;

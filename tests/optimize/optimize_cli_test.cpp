@@ -11,6 +11,7 @@
 
 #include <cutroute/io/nest_loader.hpp>
 
+#include "support/common_program_check.hpp"
 #include "support/paths.hpp"
 #include "support/program_check.hpp"
 
@@ -58,6 +59,17 @@ OptRun optimize(const std::string& dxf, const fs::path& dir, const std::string& 
 void expect_admissible(const std::string& dxf, const OptRun& run) {
   auto loaded = io::load_nest(dxf, io::NestLoadOptions{});
   ASSERT_TRUE(loaded.ok());
+  if (run.report["chosen"] == "common") {
+    // Shared edges are cut once, so contours are cut in pieces: the common-line checker (every
+    // boundary point cut, holes and shared lines first, pierces and leads in scrap). 0.1 mm: half
+    // the kerf of parts drawn kerf apart, plus rounding.
+    const auto check = check_common_program(loaded->nest, run.program, 0.1);
+    for (const auto& f : check.failures) ADD_FAILURE() << dxf << ": " << f;
+    EXPECT_EQ(check.runs, run.report["basic_segments"].get<int>());
+    EXPECT_EQ(run.report["pierces"].get<int>(), check.probe.pierces);
+    EXPECT_NEAR(run.report["cut_length_mm"].get<double>(), check.probe.cut_length, 1e-6 * check.probe.cut_length + 1e-6);
+    return;
+  }
   ProgramCheckOptions opt;
   opt.clearance_mm = 1.0;  // kerf 0.15 + 1 mm for the default AMg3M 1 mm job
   const auto check = check_program(loaded->nest, run.program, opt);

@@ -9,8 +9,8 @@ namespace cutroute::model {
 
 struct ChainOptions {
   // Outer contours of different parts whose boundaries come closer than this may be chained [mm].
-  // 20 mm: a bridge that long costs about as much cutting time as the pierce it saves on thin
-  // sheet (1 mm aluminium: 0.3 s pierce at 50-100 mm/s); longer bridges rarely pay.
+  // 20 mm: a bridge that long costs about as much cutting time as the pierce and lead pair it
+  // saves on thin sheet (1 mm aluminium: 0.3 s pierce at ~75 mm/s); longer bridges rarely pay.
   double max_gap_mm = 20.0;
   int max_contours = 3;      // longest run of contours in one chain
   int max_candidates = 12;   // per chain (bridge positions x orders)
@@ -36,7 +36,9 @@ std::vector<ChainLink> chain_links(const Nest& nest, const ChainOptions& options
 // Candidates: entries of the first contour near the second (the planner's corners and points
 // where the contours are closest), in both orders of the run. A run that gets no admissible
 // candidate is shortened (then dropped); a chain that would make the precedence cyclic is
-// dropped. Standard segments for all contours left.
-CutJob make_chain_job(const Nest& nest, const EntryOptions& entries, const ChainOptions& options);
+// dropped. Standard segments for all contours left. `standard`: the standard job of the same nest
+// and entry options when the caller has it already (saves building it again).
+CutJob make_chain_job(const Nest& nest, const EntryOptions& entries, const ChainOptions& options,
+                      const CutJob* standard = nullptr);
 
 }  // namespace cutroute::model

@@ -32,7 +32,7 @@ struct OptimizeOptions {
   std::optional<double> thickness_mm;        // [mm]
   bool interpolate = false;                  // thickness between Table 1 rows
   cost::Objective objective = cost::Objective::time;
-  double time_limit_s = 10.0;                // solver wall-clock budget [s]
+  double time_limit_s = 10.0;                // solver wall-clock budget [s], shared by the techniques compared
   std::uint64_t seed = 1;
   int threads = 0;                           // 0: hardware threads (at most 8)
   solve::SolverKind solver = solve::SolverKind::automatic;

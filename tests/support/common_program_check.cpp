@@ -1,4 +1,4 @@
-#include "common_program_check.hpp"
+#include "support/common_program_check.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include <cutroute/geometry/contour.hpp>
+#include <cutroute/geometry/spatial_index.hpp>
 
 namespace cutroute::test {
 namespace {
@@ -64,19 +65,33 @@ CommonProgramCheck check_common_program(const model::Nest& nest, const std::stri
   if (!out.probe.ended) out.failures.push_back("no program end (M2/M30)");
 
   std::vector<const model::NestContour*> parts;
+  std::vector<geometry::Box> part_boxes;
   for (const auto& c : nest.contours)
-    if (c.role != model::ContourRole::sheet) parts.push_back(&c);
+    if (c.role != model::ContourRole::sheet) {
+      parts.push_back(&c);
+      part_boxes.push_back(c.box);
+    }
+  const geometry::StaticSpatialIndex part_index(part_boxes);
+  std::vector<std::uint32_t> hits;
+  // Contours within d of q (box prefilter, then the exact distance), in index order.
+  const auto near_parts = [&](Vec2 q, double d) {
+    part_index.query(geometry::Box{q.x, q.y, q.x, q.y}.inflated(d), hits);
+    std::sort(hits.begin(), hits.end());
+    std::vector<std::size_t> found;
+    for (const auto h : hits)
+      if (geometry::distance(parts[h]->source.contour, q) <= d) found.push_back(h);
+    return found;
+  };
   const auto on_boundary = [&](Vec2 q, std::size_t& which) {
-    for (std::size_t k = 0; k < parts.size(); ++k)
-      if (geometry::distance(parts[k]->source.contour, q) <= on_mm) {
-        which = k;
-        return true;
-      }
-    return false;
+    const auto n = near_parts(q, on_mm);
+    if (n.empty()) return false;
+    which = n.front();
+    return true;
   };
   const auto in_material = [&](Vec2 q) {
+    part_index.query(geometry::Box{q.x, q.y, q.x, q.y}, hits);
     int inside = 0;
-    for (const auto* c : parts) inside += geometry::locate(c->source.contour, q, 1e-9) == geometry::Location::inside;
+    for (const auto h : hits) inside += geometry::locate(parts[h]->source.contour, q, 1e-9) == geometry::Location::inside;
     return inside % 2 == 1;
   };
 
@@ -121,7 +136,21 @@ CommonProgramCheck check_common_program(const model::Nest& nest, const std::stri
     }
   }
 
-  // When is each boundary point first cut? (Index into `cuts`.)
+  // When is each boundary point first cut? (Index into `cuts`; moves found through their boxes.)
+  std::vector<geometry::Box> move_boxes;
+  for (const auto c : cuts) {
+    const auto& m = moves[c];
+    geometry::Box b;
+    for (int j = 0; j <= 16; ++j) {
+      Vec2 q;
+      probe_point(m, j / 16.0, q.x, q.y);
+      b.add(q);
+    }
+    // Between two of these points an arc (sweep up to 360°) strays by less than 5 % of their
+    // distance along it (the sagitta of 22.5°): the margin.
+    move_boxes.push_back(b.inflated(on_mm + 0.05 * m.length / 16.0));
+  }
+  const geometry::StaticSpatialIndex move_index(move_boxes);
   std::vector<std::vector<Vec2>> samples(parts.size());
   std::vector<std::vector<std::size_t>> cut_at(parts.size());
   std::vector<std::size_t> done(parts.size(), 0);
@@ -129,8 +158,10 @@ CommonProgramCheck check_common_program(const model::Nest& nest, const std::stri
     samples[k] = boundary_samples(parts[k]->source.contour, 0.5);
     for (const Vec2 q : samples[k]) {
       std::size_t first = cuts.size();
-      for (std::size_t c = 0; c < cuts.size() && first == cuts.size(); ++c)
-        if (move_distance(moves[cuts[c]], q) <= on_mm) first = c;
+      move_index.visit(geometry::Box{q.x, q.y, q.x, q.y}, [&](std::uint32_t c) {
+        if (c < first && move_distance(moves[cuts[c]], q) <= on_mm) first = c;
+        return true;
+      });
       if (first == cuts.size()) {
         out.failures.push_back("contour " + std::to_string(k + 1) + ": boundary point (" + std::to_string(q.x) + ", " +
                                std::to_string(q.y) + ") is never cut");
@@ -159,8 +190,8 @@ CommonProgramCheck check_common_program(const model::Nest& nest, const std::stri
   for (std::size_t k = 0; k < parts.size(); ++k) {
     shared[k].assign(samples[k].size(), 0);
     for (std::size_t s = 0; s < samples[k].size(); ++s)
-      for (std::size_t o = 0; o < parts.size(); ++o)
-        if (o != k && geometry::distance(parts[o]->source.contour, samples[k][s]) <= 2 * on_mm + 1e-9) {
+      for (const std::size_t o : near_parts(samples[k][s], 2 * on_mm + 1e-9))
+        if (o != k) {
           shared[k][s] = 1;
           uf.p[uf.find(k)] = uf.find(o);
         }

@@ -40,6 +40,8 @@ struct Opts {
   bool quiet = false;
   bool allow_crossing = false;
   bool allow_kerf_overlap = false;
+  std::string technique = "auto";
+  double chain_gap = 20;
   InputOptions input;
 };
 
@@ -120,6 +122,11 @@ int run(const Opts& o) {
   po.dialect = o.dialect;
   po.entry_step_mm = o.entry_step;
   po.allow_crossing = o.allow_crossing;
+  po.technique = o.technique == "standard" ? pipeline::Technique::standard
+                 : o.technique == "chain"  ? pipeline::Technique::chain
+                 : o.technique == "common" ? pipeline::Technique::common
+                                           : pipeline::Technique::automatic;
+  po.chain.max_gap_mm = o.chain_gap;
 
   // Output paths: one nest -> -o is the program file; several -> -o is a folder for all outputs.
   const bool batch = o.nests.size() > 1;
@@ -195,7 +202,8 @@ int run(const Opts& o) {
                     format_fixed(r["rapid_length_mm"].get<double>(), 1) + " mm, " +
                     std::to_string(r["frames"].get<std::size_t>()) + " frames, T_cut " +
                     format_fixed(r["t_cut_s"].get<double>(), 2) + " s (" +
-                    format_fixed(r["t_cut_const_speed_s"].get<double>(), 2) + " s at the set speed) -> " + outs[i].program;
+                    format_fixed(r["t_cut_const_speed_s"].get<double>(), 2) + " s at the set speed), technique " +
+                    r["chosen"].get<std::string>() + " -> " + outs[i].program;
     }
   };
   std::vector<std::thread> pool;
@@ -231,7 +239,7 @@ void add_optimize(CLI::App& root, Commands& out) {
   app->add_option("--machine", o->machine, "Machine profile JSON (default: the built-in ByStar 3015-class laser)");
   app->add_flag("--interpolate", o->interpolate, "Interpolate speeds between Table 1 thicknesses");
   app->add_option("--objective", o->objective, "time (eq. 10) or cost (eq. 3)")->check(CLI::IsMember({"time", "cost"}));
-  app->add_option("--time-limit", o->time_limit, "Solver time limit [s]")->check(CLI::Range(0.0, 86400.0))->capture_default_str();
+  app->add_option("--time-limit", o->time_limit, "Solver time limit [s], shared by the techniques compared with --technique auto")->check(CLI::Range(0.0, 86400.0))->capture_default_str();
   app->add_option("--seed", o->seed, "Random seed: same seed, input and options give identical outputs")->capture_default_str();
   app->add_option("--threads", o->threads, "Solver threads (0: all cores)")->check(CLI::Range(0, 64));
   app->add_option("--solver", o->solver, "auto, exact or heuristic")->check(CLI::IsMember({"auto", "exact", "heuristic"}));
@@ -248,6 +256,14 @@ void add_optimize(CLI::App& root, Commands& out) {
                 "Cut a drawing whose contours cross each other (each contour once, with warnings)");
   app->add_flag("--allow-kerf-overlap", o->allow_kerf_overlap,
                 "With --kerf-mode cam, cut contours closer than the kerf anyway (one cuts into the other; warnings)");
+  app->add_option("--technique", o->technique,
+                  "Basic segments: standard (one per contour), chain (neighbouring parts joined by bridges), "
+                  "common (shared edges cut once), auto (each available one solved, the fastest kept)")
+      ->check(CLI::IsMember({"standard", "chain", "common", "auto"}))
+      ->capture_default_str();
+  app->add_option("--chain-gap", o->chain_gap, "Chain cutting: largest gap between parts bridged [mm]")
+      ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str();
   app->add_flag("-q,--quiet", o->quiet, "No progress and no summary");
   add_input_options(app, o->input);
   out.push_back({app, [o] { return run(*o); }});

@@ -37,17 +37,17 @@ Result<RouteProblem> build_route_problem(const model::CutJob& job, const RoutePr
   rp.tool_off.push_back(options.start);
   std::vector<solve::Cost> inner{0};
   std::vector<std::vector<solve::NodeId>> clusters{{solve::NodeId(0)}};
-  for (std::size_t c = 0; c < job.contours.size(); ++c) {
+  for (std::size_t c = 0; c < job.segments.size(); ++c) {
     std::vector<solve::NodeId> members;
-    const auto& cands = job.contours[c].candidates;
-    if (cands.empty()) return make_error("contour " + std::to_string(c + 1) + " has no entry candidate");
+    const auto& cands = job.segments[c].candidates;
+    if (cands.empty()) return make_error("basic segment " + std::to_string(c + 1) + " has no entry candidate");
     for (std::size_t k = 0; k < cands.size(); ++k) {
       const auto& e = cands[k];
       members.emplace_back(static_cast<std::int32_t>(rp.nodes.size()));
       rp.nodes.push_back({static_cast<std::int32_t>(c), static_cast<std::int32_t>(k)});
       rp.pierce.push_back(e.pierce);
       rp.tool_off.push_back(model::tool_off_point(e));
-      const double cut_mm = geometry::length(e.lead_in) + geometry::length(e.path) + geometry::length(e.lead_out);
+      const double cut_mm = geometry::length(e.lead_in) + model::pieces_length(e) + geometry::length(e.lead_out);
       inner.push_back(to_ticks(prices.cut_price(cut_mm) + prices.pierce_price()));
     }
     clusters.push_back(std::move(members));
@@ -93,8 +93,8 @@ std::vector<const model::EntryCandidate*> route_entries(const model::CutJob& job
   out.reserve(route.size());
   for (auto v : route) {
     const auto& node = rp.nodes[v.index()];
-    if (node.contour < 0) continue;
-    out.push_back(&job.contours[static_cast<std::size_t>(node.contour)].candidates[static_cast<std::size_t>(node.candidate)]);
+    if (node.segment < 0) continue;
+    out.push_back(&job.segments[static_cast<std::size_t>(node.segment)].candidates[static_cast<std::size_t>(node.candidate)]);
   }
   return out;
 }

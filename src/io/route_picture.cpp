@@ -54,8 +54,12 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
     svg.add_line(at, s.pierce, std::string("fill=\"none\" stroke=\"#2f6fdf\" stroke-width=\"1\" stroke-dasharray=\"5 4\" ") + kNs);
     for (const auto& piece : s.pieces) {
       const bool lead = piece.role == nc::PieceRole::lead_in || piece.role == nc::PieceRole::lead_out;
-      svg.add_contour(piece.path, std::string("fill=\"none\" stroke=\"") + (lead ? "#1a9c3a" : "#c0392b") +
-                                      "\" stroke-width=\"" + (lead ? "1.5" : "1.6") + "\" " + kNs);
+      const bool bridge = piece.role == nc::PieceRole::bridge;
+      // Bridges (chain cutting) drawn thicker in violet: a cut through scrap that is easy to miss.
+      const char* colour = lead ? "#1a9c3a" : bridge ? "#8e44ad" : "#c0392b";
+      const char* width = lead ? "1.5" : bridge ? "2.4" : "1.6";
+      svg.add_contour(piece.path, std::string("fill=\"none\" stroke=\"") + colour + "\" stroke-width=\"" + width +
+                                      "\" " + (bridge ? "class=\"bridge\" " : "") + kNs);
     }
     svg.add_circle(s.pierce, mark_mm, "fill=\"#f39c12\" stroke=\"#7a4a00\" stroke-width=\"0.6\" " + std::string(kNs));
     // Numbers of pierces that stand close together are stacked upwards instead of overprinted.
@@ -112,6 +116,17 @@ std::vector<std::pair<std::string, std::string>> report_summary(const nlohmann::
     rows.emplace_back("kerf", num("kerf_mm", 3) + " mm, " +
                                   (mode == "cam" ? std::string("cam (toolpath drawn offset by kerf/2)")
                                    : mode == "controller" ? std::string("controller (G41/G42)") : mode));
+  }
+  // GSCCP: each set of basic segments compared, the chosen one first named.
+  if (r.contains("alternatives") && r["alternatives"].is_array()) {
+    std::string alts;
+    for (const auto& a : r["alternatives"]) {
+      if (!a.is_object() || !a.value("available", false)) continue;
+      if (!alts.empty()) alts += "; ";
+      alts += a.value("name", std::string("?")) + " " + std::to_string(a.value("pierces", 0)) + " pierces " +
+              format_fixed(a.value("t_cut_s", 0.0), 2) + " s";
+    }
+    rows.emplace_back("technique", str("chosen") + (alts.empty() ? "" : " (" + alts + ")"));
   }
   if (r.contains("solver")) {
     const auto& sv = r["solver"];

@@ -29,10 +29,79 @@ const char* to_string(LeadKind k) {
   return "none";
 }
 
+const char* to_string(PieceKind k) {
+  switch (k) {
+    case PieceKind::contour: return "contour";
+    case PieceKind::bridge: return "bridge";
+    case PieceKind::common_edge: return "common_edge";
+  }
+  return "contour";
+}
+
+const geometry::Contour& entry_path(const EntryCandidate& e) {
+  static const geometry::Contour kEmpty;
+  return e.pieces.empty() ? kEmpty : e.pieces.front().path;
+}
+
+double pieces_length(const EntryCandidate& e) {
+  double sum = 0;
+  for (const auto& p : e.pieces) sum += geometry::length(p.path);
+  return sum;
+}
+
 geometry::Vec2 tool_off_point(const EntryCandidate& e) {
   if (!e.lead_out.vertices.empty()) return e.lead_out.vertices.back().p;
-  if (!e.path.vertices.empty()) return e.path.vertices.back().p;
+  for (auto it = e.pieces.rbegin(); it != e.pieces.rend(); ++it)
+    if (!it->path.vertices.empty()) return it->path.vertices.back().p;
   return e.pierce;
+}
+
+std::vector<ContourId> touched_contours(const BasicSegment& segment) {
+  std::vector<ContourId> out = segment.contours;
+  if (!segment.candidates.empty())
+    for (const auto& p : segment.candidates.front().pieces)
+      if (p.contour.valid()) out.push_back(p.contour);
+  std::sort(out.begin(), out.end(), [](ContourId a, ContourId b) { return a.value() < b.value(); });
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+std::optional<std::vector<std::pair<std::int32_t, std::int32_t>>> segment_precedence(
+    const Nest& nest, const std::vector<BasicSegment>& segments) {
+  // Which segments touch each contour (a contour cut in part by two segments has two).
+  std::vector<std::vector<std::int32_t>> by_contour(nest.contours.size());
+  for (std::size_t k = 0; k < segments.size(); ++k)
+    for (auto c : touched_contours(segments[k])) by_contour[c.index()].push_back(static_cast<std::int32_t>(k));
+  std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
+  for (std::size_t i = 0; i < nest.contours.size(); ++i) {
+    const auto& c = nest.contours[ContourId(static_cast<std::int32_t>(i))];
+    if (!c.parent.valid()) continue;
+    for (auto a : by_contour[i])
+      for (auto b : by_contour[c.parent.index()])
+        if (a != b) pairs.emplace_back(a, b);
+  }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  // Kahn's algorithm: every segment is ordered exactly when the pairs have no cycle.
+  std::vector<int> indegree(segments.size(), 0);
+  std::vector<std::vector<std::int32_t>> next(segments.size());
+  for (auto [a, b] : pairs) {
+    next[static_cast<std::size_t>(a)].push_back(b);
+    ++indegree[static_cast<std::size_t>(b)];
+  }
+  std::vector<std::int32_t> ready;
+  for (std::size_t k = 0; k < segments.size(); ++k)
+    if (indegree[k] == 0) ready.push_back(static_cast<std::int32_t>(k));
+  std::size_t done = 0;
+  while (!ready.empty()) {
+    const auto k = ready.back();
+    ready.pop_back();
+    ++done;
+    for (auto b : next[static_cast<std::size_t>(k)])
+      if (--indegree[static_cast<std::size_t>(b)] == 0) ready.push_back(b);
+  }
+  if (done != segments.size()) return std::nullopt;
+  return pairs;
 }
 
 const char* to_string(Fallback f) {
@@ -289,6 +358,26 @@ struct EntryPlanner::Impl {
     return e;
   }
 
+  // The lead-out `normal` when admissible. The lead-out starts on the contour: at a sharp concave
+  // corner the normal shape can point into the part. Then try straight along the normal, then
+  // along the corner bisector, else none.
+  Contour checked_lead_out(ContourId id, const Contour& path, double s_path, bool clockwise, double scale,
+                           double total_len, Contour normal) const {
+    if (lead_out_ok(normal, id)) return normal;
+    const bool left = scrap_on_left(nc(id).role, clockwise);
+    const double back = 1e-6 * std::max(1.0, total_len);
+    const auto end = detail::at_length(path, s_path + opt.lead.overcut_mm);
+    const auto before = detail::at_length(path, s_path + opt.lead.overcut_mm - back);
+    const Vec2 n1 = left ? geometry::perp(end.tangent) : -geometry::perp(end.tangent);
+    const Vec2 n0 = left ? geometry::perp(before.tangent) : -geometry::perp(before.tangent);
+    const Vec2 bis = geometry::norm(n0 + n1) > 1e-9 ? geometry::normalized(n0 + n1) : n1;
+    for (int variant : {1, 2}) {
+      Contour alt = lead_out(end.point, end.tangent, n1, left, scale, variant, bis);
+      if (lead_out_ok(alt, id)) return alt;
+    }
+    return Contour{};
+  }
+
   // Builds the entry at arc length s of the oriented path; nullopt when not admissible.
   std::optional<EntryCandidate> build(ContourId id, const Contour& path, double s_path, bool clockwise, bool corner,
                                       double scale, double total_len) const {
@@ -296,26 +385,8 @@ struct EntryPlanner::Impl {
     const double lead_len = geometry::length(e.lead_in);
     if (!pierce_ok(e.pierce, id, std::min(clearance, 0.5 * lead_len))) return std::nullopt;
     if (!path_clear(e.lead_in, id, true)) return std::nullopt;
-    e.path = detail::sub_path(path, s_path, total_len + opt.lead.overcut_mm);
-    if (!lead_out_ok(e.lead_out, id)) {
-      // The lead-out starts on the contour: at a sharp concave corner the normal shape can point
-      // into the part. Try straight along the normal, then along the corner bisector, else none.
-      const bool left = scrap_on_left(nc(id).role, clockwise);
-      const double back = 1e-6 * std::max(1.0, total_len);
-      const auto end = detail::at_length(path, s_path + opt.lead.overcut_mm);
-      const auto before = detail::at_length(path, s_path + opt.lead.overcut_mm - back);
-      const Vec2 n1 = left ? geometry::perp(end.tangent) : -geometry::perp(end.tangent);
-      const Vec2 n0 = left ? geometry::perp(before.tangent) : -geometry::perp(before.tangent);
-      const Vec2 bis = geometry::norm(n0 + n1) > 1e-9 ? geometry::normalized(n0 + n1) : n1;
-      e.lead_out = Contour{};
-      for (int variant : {1, 2}) {
-        Contour alt = lead_out(end.point, end.tangent, n1, left, scale, variant, bis);
-        if (lead_out_ok(alt, id)) {
-          e.lead_out = std::move(alt);
-          break;
-        }
-      }
-    }
+    e.pieces = {SegmentPiece{PieceKind::contour, id, detail::sub_path(path, s_path, total_len + opt.lead.overcut_mm)}};
+    e.lead_out = checked_lead_out(id, path, s_path, clockwise, scale, total_len, std::move(e.lead_out));
     // s along the stored contour: the oriented path runs backwards when it was reversed (the map
     // s -> total - s is its own inverse).
     e.s_mm = to_path_s(id, s_path, clockwise);
@@ -333,7 +404,7 @@ struct EntryPlanner::Impl {
     e.pierce = centre;
     e.lead_in.vertices = {Vertex{centre, 0}, Vertex{cp.point, 0}};
     if (!in_scrap(centre) || !path_clear(e.lead_in, id, true)) return std::nullopt;
-    e.path = detail::sub_path(path, cp.length_along, total + opt.lead.overcut_mm);
+    e.pieces = {SegmentPiece{PieceKind::contour, id, detail::sub_path(path, cp.length_along, total + opt.lead.overcut_mm)}};
     e.fallback = Fallback::centre_pierce;
     (void)total;
     e.s_mm = to_path_s(id, cp.length_along, clockwise);
@@ -359,6 +430,46 @@ EntryPlanner::Sketch EntryPlanner::sketch_at(ContourId id, double s_mm, bool clo
   k.tool_off = e.lead_out.vertices.empty() ? e.point : e.lead_out.vertices.back().p;
   k.lead_mm = geometry::length(e.lead_in) + geometry::length(e.lead_out);
   return k;
+}
+
+geometry::Contour EntryPlanner::whole_loop(ContourId id, double s_mm, bool clockwise, bool overcut) const {
+  return detail::sub_path(impl_->oriented(id, clockwise), impl_->to_path_s(id, s_mm, clockwise),
+                          impl_->length[id.index()] + (overcut ? impl_->opt.lead.overcut_mm : 0.0));
+}
+
+geometry::Contour EntryPlanner::lead_out_at(ContourId id, double s_mm, bool clockwise) const {
+  const Contour& path = impl_->oriented(id, clockwise);
+  const double s_path = impl_->to_path_s(id, s_mm, clockwise), total = impl_->length[id.index()];
+  EntryCandidate e = impl_->shape(id, path, s_path, clockwise, false, 1.0, total);
+  return impl_->checked_lead_out(id, path, s_path, clockwise, 1.0, total, std::move(e.lead_out));
+}
+
+bool EntryPlanner::bridge_clear(const geometry::Contour& path, ContourId from, ContourId to) const {
+  const auto& I = *impl_;
+  if (path.vertices.size() < 2) return false;
+  const double len = geometry::length(path);
+  if (!(len > 2 * tol::kSamePointMm)) return false;
+  // Its two ends are on `from` and `to`; a little in from them, nothing may be touched at all.
+  const double trim = std::min(0.05 * len, 0.1);
+  const Contour inner = detail::sub_path(path, trim, len - 2 * trim);
+  const geometry::SegmentSet set = geometry::make_segment_set(inner);
+  I.index.query(set.box.inflated(I.clearance), I.scratch);
+  const std::vector<std::uint32_t> near = I.scratch;
+  for (auto i : near) {
+    const bool end_contour = i == from.index() || i == to.index();
+    const double need = end_contour ? tol::kSamePointMm : I.clearance;
+    if (geometry::count_close_segment_pairs(set, I.sets[i], need, 1) > 0) return false;
+  }
+  return I.in_scrap(detail::at_length(path, 0.5 * len).point);
+}
+
+std::pair<double, double> EntryPlanner::closest(ContourId id, geometry::Vec2 p) const {
+  const auto cp = geometry::closest_point(impl_->nc(id).source.contour, p);
+  return {cp.length_along, cp.distance};
+}
+
+geometry::Vec2 EntryPlanner::point_at(ContourId id, double s_mm) const {
+  return detail::at_length(impl_->nc(id).source.contour, s_mm).point;
 }
 
 std::vector<EntryCandidate> EntryPlanner::candidates(ContourId id, Diagnostics& diagnostics) const {
@@ -408,7 +519,7 @@ std::vector<EntryCandidate> EntryPlanner::candidates(ContourId id, Diagnostics& 
   const auto at = detail::at_length(path, 0);
   e.point = at.point;
   e.pierce = at.point;
-  e.path = detail::sub_path(path, 0, total + impl_->opt.lead.overcut_mm);
+  e.pieces = {SegmentPiece{PieceKind::contour, id, detail::sub_path(path, 0, total + impl_->opt.lead.overcut_mm)}};
   e.fallback = Fallback::on_contour;
   e.s_mm = 0;
   diag("contour " + std::to_string(id.value() + 1) + ": no admissible lead-in; pierced on the contour");
@@ -423,8 +534,8 @@ CutJob make_cut_job(const Nest& nest, const EntryOptions& options) {
   for (std::size_t i = 0; i < nest.contours.size(); ++i) {
     const ContourId id(static_cast<std::int32_t>(i));
     if (nest.contours[id].role == ContourRole::sheet) continue;
-    job_index[i] = static_cast<std::int32_t>(job.contours.size());
-    job.contours.push_back({id, planner.candidates(id, job.diagnostics)});
+    job_index[i] = static_cast<std::int32_t>(job.segments.size());
+    job.segments.push_back({{id}, planner.candidates(id, job.diagnostics)});
   }
   for (std::size_t i = 0; i < nest.contours.size(); ++i) {
     const auto& c = nest.contours[ContourId(static_cast<std::int32_t>(i))];

@@ -1,5 +1,7 @@
 #include <cutroute/nc/build_toolpath.hpp>
 
+#include <algorithm>
+
 namespace cutroute::nc {
 
 std::string contour_label(const model::Nest& nest, model::ContourId id) {
@@ -26,13 +28,25 @@ Toolpath build_toolpath(const model::Nest& nest, const std::vector<const model::
     s.pierce = e->pierce;
     s.feed_mm_min = options.feed_mm_min;
     s.label = contour_label(nest, e->contour);
-    if (options.kerf == KerfMode::controller) {
+    for (const auto& piece : e->pieces) {
+      if (piece.kind == model::PieceKind::bridge || piece.contour == e->contour) continue;
+      const std::string more = contour_label(nest, piece.contour);
+      if (s.label.find(more) == std::string::npos) s.label += " + " + more;
+    }
+    // A common line (common_edge pieces, bridges across kerf gaps) is a centre line: cut without
+    // compensation, the kerf takes half from each part (or exactly the gap they were drawn apart).
+    const bool centre_line = std::none_of(e->pieces.begin(), e->pieces.end(),
+                                          [](const model::SegmentPiece& p) { return p.kind == model::PieceKind::contour; });
+    if (options.kerf == KerfMode::controller && !centre_line) {
       const auto role = nest.contours[e->contour].role;
       const bool scrap_left = role == model::ContourRole::outer ? e->clockwise : !e->clockwise;
       s.kerf = scrap_left ? KerfSide::left : KerfSide::right;
     }
     if (e->lead_in.vertices.size() >= 2) s.pieces.push_back({e->lead_in, PieceRole::lead_in, -1});
-    s.pieces.push_back({e->path, PieceRole::contour, e->contour.value()});
+    for (const auto& piece : e->pieces) {
+      const bool bridge = piece.kind == model::PieceKind::bridge;
+      s.pieces.push_back({piece.path, bridge ? PieceRole::bridge : PieceRole::contour, bridge ? -1 : piece.contour.value()});
+    }
     if (e->lead_out.vertices.size() >= 2) s.pieces.push_back({e->lead_out, PieceRole::lead_out, -1});
     tp.segments.push_back(std::move(s));
   }

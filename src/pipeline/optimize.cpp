@@ -4,11 +4,14 @@
 #include <cmath>
 
 #include <cutroute/core/number_format.hpp>
+#include <cutroute/core/tolerances.hpp>
 #include <cutroute/core/units.hpp>
 #include <cutroute/cost/estimate.hpp>
 #include <cutroute/cost/machine_profile.hpp>
 #include <cutroute/cost/speed_table.hpp>
 #include <cutroute/io/inspect_report.hpp>
+#include <cutroute/model/chains.hpp>
+#include <cutroute/model/common_lines.hpp>
 #include <cutroute/model/cut_job.hpp>
 #include <cutroute/model/kerf_offset.hpp>
 #include <cutroute/nc/frames.hpp>
@@ -18,6 +21,17 @@
 #include "refine.hpp"
 
 namespace cutroute::pipeline {
+
+const char* to_string(Technique t) {
+  switch (t) {
+    case Technique::standard: return "standard";
+    case Technique::chain: return "chain";
+    case Technique::common: return "common";
+    case Technique::automatic: return "auto";
+  }
+  return "auto";
+}
+
 namespace {
 
 struct Setup {
@@ -154,9 +168,128 @@ nlohmann::json sequence_json(const model::Nest& nest, const std::vector<model::E
     j["pierce"] = {e.pierce.x, e.pierce.y};
     j["direction"] = e.clockwise ? "cw" : "ccw";
     if (e.fallback != model::Fallback::none) j["fallback"] = model::to_string(e.fallback);
+    if (model::is_multi_piece(e)) {
+      // A chain or common-line segment: every contour it cuts, in cutting order, and its pieces.
+      auto contours = nlohmann::json::array(), parts = nlohmann::json::array(), pieces = nlohmann::json::array();
+      for (const auto& p : e.pieces) {
+        pieces.push_back(model::to_string(p.kind));
+        if (!p.contour.valid()) continue;
+        if (!contours.empty() && contours.back() == p.contour.value() + 1) continue;
+        contours.push_back(p.contour.value() + 1);
+        const auto& pc = nest.contours[p.contour];
+        parts.push_back(pc.part.valid() ? pc.part.value() + 1 : 0);
+      }
+      j["contours"] = contours;
+      j["parts"] = parts;
+      j["pieces"] = pieces;
+    }
     arr.push_back(std::move(j));
   }
   return arr;
+}
+
+using Clock = std::chrono::steady_clock;
+
+// The basic segments of one technique (SCCP); an error when the technique cannot be built here.
+// `standard`: the standard job when already built (other techniques start from its candidates).
+Result<model::CutJob> build_job(const model::Nest& nest, const model::EntryOptions& entries, const OptimizeOptions& o,
+                                Technique t, const model::CutJob* standard) {
+  switch (t) {
+    case Technique::standard: return model::make_cut_job(nest, entries);
+    case Technique::chain: return model::make_chain_job(nest, entries, o.chain, standard);
+    case Technique::common:
+      // Common lines are cut on the centre line between two parts, uncompensated; the cam offset
+      // would move each part's side of it away from the other.
+      if (o.kerf_mode == nc::KerfMode::cam)
+        return make_error("common-line cutting runs on the centre line between parts: not with --kerf-mode cam (use controller)");
+      return model::make_common_job(nest, entries, model::CommonLineOptions{});
+    case Technique::automatic: break;
+  }
+  return make_error("no cut job for technique 'auto'");
+}
+
+// Does the job cut every contour on its own (nothing joined: the standard set again)?
+bool one_contour_each(const model::CutJob& job) {
+  for (const auto& seg : job.segments)
+    if (seg.contours.size() != 1 || seg.candidates.empty() || model::is_multi_piece(seg.candidates.front())) return false;
+  return true;
+}
+
+// One solved alternative: the route, its refinement and the program with the best lead type.
+struct Alternative {
+  solve::Solution solution;
+  std::vector<model::EntryCandidate> sequence;
+  int moved = 0;
+  Evaluated best;
+  std::string lead_name;
+  nlohmann::json leads_json;
+};
+
+// Steps 3-6 for one set of basic segments.
+Result<Alternative> solve_alternative(const model::Nest& nest, const model::CutJob& job, const model::EntryPlanner& planner,
+                                      const Setup& s, const OptimizeOptions& o, double time_limit_s,
+                                      const StopToken& stop, const ProgressFn& progress) {
+  // 3. Sequencing.
+  cost::RouteProblemOptions rpo;
+  rpo.start = s.start;
+  auto rp = cost::build_route_problem(job, s.prices, rpo);
+  if (!rp) return rp.error();
+  solve::SolveParams params;
+  params.solver = o.solver;
+  params.seed = o.seed;
+  params.threads = o.threads;
+  params.time_limit_s = time_limit_s;
+  Alternative alt;
+  alt.solution = solve::solve(rp->problem, params, stop, progress);
+  if (alt.solution.route.empty()) return make_error("the route solver stopped before it found any route");
+  auto& seq = alt.sequence;
+  for (const auto* e : cost::route_entries(job, *rp, alt.solution.route)) seq.push_back(*e);
+
+  // 4. Continuous refinement of the entries for the fixed order.
+  if (o.refine_entries) {
+    if (progress) progress({"refine", -1, {}});
+    alt.moved = refine_entries(planner, s.prices, s.start, s.start, seq, 2, stop);
+  }
+
+  // 5-6. Program, frames, V_on*(n); lead types compared by the corrected objective.
+  alt.best = evaluate(nest, seq, s, o);
+  alt.lead_name = model::to_string(s.entries.lead.in_kind);
+  alt.leads_json = nlohmann::json::array();
+  alt.leads_json.push_back({{"lead_in", alt.lead_name}, {"frames", alt.best.frames}, {"t_cut_s", alt.best.estimate.t_cut_s},
+                            {"objective", alt.best.objective}});
+  if (o.compare_leads) {
+    for (model::LeadKind kind : {model::LeadKind::line, model::LeadKind::arc}) {
+      if (kind == s.entries.lead.in_kind) continue;
+      model::EntryOptions alt_opt = s.entries;
+      alt_opt.lead.in_kind = kind;
+      model::EntryPlanner other(nest, alt_opt);
+      std::vector<model::EntryCandidate> alt_seq = seq;
+      for (auto& e : alt_seq) {
+        if (e.fallback != model::Fallback::none) continue;
+        auto moved_e = other.entry_at(e.contour, e.s_mm, e.clockwise);
+        if (!moved_e) continue;
+        // A multi-piece segment keeps its pieces and lead-out: only its lead-in changes, and only
+        // when the new one ends where its first piece starts (a common line's end may lie off
+        // the contour it is named after, in the middle of a kerf gap).
+        if (model::is_multi_piece(e)) {
+          if (geometry::distance(moved_e->point, e.pieces.front().path.vertices.front().p) > tol::kSamePointMm) continue;
+          e.lead_in = std::move(moved_e->lead_in);
+          e.pierce = moved_e->pierce;
+        } else {
+          e = std::move(*moved_e);
+        }
+      }
+      Evaluated ev = evaluate(nest, alt_seq, s, o);
+      alt.leads_json.push_back({{"lead_in", model::to_string(kind)}, {"frames", ev.frames}, {"t_cut_s", ev.estimate.t_cut_s},
+                                {"objective", ev.objective}});
+      if (ev.objective < alt.best.objective - 1e-9) {
+        alt.best = std::move(ev);
+        seq = std::move(alt_seq);
+        alt.lead_name = model::to_string(kind);
+      }
+    }
+  }
+  return alt;
 }
 
 }  // namespace
@@ -171,7 +304,6 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     return e;  // never cut a nest whose parts are drawn over each other unless told to
   }
   const model::Nest& nest = loaded.nest;
-  using Clock = std::chrono::steady_clock;
   auto t_mark = Clock::now();
   nlohmann::json timing;
   auto lap = [&](const char* phase) {
@@ -201,65 +333,81 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     lap("kerf");
   }
   const model::Nest& cut_nest = o.kerf_mode == nc::KerfMode::cam ? kerf.nest : nest;
-  const model::CutJob job = model::make_cut_job(cut_nest, s.entries);
-  for (const auto& d : job.diagnostics) result.diagnostics.push_back(d);
+  // 2-6 for each alternative set of basic segments (GSCCP), the best kept.
+  std::vector<Technique> wanted;
+  if (o.technique == Technique::automatic) wanted = {Technique::standard, Technique::chain, Technique::common};
+  else wanted = {o.technique};
+  std::vector<model::CutJob> jobs;
+  std::vector<Technique> built;
+  std::vector<std::size_t> slot;  // per built job: its place in `alternatives` (the order of `wanted`)
+  auto alternatives = nlohmann::json::array();
+  for (Technique t : wanted) {
+    auto job = build_job(cut_nest, s.entries, o, t, built.empty() || built.front() != Technique::standard ? nullptr : &jobs.front());
+    if (!job) {
+      if (o.technique != Technique::automatic) return job.error();
+      alternatives.push_back({{"name", to_string(t)}, {"available", false}, {"reason", job.error().message}});
+      continue;
+    }
+    // A chain or common job that found nothing to join is the standard job again: not solved twice.
+    if (t != Technique::standard && o.technique == Technique::automatic && one_contour_each(*job)) {
+      alternatives.push_back({{"name", to_string(t)}, {"available", false}, {"reason", "nothing to join: same basic segments as standard"}});
+      continue;
+    }
+    jobs.push_back(std::move(job).value());
+    built.push_back(t);
+    slot.push_back(alternatives.size());
+    alternatives.push_back(nullptr);
+  }
+  for (const auto& d : jobs.front().diagnostics) result.diagnostics.push_back(d);
   lap("entries");
 
-  // 3. Sequencing.
-  cost::RouteProblemOptions rpo;
-  rpo.start = s.start;
-  auto rp = cost::build_route_problem(job, s.prices, rpo);
-  if (!rp) return rp.error();
-  lap("problem");
-  solve::SolveParams params;
-  params.solver = o.solver;
-  params.seed = o.seed;
-  params.threads = o.threads;
-  params.time_limit_s = o.time_limit_s;
-  const solve::Solution sol = solve::solve(rp->problem, params, stop, progress);
-  if (sol.route.empty()) return make_error("the route solver stopped before it found any route", loaded.file);
-  lap("solve");
-  std::vector<model::EntryCandidate> seq;
-  for (const auto* e : cost::route_entries(job, *rp, sol.route)) seq.push_back(*e);
-
-  // 4. Continuous refinement of the entries for the fixed order.
-  model::EntryPlanner planner(cut_nest, s.entries);
-  int moved = 0;
-  if (o.refine_entries) {
-    if (progress) progress({"refine", -1, {}});
-    moved = refine_entries(planner, s.prices, s.start, s.start, seq, 2, stop);
-  }
-  lap("refine");
-
-  // 5-6. Program, frames, V_on*(n); lead types compared by the corrected objective.
-  Evaluated best = evaluate(cut_nest, seq, s, o);
-  std::string lead_name = model::to_string(s.entries.lead.in_kind);
-  auto leads_json = nlohmann::json::array();
-  leads_json.push_back({{"lead_in", lead_name}, {"frames", best.frames}, {"t_cut_s", best.estimate.t_cut_s},
-                        {"objective", best.objective}});
-  if (o.compare_leads) {
-    for (model::LeadKind kind : {model::LeadKind::line, model::LeadKind::arc}) {
-      if (kind == s.entries.lead.in_kind) continue;
-      model::EntryOptions alt_opt = s.entries;
-      alt_opt.lead.in_kind = kind;
-      model::EntryPlanner alt(cut_nest, alt_opt);
-      std::vector<model::EntryCandidate> alt_seq = seq;
-      for (auto& e : alt_seq) {
-        if (e.fallback != model::Fallback::none) continue;
-        if (auto moved_e = alt.entry_at(e.contour, e.s_mm, e.clockwise)) e = std::move(*moved_e);
-      }
-      Evaluated ev = evaluate(cut_nest, alt_seq, s, o);
-      leads_json.push_back({{"lead_in", model::to_string(kind)}, {"frames", ev.frames}, {"t_cut_s", ev.estimate.t_cut_s},
-                            {"objective", ev.objective}});
-      if (ev.objective < best.objective - 1e-9) {
-        best = std::move(ev);
-        seq = std::move(alt_seq);
-        lead_name = model::to_string(kind);
-      }
+  const model::EntryPlanner planner(cut_nest, s.entries);
+  std::optional<Alternative> best;
+  std::size_t chosen = 0;
+  double solver_used = 0;  // [s]
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    // The solver budget split evenly; whatever an earlier alternative did not use goes to the later ones.
+    // A solver that overran its share leaves the later ones a tenth of an even share, never 0
+    // (which the solver reads as "no limit"); no limit asked stays no limit.
+    const double n = static_cast<double>(jobs.size());
+    const double budget = o.time_limit_s <= 0 ? 0.0
+                          : std::max((o.time_limit_s - solver_used) / (n - static_cast<double>(k)), 0.1 * o.time_limit_s / n);
+    // After Ctrl-C the alternative solved so far is written; the others are not started.
+    if (best && stop.stop_requested()) {
+      alternatives[slot[k]] = {{"name", to_string(built[k])}, {"available", false}, {"reason", "not solved (interrupted)"}};
+      continue;
+    }
+    auto alt = solve_alternative(cut_nest, jobs[k], planner, s, o, budget, stop, progress);
+    if (!alt && best) {
+      alternatives[slot[k]] = {{"name", to_string(built[k])}, {"available", false}, {"reason", alt.error().message}};
+      continue;
+    }
+    if (!alt) return alt.error();
+    solver_used += alt->solution.stats.seconds;
+    nlohmann::json j;
+    j["name"] = to_string(built[k]);
+    j["available"] = true;
+    j["basic_segments"] = jobs[k].segments.size();
+    j["pierces"] = alt->best.program.pierces;
+    j["cut_length_mm"] = alt->best.program.cut_length_mm;
+    j["rapid_length_mm"] = alt->best.program.rapid_length_mm;
+    j["frames"] = alt->best.frames;
+    j["t_cut_s"] = alt->best.estimate.t_cut_s;
+    j["objective"] = alt->best.objective;
+    alternatives[slot[k]] = std::move(j);
+    if (!best || alt->best.objective < best->best.objective - 1e-9) {
+      best = std::move(alt).value();
+      chosen = k;
     }
   }
-
-  lap("program");
+  lap("solve");
+  Alternative& win = *best;
+  const solve::Solution& sol = win.solution;
+  std::vector<model::EntryCandidate>& seq = win.sequence;
+  const int moved = win.moved;
+  const std::string& lead_name = win.lead_name;
+  auto& leads_json = win.leads_json;
+  Evaluated& best_ev = win.best;
 
   // 7. Report.
   nlohmann::json r;
@@ -270,22 +418,26 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   r["kerf_mode"] = to_string(o.kerf_mode);
   r["kerf_mm"] = s.entries.kerf_mm;
   r["objective_kind"] = o.objective == cost::Objective::time ? "time" : "cost";
-  r["pierces"] = best.program.pierces;
-  r["cut_length_mm"] = best.program.cut_length_mm;
-  r["rapid_length_mm"] = best.program.rapid_length_mm;
-  r["frames"] = best.frames;
-  r["v_on_set_m_s"] = best.estimate.v_on_set_m_s;
-  r["v_on_m_s"] = best.estimate.v_on_m_s;
-  r["v_on_regime"] = cost::to_string(best.estimate.regime);
-  r["t_cut_s"] = best.estimate.t_cut_s;
-  r["t_cut_const_speed_s"] = best.estimate.t_cut_const_speed_s;
-  r["cost"] = best.estimate.cost;
-  r["cost_unit"] = best.estimate.cost_unit;
-  r["breakdown_s"] = {{"cutting", best.estimate.cutting_s}, {"rapid", best.estimate.rapid_s},
-                      {"pierce", best.estimate.pierce_s}, {"head", best.estimate.head_s}};
+  r["pierces"] = best_ev.program.pierces;
+  r["cut_length_mm"] = best_ev.program.cut_length_mm;
+  r["rapid_length_mm"] = best_ev.program.rapid_length_mm;
+  r["frames"] = best_ev.frames;
+  r["v_on_set_m_s"] = best_ev.estimate.v_on_set_m_s;
+  r["v_on_m_s"] = best_ev.estimate.v_on_m_s;
+  r["v_on_regime"] = cost::to_string(best_ev.estimate.regime);
+  r["t_cut_s"] = best_ev.estimate.t_cut_s;
+  r["t_cut_const_speed_s"] = best_ev.estimate.t_cut_const_speed_s;
+  r["cost"] = best_ev.estimate.cost;
+  r["cost_unit"] = best_ev.estimate.cost_unit;
+  r["breakdown_s"] = {{"cutting", best_ev.estimate.cutting_s}, {"rapid", best_ev.estimate.rapid_s},
+                      {"pierce", best_ev.estimate.pierce_s}, {"head", best_ev.estimate.head_s}};
   r["lead_in"] = lead_name;
   r["lead_alternatives"] = leads_json;
   r["entries_refined"] = moved;
+  r["technique"] = to_string(o.technique);
+  r["alternatives"] = alternatives;
+  r["chosen"] = to_string(built[chosen]);
+  r["basic_segments"] = jobs[chosen].segments.size();
   nlohmann::json solver;
   solver["name"] = sol.stats.solver;
   solver["status"] = solve::to_string(sol.status);
@@ -302,8 +454,8 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   for (const auto& d : result.diagnostics) diags.push_back(io::to_json(d));
   r["diagnostics"] = diags;
 
-  result.toolpath = std::move(best.toolpath);
-  result.program = std::move(best.program);
+  result.toolpath = std::move(best_ev.toolpath);
+  result.program = std::move(best_ev.program);
   result.report = std::move(r);
   return result;
 }

@@ -32,7 +32,9 @@ int refine_entries(const model::EntryPlanner& planner, const cost::RoutePrices& 
     for (std::size_t k = 0; k < seq.size(); ++k) {
       if (stop.stop_requested()) return moved;
       auto& cur = seq[k];
-      if (cur.fallback != model::Fallback::none) continue;  // fallbacks stay where they were put
+      // Fallbacks stay where they were put; chains and common-line segments are tied to where their
+      // bridges and shared edges are (their candidates were placed there on purpose).
+      if (cur.fallback != model::Fallback::none || model::is_multi_piece(cur)) continue;
       const geometry::Vec2 prev = k == 0 ? start : model::tool_off_point(seq[k - 1]);
       const std::optional<geometry::Vec2> next = k + 1 < seq.size() ? std::optional(seq[k + 1].pierce) : park;
       const double len = planner.contour_length(cur.contour);

@@ -14,6 +14,7 @@ namespace cutroute::pipeline {
 // minimising rapid(prev tool-off -> pierce(s)) + rapid(tool-off(s) -> next pierce) + lead cut is
 // sought by sampling 24 points along the contour and a golden-section search around the best;
 // only admissible entries (EntryPlanner::entry_at) are taken and only improvements are kept.
+// Multi-piece candidates (chains, common lines) and fallbacks are left as they are.
 // Cost: passes × contours × ~40 entry evaluations. Returns the number of entries moved.
 int refine_entries(const model::EntryPlanner& planner, const cost::RoutePrices& prices, geometry::Vec2 start,
                    std::optional<geometry::Vec2> park, std::vector<model::EntryCandidate>& sequence, int passes,

@@ -8,6 +8,8 @@
 #include <cutroute/model/cut_job.hpp>
 #include <cutroute/model/demo_nest.hpp>
 
+#include "support/nest_facts.hpp"
+
 namespace cutroute::model {
 namespace {
 
@@ -35,30 +37,26 @@ double sampled_distance(const Contour& path, const Contour& other) {
   return best;
 }
 
-// Is p inside material: inside an odd number of the nest's part contours.
-bool in_material(const Nest& nest, Vec2 p) {
-  int inside = 0;
-  for (const auto& c : nest.contours) {
-    if (c.role == ContourRole::sheet) continue;
-    inside += geometry::locate(c.source.contour, p, 1e-9) == geometry::Location::inside;
-  }
-  return inside % 2 == 1;
-}
+using test::in_material;
 
 void check_job(const Nest& nest, const CutJob& job, const EntryOptions& opt) {
   const double clearance = opt.clearance_mm >= 0 ? opt.clearance_mm : opt.kerf_mm + 1;
-  for (const auto& ce : job.contours) {
+  for (const auto& ce : job.segments) {
     ASSERT_FALSE(ce.candidates.empty());
-    const auto& own = nest.contours[ce.contour];
+    ASSERT_EQ(ce.contours.size(), 1u);  // standard: one basic segment per contour
+    const auto& own = nest.contours[ce.contours[0]];
     const double len = geometry::length(own.source.contour);
     for (const auto& e : ce.candidates) {
-      EXPECT_EQ(e.contour, ce.contour);
+      EXPECT_EQ(e.contour, ce.contours[0]);
+      ASSERT_EQ(e.pieces.size(), 1u);
+      EXPECT_EQ(e.pieces[0].kind, PieceKind::contour);
+      EXPECT_EQ(e.pieces[0].contour, ce.contours[0]);
       // The cut path is the whole contour plus the overcut, starting and ending at the entry point.
-      EXPECT_NEAR(geometry::length(e.path), len + opt.lead.overcut_mm, 1e-6);
-      EXPECT_LT(geometry::distance(e.path.vertices.front().p, e.point), 1e-9);
+      EXPECT_NEAR(geometry::length(entry_path(e)), len + opt.lead.overcut_mm, 1e-6);
+      EXPECT_LT(geometry::distance(entry_path(e).vertices.front().p, e.point), 1e-9);
       EXPECT_LT(geometry::distance(own.source.contour, e.point), 1e-6);
       // Direction by the kerf convention.
-      Contour loop = e.path;
+      Contour loop = entry_path(e);
       loop.closed = true;
       loop.vertices.pop_back();
       const bool want_cw = own.role == ContourRole::outer ? opt.outer_clockwise : opt.hole_clockwise;
@@ -83,8 +81,8 @@ TEST(CutJob, DemoSheetEveryContourHasAdmissibleEntries) {
   const Nest nest = build_nest(make_demo_sheet(), NestOptions{});
   EntryOptions opt;
   const CutJob job = make_cut_job(nest, opt);
-  ASSERT_EQ(job.contours.size(), 21u);
-  for (const auto& ce : job.contours) {
+  ASSERT_EQ(job.segments.size(), 21u);
+  for (const auto& ce : job.segments) {
     EXPECT_GE(ce.candidates.size(), 4u);
     for (const auto& e : ce.candidates) EXPECT_EQ(e.fallback, Fallback::none);
   }
@@ -99,13 +97,13 @@ TEST(CutJob, PrecedenceFollowsContainmentAtAnyDepth) {
                                 src(circle({50, 50}, 8))};
   const Nest nest = build_nest(cs, NestOptions{});
   const CutJob job = make_cut_job(nest, EntryOptions{});
-  ASSERT_EQ(job.contours.size(), 4u);
+  ASSERT_EQ(job.segments.size(), 4u);
   // Map job indices back to nest depth and check each pair goes from deeper to its parent.
   ASSERT_EQ(job.precedence.size(), 3u);
   for (auto [a, b] : job.precedence) {
-    const auto& ca = nest.contours[job.contours[static_cast<std::size_t>(a)].contour];
-    const auto& cb = nest.contours[job.contours[static_cast<std::size_t>(b)].contour];
-    EXPECT_EQ(ca.parent, job.contours[static_cast<std::size_t>(b)].contour);
+    const auto& ca = nest.contours[job.segments[static_cast<std::size_t>(a)].contours[0]];
+    const auto& cb = nest.contours[job.segments[static_cast<std::size_t>(b)].contours[0]];
+    EXPECT_EQ(ca.parent, job.segments[static_cast<std::size_t>(b)].contours[0]);
     EXPECT_EQ(ca.depth, cb.depth + 1);
   }
   check_job(nest, job, EntryOptions{});
@@ -119,7 +117,7 @@ TEST(CutJob, NoPierceInANarrowGapBetweenParts) {
   opt.clearance_mm = 1.2;
   opt.max_candidates = 24;
   const CutJob job = make_cut_job(nest, opt);
-  for (const auto& ce : job.contours) {
+  for (const auto& ce : job.segments) {
     for (const auto& e : ce.candidates) {
       EXPECT_FALSE(e.pierce.x > 50 && e.pierce.x < 51.5 && e.pierce.y > 0 && e.pierce.y < 50)
           << "pierce in the gap at " << e.pierce.x << "," << e.pierce.y;
@@ -133,10 +131,10 @@ TEST(CutJob, SmallHoleFallsBackAndSaysSo) {
   const Nest nest = build_nest(cs, NestOptions{});
   EntryOptions opt;  // lead-in 3 mm + arc: does not fit in a Ø2 hole
   const CutJob job = make_cut_job(nest, opt);
-  ASSERT_EQ(job.contours.size(), 2u);
+  ASSERT_EQ(job.segments.size(), 2u);
   bool found = false;
-  for (const auto& ce : job.contours) {
-    if (nest.contours[ce.contour].role != ContourRole::hole) continue;
+  for (const auto& ce : job.segments) {
+    if (nest.contours[ce.contours[0]].role != ContourRole::hole) continue;
     found = true;
     for (const auto& e : ce.candidates) {
       EXPECT_NE(e.fallback, Fallback::none);
@@ -155,7 +153,7 @@ TEST(CutJob, FreeDirectionOffersBothDirections) {
   opt.free_direction = true;
   const CutJob job = make_cut_job(nest, opt);
   int cw = 0, ccw = 0;
-  for (const auto& e : job.contours[0].candidates) (e.clockwise ? cw : ccw)++;
+  for (const auto& e : job.segments[0].candidates) (e.clockwise ? cw : ccw)++;
   EXPECT_GT(cw, 0);
   EXPECT_GT(ccw, 0);
 }

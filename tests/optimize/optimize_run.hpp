@@ -17,6 +17,7 @@
 
 #include <cutroute/io/nest_loader.hpp>
 
+#include "support/common_program_check.hpp"
 #include "support/paths.hpp"
 #include "support/program_check.hpp"
 
@@ -44,12 +45,14 @@ struct OptRun {
   nlohmann::json report;
 };
 
-// Writes dir/out.ngc and dir/out.json (1 s solver limit, 3 s under the sanitizers).
-inline OptRun optimize(const std::string& dxf, const std::filesystem::path& dir, const std::string& extra = "") {
+// Writes dir/out.ngc and dir/out.json (1 s solver limit, 3 s under the sanitizers, unless given).
+inline OptRun optimize(const std::string& dxf, const std::filesystem::path& dir, const std::string& extra = "",
+                       const char* time_limit = nullptr) {
   OptRun r;
   const auto prog = dir / "out.ngc", rep = dir / "out.json";
+  if (!time_limit) time_limit = sanitized() ? "3" : "1";
   r.cmd = run_command(cli_path() + " optimize " + dxf + " -o " + prog.string() + " --report " + rep.string() +
-                      " --quiet --time-limit " + (sanitized() ? "3" : "1") + " " + extra);
+                      " --quiet --time-limit " + time_limit + " " + extra);
   if (r.cmd.exit_code == 0) {
     r.program = slurp(prog);
     r.report = nlohmann::json::parse(slurp(rep));
@@ -58,11 +61,22 @@ inline OptRun optimize(const std::string& dxf, const std::filesystem::path& dir,
 }
 
 // The program re-parsed and checked against the nest (support/program_check.hpp): every contour
-// once, one pierce each; the report agrees with the program. kerf_offset_mm: --kerf-mode cam.
+// once, one pierce per basic segment; the report agrees with the program. kerf_offset_mm: --kerf-mode cam.
 inline void expect_admissible(const std::string& dxf, const OptRun& run, double kerf_offset_mm = 0.0,
                               ProgramCheck* result = nullptr, double on_contour_mm = 1e-3) {
   auto loaded = io::load_nest(dxf, io::NestLoadOptions{});
   ASSERT_TRUE(loaded.ok());
+  if (run.report["chosen"] == "common") {
+    // Shared edges are cut once, so contours are cut in pieces: the common-line checker (every
+    // boundary point cut, holes and shared lines first, pierces and leads in scrap). 0.1 mm: half
+    // the kerf of parts drawn kerf apart, plus rounding.
+    const auto check = check_common_program(loaded->nest, run.program, 0.1);
+    for (const auto& f : check.failures) ADD_FAILURE() << dxf << ": " << f;
+    EXPECT_EQ(check.runs, run.report["basic_segments"].get<int>());
+    EXPECT_EQ(run.report["pierces"].get<int>(), check.probe.pierces);
+    EXPECT_NEAR(run.report["cut_length_mm"].get<double>(), check.probe.cut_length, 1e-6 * check.probe.cut_length + 1e-6);
+    return;
+  }
   ProgramCheckOptions opt;
   opt.clearance_mm = 1.0;  // kerf 0.15 + 1 mm for the default AMg3M 1 mm job
   opt.kerf_offset_mm = kerf_offset_mm;
@@ -72,7 +86,12 @@ inline void expect_admissible(const std::string& dxf, const OptRun& run, double 
   std::size_t cut_contours = 0;
   for (const auto& c : loaded->nest.contours) cut_contours += c.role != model::ContourRole::sheet;
   EXPECT_EQ(static_cast<std::size_t>(check.contours_cut), cut_contours);
-  EXPECT_EQ(static_cast<std::size_t>(check.runs), cut_contours);  // one pierce per contour
+  // One pierce per basic segment; a chain of k contours has k - 1 bridges.
+  EXPECT_EQ(check.runs, run.report["basic_segments"].get<int>());
+  EXPECT_EQ(static_cast<std::size_t>(check.runs + check.bridges), cut_contours);
+  if (run.report["chosen"] == "standard") {
+    EXPECT_EQ(check.bridges, 0);
+  }
   // The report agrees with the re-parsed program.
   EXPECT_EQ(run.report["pierces"].get<int>(), check.probe.pierces);
   EXPECT_NEAR(run.report["cut_length_mm"].get<double>(), check.cut_length, 1e-6 * check.cut_length + 1e-6);

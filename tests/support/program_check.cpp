@@ -250,6 +250,8 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
   }
 
   // Leads: only at the ends of a run, short, clear of other contours, not touching their own early.
+  // Bridges: moves off the contours between two contour moves of different contours (chain
+  // cutting): through scrap only, clear of every other contour.
   for (const auto& moves : run_moves) {
     std::size_t first = moves.size(), last = 0;
     for (std::size_t i = 0; i < moves.size(); ++i) {
@@ -262,44 +264,57 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
       out.failures.push_back(at(*moves.front().first) + ": a beam-on run that cuts no contour");
       continue;
     }
-    const int own = moves[first].second;
     double lead_len = 0;
-    for (std::size_t i = 0; i < moves.size(); ++i) {
-      const auto& [m, k] = moves[i];
-      if (k >= 0) continue;
-      if (i > first && i < last) {
-        out.failures.push_back(at(*m) + ": a move off the contours in the middle of a cut");
-        continue;
-      }
-      lead_len += m->length;
-      const bool lead_in = i < first;
+    // Samples of move m must stay out of material (within 2 µm of an end contour allowed: a lead
+    // or bridge meets its contour there, and a tangential arc grazes it within the output
+    // resolution) and keep the clearance from every contour but those at its ends.
+    auto check_scrap_move = [&](const ProbeMove& m, int end_a, int end_b, const char* what) {
       for (int s = 0; s <= 20; ++s) {
         const double t = s / 20.0;
-        // The lead meets its contour at its end (lead-in) or its start (lead-out).
-        (void)lead_in;
         Vec2 q;
-        probe_point(*m, t, q.x, q.y);
-        // Its own contour: a tangential lead arc grazes it near the join (within the output
-        // resolution); what it must never do is enter the part's material.
-        if (dist_to(own, q, 0.01) > 0.002 && in_material(q)) {
-          out.failures.push_back(at(*m) + ": lead enters material at t=" + format_fixed(t, 2) + " (" +
+        probe_point(m, t, q.x, q.y);
+        const bool at_end = dist_to(end_a, q, 0.01) <= 0.002 || (end_b >= 0 && dist_to(end_b, q, 0.01) <= 0.002);
+        if (!at_end && in_material(q)) {
+          out.failures.push_back(at(m) + ": " + what + " enters material at t=" + format_fixed(t, 2) + " (" +
                                  format_fixed(q.x, 4) + ", " + format_fixed(q.y, 4) + ")");
-          break;
+          return;
         }
         index.query(geometry::Box{q.x, q.y, q.x, q.y}.inflated(opt.clearance_mm), hits);
         for (auto h : hits) {
           const int kk = static_cast<int>(h);
-          if (kk == own) continue;
+          if (kk == end_a || kk == end_b) continue;
           const double d = dist_to(kk, q, opt.clearance_mm);
           if (d < opt.clearance_mm * 0.999) {
-            out.failures.push_back(at(*m) + ": lead comes " + format_fixed(d, 4) + " mm close to contour " +
-                                   std::to_string(kk + 1) + (kk == own ? " (its own)" : "") + " at t=" +
-                                   format_fixed(t, 2) + " (" + format_fixed(q.x, 4) + ", " + format_fixed(q.y, 4) + ")");
-            s = 21;
-            break;
+            out.failures.push_back(at(m) + ": " + what + " comes " + format_fixed(d, 4) + " mm close to contour " +
+                                   std::to_string(kk + 1) + " at t=" + format_fixed(t, 2) + " (" + format_fixed(q.x, 4) +
+                                   ", " + format_fixed(q.y, 4) + ")");
+            return;
           }
         }
       }
+    };
+    for (std::size_t i = 0; i < moves.size(); ++i) {
+      const auto& [m, k] = moves[i];
+      if (k >= 0) continue;
+      if (i > first && i < last) {
+        // The contours cut just before and just after this stretch off the contours.
+        int before = -1, after = -1;
+        for (std::size_t j = i; j-- > first;)
+          if (moves[j].second >= 0) { before = moves[j].second; break; }
+        for (std::size_t j = i + 1; j <= last; ++j)
+          if (moves[j].second >= 0) { after = moves[j].second; break; }
+        if (before == after) {
+          out.failures.push_back(at(*m) + ": a move off the contours in the middle of a cut");
+          continue;
+        }
+        ++out.bridges;
+        out.bridge_length += m->length;
+        check_scrap_move(*m, before, after, "bridge");
+        continue;
+      }
+      lead_len += m->length;
+      // The lead meets its contour at its end (lead-in) or its start (lead-out).
+      check_scrap_move(*m, i < first ? moves[first].second : moves[last].second, -1, "lead");
     }
     if (lead_len > opt.max_lead_mm) out.failures.push_back(at(*moves.front().first) + ": leads of " + format_fixed(lead_len, 3) + " mm");
   }

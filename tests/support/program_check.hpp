@@ -28,6 +28,8 @@ struct ProgramCheck {
   double cut_length = 0;               // [mm]
   double rapid_length = 0;             // [mm]
   std::vector<int> arc_moves;          // per cut contour (nest order, sheet left out): G2/G3 moves on it
+  int bridges = 0;                     // moves through scrap from one contour of a run to the next
+  double bridge_length = 0;            // [mm]
   ProbeResult probe;
 };
 
@@ -41,7 +43,10 @@ struct ProgramCheck {
 // "whole" means: wherever a tool of radius kerf_offset_mm fits against the drawn contour on its
 // scrap side (sampled at three points per drawn segment), the contour's cut passes within
 // kerf_offset_mm + on_contour_mm + 1 µm; and "not more than once": its cut is no longer than the offset curve can
-// be (drawn length ± 2π · offset, + for outer contours, - for holes, plus the overcut).
+// be (drawn length ± 2π · offset, + for outer contours, - for holes, plus the overcut). A run may cut several
+// contours (chain cutting) joined by bridges: moves off the contours between a move on one contour
+// and a move on another, which must stay in scrap and keep the clearance from every other
+// contour (counted in `bridges`; a test of the standard technique expects none).
 ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, const ProgramCheckOptions& options);
 
 }  // namespace cutroute::test

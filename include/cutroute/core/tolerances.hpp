@@ -89,5 +89,9 @@ inline constexpr double kBoundaryBisectRel = 1e-14;
 // offset dip by ~1e-5 mm, and dropping such a slice lost a whole side of the contour (the offset
 // then "collapsed"). A gouge of 0.1 µm is far below any machine's resolution (G-code: 1 µm).
 inline constexpr double kOffsetGougeMm = 1e-4;
+// Two edges of adjacent parts run together (common-line cutting) when their distance equals 0 or
+// the kerf within this at both ends of the shared stretch [mm]. Nests drawn for common-line
+// cutting are exact to ~1e-6; 0.01 mm also accepts hand-made ones and is far below a kerf.
+inline constexpr double kCommonLineMm = 0.01;
 
 }  // namespace cutroute::tol

@@ -31,10 +31,10 @@ struct RoutePrices {
 };
 
 // Node v of the problem: node 0 is the start (its own cluster 0); node v >= 1 is candidate
-// `candidate` of job contour `contour` (cluster contour + 1).
+// `candidate` of basic segment `segment` (cluster segment + 1).
 struct RouteNode {
-  std::int32_t contour = -1;     // index into CutJob::contours, -1 for the start node
-  std::int32_t candidate = -1;   // index into that contour's candidates
+  std::int32_t segment = -1;     // index into CutJob::segments, -1 for the start node
+  std::int32_t candidate = -1;   // index into that segment's candidates
 };
 
 struct RouteProblem {
@@ -52,11 +52,11 @@ struct RouteProblemOptions {
 };
 
 // Arc cost a -> b: the rapid from a's tool-off point to b's pierce point. Inner cost of b: its
-// pierce, lead-in, contour (with overcut) and lead-out. Precedence (a before b) maps to clusters.
+// pierce, lead-in, every piece (contours with overcut, bridges, common edges) and lead-out. Precedence (a before b) maps to clusters.
 Result<RouteProblem> build_route_problem(const model::CutJob& job, const RoutePrices& prices,
                                          const RouteProblemOptions& options);
 
-// The job's chosen candidate per contour, in route order (the start node left out).
+// The job's chosen candidate per basic segment, in route order (the start node left out).
 std::vector<const model::EntryCandidate*> route_entries(const model::CutJob& job, const RouteProblem& rp,
                                                          const std::vector<solve::NodeId>& route);
 

@@ -44,35 +44,80 @@ struct EntryOptions {
 enum class Fallback { none, short_lead, on_contour, centre_pierce };
 const char* to_string(Fallback f);
 
-// One way to enter one contour: where, in which direction, with which leads.
+// What one piece of a basic segment cuts. A basic segment (source paper §2) is the geometry one
+// cutting segment cuts between its lead-in and its lead-out: one whole contour (standard), several
+// whole contours joined by bridges (chain cutting), or open stretches of contours such as an edge
+// shared by two parts (common-line cutting).
+enum class PieceKind {
+  contour,      // a stretch of nest contour `contour` (the whole loop plus overcut when whole)
+  bridge,       // a straight cut through scrap from the end of one piece to the start of the next
+  common_edge,  // a stretch of contour `contour` that is also the boundary of a neighbouring part
+};
+const char* to_string(PieceKind k);
+
+struct SegmentPiece {
+  PieceKind kind = PieceKind::contour;
+  ContourId contour;          // the nest contour cut by this piece; invalid for bridges
+  geometry::Contour path;     // open, in the direction of travel [mm]
+};
+
+// One way to cut one basic segment: where to pierce and enter, in which direction, with which
+// leads, and the ordered pieces cut between lead-in and lead-out. The pieces are continuous: the
+// lead-in ends where pieces.front() starts, each piece starts where the previous one ends, the
+// lead-out starts where pieces.back() ends.
 struct EntryCandidate {
-  ContourId contour;
+  ContourId contour;                 // the contour entered (that of the first non-bridge piece)
   double s_mm = 0.0;                 // arc length of the entry point along the stored contour [mm]
   geometry::Vec2 point;              // entry point on the contour [mm]
-  bool clockwise = true;             // cut direction
+  bool clockwise = true;             // cut direction of the entered contour
   geometry::Vec2 pierce;             // pierce point [mm]
   geometry::Contour lead_in;         // open, pierce -> point (may be empty: pierce on contour)
-  geometry::Contour lead_out;        // open, from the contour's end point (after overcut) into scrap
-  geometry::Contour path;            // the contour itself: open, from point, in the cut direction,
-                                     // including the overcut
+  geometry::Contour lead_out;        // open, from the end of the last piece into scrap
+  // Standard (one whole contour): one contour piece, from point, in the cut direction, including
+  // the overcut. Never empty.
+  std::vector<SegmentPiece> pieces;
   Fallback fallback = Fallback::none;
   bool corner = false;               // entry at a corner
 };
 
-// Where cutting this entry ends and the head lifts: end of the lead-out, else of the cut path,
+// The cut path of a one-piece candidate (its first piece's path): what standard entries cut.
+const geometry::Contour& entry_path(const EntryCandidate& e);
+// Length of everything the candidate cuts between lead-in and lead-out [mm].
+double pieces_length(const EntryCandidate& e);
+// A candidate of more than one piece (a chain or a common-line segment), or of one piece that is
+// not a whole contour (a single common line): refinement leaves it alone.
+inline bool is_multi_piece(const EntryCandidate& e) {
+  return e.pieces.size() > 1 || (!e.pieces.empty() && e.pieces.front().kind != PieceKind::contour);
+}
+
+// Where cutting this entry ends and the head lifts: end of the lead-out, else of the last piece,
 // else the pierce point [mm].
 geometry::Vec2 tool_off_point(const EntryCandidate& e);
 
-struct ContourEntries {
-  ContourId contour;
-  std::vector<EntryCandidate> candidates;  // never empty for a cut contour
+// One cluster of the routing problem: a basic segment and the alternative ways to cut it.
+struct BasicSegment {
+  // The nest contours this segment cuts completely (one for a standard segment, the chained
+  // contours of a chain in cutting order of its first candidate; may be empty for a segment made
+  // only of common edges). Contours cut only in part appear in the candidates' pieces.
+  std::vector<ContourId> contours;
+  std::vector<EntryCandidate> candidates;  // never empty
 };
 
 struct CutJob {
-  std::vector<ContourEntries> contours;                  // one per cut contour (sheet excluded)
-  std::vector<std::pair<std::int32_t, std::int32_t>> precedence;  // (a, b): contours[a] before contours[b]
+  std::vector<BasicSegment> segments;                    // standard job: one per cut contour (sheet excluded)
+  std::vector<std::pair<std::int32_t, std::int32_t>> precedence;  // (a, b): segments[a] before segments[b]
   Diagnostics diagnostics;                               // fallbacks, contours without admissible entry
 };
+
+// Every nest contour a segment cuts, completely or in part (its `contours` and the contours of
+// its first candidate's non-bridge pieces), sorted, without repeats.
+std::vector<ContourId> touched_contours(const BasicSegment& segment);
+
+// Precedence between basic segments from the containment tree: a before b when a contour touched
+// by a lies directly inside (parent) a contour touched by b. Pairs within one segment are
+// dropped. Returns nullopt when the pairs form a cycle (no admissible order exists).
+std::optional<std::vector<std::pair<std::int32_t, std::int32_t>>> segment_precedence(
+    const Nest& nest, const std::vector<BasicSegment>& segments);
 
 // Generates entry candidates and leads for every cut contour of the nest and the precedence
 // pairs: every contour before the contour that directly contains it (holes before their outer
@@ -81,6 +126,7 @@ struct CutJob {
 // any part's material), and its pierce point and lead-in keep `clearance` from every other
 // contour and do not cross their own contour. When no candidate is admissible, fall back to a
 // shorter lead, a centre pierce for small holes, or a pierce on the contour, and say so.
+// One basic segment per contour (the standard technique).
 CutJob make_cut_job(const Nest& nest, const EntryOptions& options);
 
 // Builds and checks entries of one nest; holds the spatial index over its contours so that the
@@ -105,6 +151,19 @@ class EntryPlanner {
   };
   Sketch sketch_at(ContourId contour, double s_mm, bool clockwise) const;
   double clearance_mm() const;
+  // For chains and other multi-piece segments: the whole loop of a contour cut from arc length s
+  // (of the stored contour) in a direction, plus the overcut when `overcut`.
+  geometry::Contour whole_loop(ContourId contour, double s_mm, bool clockwise, bool overcut) const;
+  // The lead-out after a whole loop entered at s (normal shape, else straight along the normal,
+  // else along the corner bisector; empty when none is admissible).
+  geometry::Contour lead_out_at(ContourId contour, double s_mm, bool clockwise) const;
+  // Is the open path, which starts on contour `from` and ends on contour `to`, a cut through
+  // scrap: it touches `from` and `to` only at its ends, keeps the clearance from every other
+  // contour and its middle lies in scrap?
+  bool bridge_clear(const geometry::Contour& path, ContourId from, ContourId to) const;
+  // The stored contour's closest point to p: its arc length [mm] and distance [mm].
+  std::pair<double, double> closest(ContourId contour, geometry::Vec2 p) const;
+  geometry::Vec2 point_at(ContourId contour, double s_mm) const;  // on the stored contour
   double contour_length(ContourId contour) const;  // of the stored contour [mm]
 
  private:

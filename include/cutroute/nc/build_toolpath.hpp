@@ -19,8 +19,11 @@ struct ToolpathOptions {
   KerfMode kerf = KerfMode::none;  // controller: G41/G42 on the scrap side
 };
 
-// `sequence` lists the chosen entry of each contour, in cutting order (one per contour of the
-// job). Each becomes one cutting segment: pierce, lead-in, contour (+ overcut), lead-out.
+// `sequence` lists the chosen candidate of each basic segment, in cutting order. Each becomes one
+// cutting segment: pierce, lead-in, its pieces (contour pieces with overcut and common edges as
+// PieceRole::contour, bridges as PieceRole::bridge), lead-out. A chain's label names every
+// contour it cuts ("part 3 outer + part 4 outer"). The kerf side is that of the entered contour:
+// chains join outer contours cut in the same direction, so it holds for the whole segment.
 Toolpath build_toolpath(const model::Nest& nest, const std::vector<const model::EntryCandidate*>& sequence,
                         const ToolpathOptions& options);
 

@@ -11,11 +11,18 @@
 #include <cutroute/core/stop.hpp>
 #include <cutroute/cost/route_problem.hpp>
 #include <cutroute/io/nest_loader.hpp>
+#include <cutroute/model/chains.hpp>
 #include <cutroute/nc/build_toolpath.hpp>
 #include <cutroute/nc/gcode_writer.hpp>
 #include <cutroute/solve/params.hpp>
 
 namespace cutroute::pipeline {
+
+// Which alternative sets of basic segments to build (GSCCP, source paper §2): standard = one per
+// contour; chain = neighbouring outer contours joined by bridges; common = edges shared by
+// neighbouring parts cut once; automatic = every one available, solved each, the best kept.
+enum class Technique { standard, chain, common, automatic };
+const char* to_string(Technique t);
 
 // The options of `cutroute optimize` that are not about reading the nest. Defaults are sensible
 // without any option: the built-in machine profile's default material and thickness.
@@ -25,7 +32,7 @@ struct OptimizeOptions {
   std::optional<double> thickness_mm;        // [mm]
   bool interpolate = false;                  // thickness between Table 1 rows
   cost::Objective objective = cost::Objective::time;
-  double time_limit_s = 10.0;                // solver wall-clock budget [s]
+  double time_limit_s = 10.0;                // solver wall-clock budget [s], shared by the techniques compared
   std::uint64_t seed = 1;
   int threads = 0;                           // 0: hardware threads (at most 8)
   solve::SolverKind solver = solve::SolverKind::automatic;
@@ -49,6 +56,8 @@ struct OptimizeOptions {
   // drawn over each other would be ruined. With this set they are cut anyway, each once, with a
   // warning; crossing contours get no order between them.
   bool allow_crossing = false;
+  Technique technique = Technique::automatic;
+  model::ChainOptions chain;                 // chain technique: gap limit, run length
 };
 
 struct OptimizeResult {
@@ -60,16 +69,23 @@ struct OptimizeResult {
 
 // Steps (each a function in src/pipeline/):
 //  1. cutting conditions from the machine profile and Table 1 (material, thickness);
-//  2. the cut job: entry candidates with leads in scrap, precedence (model::make_cut_job);
+//  2. the cut job of each technique asked for (standard: model::make_cut_job; chain:
+//     model::make_chain_job; common: not available yet): basic segments with entry candidates,
+//     leads in scrap, precedence. With `automatic`, a chain/common job that joins nothing is not
+//     solved again, and one that cannot be built is reported as not available;
+//  then for each job (the solver's time limit split evenly, unused time passed on):
 //  3. the routing problem in integer time or cost (cost::build_route_problem) and solve::solve();
-//  4. continuous refinement of each entry along its contour for the fixed order;
+//  4. continuous refinement of each one-contour entry along its contour for the fixed order;
 //  5. toolpath -> G-code in the dialect; frames n counted on the written program;
 //  6. T_cut with V_on*(n) (eq. 10); lead types that change n compared by that corrected objective;
-//  7. the report.
+//  the job whose program has the lowest corrected objective (T_cut, or eq. 3 cost) is kept;
+//  7. the report: `alternatives` (name, basic_segments, pierces, cut_length_mm, rapid_length_mm,
+//     frames, t_cut_s, objective; or available: false with a reason) and `chosen`.
 //  (with kerf_mode cam, step 2 plans on model::offset_for_kerf(nest): the torch centre's path)
-// Errors: unknown material/thickness, invalid profile or dialect, crossing contours in the nest;
-// with kerf_mode cam: a contour too small for the kerf ("kerf.collapsed", "kerf.split") and,
-// unless allowed, toolpaths that meet ("kerf.overlap").
+// Errors: unknown material/thickness, invalid profile or dialect, crossing contours in the nest,
+// a technique asked for explicitly that is not available; with kerf_mode cam: a contour too small
+// for the kerf ("kerf.collapsed", "kerf.split") and, unless allowed, toolpaths that meet
+// ("kerf.overlap").
 Result<OptimizeResult> optimize_nest(const io::LoadedNest& nest, const OptimizeOptions& options,
                                      const StopToken& stop = {}, const ProgressFn& progress = {});
 

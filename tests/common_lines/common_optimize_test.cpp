@@ -1,0 +1,179 @@
+// `cutroute optimize` on nests of parts sharing edges: the written program re-parsed and checked
+// (every edge cut, every part separated, holes first, shared stretches before the group's outline).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include <cutroute/geometry/shapes.hpp>
+#include <cutroute/io/nest_loader.hpp>
+
+#include "support/common_program_check.hpp"
+#include "support/dxf_builder.hpp"
+#include "support/files.hpp"
+#include "support/paths.hpp"
+
+namespace cutroute::test {
+namespace {
+
+namespace fs = std::filesystem;
+using geometry::Vec2;
+using geometry::Vertex;
+
+struct Layout {
+  std::string dxf;
+  double perimeters = 0;  // sum over every drawn contour [mm]
+  double shared = 0;      // length of the stretches two parts share [mm]
+};
+
+// cols x rows rectangles of w x h drawn touching on a 1000 x 600 sheet, each with a round hole
+// of radius r (none when r = 0). Shared length: (cols - 1) * rows * h + (rows - 1) * cols * w.
+Layout grid(const fs::path& dir, int cols, int rows, double w, double h, double r) {
+  DxfBuilder b;
+  b.insunits(4);
+  b.lwpolyline({Vertex{{0, 0}, 0}, Vertex{{1000, 0}, 0}, Vertex{{1000, 600}, 0}, Vertex{{0, 600}, 0}}, true, "SHEET");
+  Layout l;
+  const Vec2 o{100, 100};
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < cols; ++i) {
+      const double x = o.x + i * w, y = o.y + j * h;
+      b.lwpolyline({Vertex{{x, y}, 0}, Vertex{{x + w, y}, 0}, Vertex{{x + w, y + h}, 0}, Vertex{{x, y + h}, 0}}, true,
+                   "PARTS");
+      l.perimeters += 2 * (w + h);
+      if (r > 0) {
+        b.circle({x + w / 2, y + h / 2}, r, "PARTS");
+        l.perimeters += 2 * std::numbers::pi * r;
+      }
+    }
+  l.shared = (cols - 1) * rows * h + (rows - 1) * cols * w;
+  l.dxf = (dir / "grid.dxf").string();
+  std::ofstream(l.dxf) << b.str();
+  return l;
+}
+
+struct OptRun {
+  CommandOutput cmd;
+  std::string program;
+};
+
+OptRun optimize(const std::string& dxf, const fs::path& dir, const std::string& extra) {
+  OptRun r;
+  const auto prog = dir / "out.ngc";
+  r.cmd = run_command(cli_path() + " optimize " + dxf + " -o " + prog.string() + " --quiet --time-limit 1 " + extra);
+  if (r.cmd.exit_code == 0) r.program = read_text(prog);
+  return r;
+}
+
+model::Nest load(const std::string& dxf) {
+  auto loaded = io::load_nest(dxf, io::NestLoadOptions{});
+  EXPECT_TRUE(loaded.ok());
+  return loaded->nest;
+}
+
+// Runs `optimize` and checks the written program against the nest; every failure is reported.
+CommonProgramCheck optimize_and_check(const std::string& dxf, const fs::path& dir, const std::string& extra,
+                                      double on_mm, std::string* program = nullptr) {
+  const OptRun run = optimize(dxf, dir, extra);
+  EXPECT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
+  if (program) *program = run.program;
+  auto check = check_common_program(load(dxf), run.program, on_mm);
+  for (const auto& f : check.failures) ADD_FAILURE() << f;
+  return check;
+}
+
+// Today's standard technique on the same nest, as the baseline: each part's outline cut whole,
+// so the shared edges are cut twice and the boundary cut length is the sum of the perimeters.
+TEST(CommonOptimize, StandardCutsSharedEdgesTwice) {
+  const auto dir = fresh_temp_dir("common-standard");
+  const Layout l = grid(dir, 3, 2, 120, 80, 15);
+  const auto check = optimize_and_check(l.dxf, dir, "--technique standard", 0.005);
+  EXPECT_NEAR(check.boundary_cut_mm, l.perimeters, 0.01);
+  EXPECT_EQ(check.runs, 12);
+}
+
+// Blocks that switch the controller's kerf compensation on (G41 / G42).
+int compensated_runs(const std::string& program) {
+  int n = 0;
+  std::istringstream in(program);
+  for (std::string line; std::getline(in, line);)
+    n += line.find("G41") != std::string::npos || line.find("G42") != std::string::npos;
+  return n;
+}
+
+// 3 x 2 parts with a hole each, drawn touching: the cut along part boundaries drops by exactly the
+// shared length, every edge is still cut, every part separated, holes and common lines first.
+TEST(CommonOptimize, CommonCutsSharedEdgesOnce) {
+  const auto dir = fresh_temp_dir("common-common");
+  const Layout l = grid(dir, 3, 2, 120, 80, 15);
+  std::string program;
+  const auto check = optimize_and_check(l.dxf, dir, "--technique common", 0.005, &program);
+  EXPECT_NEAR(l.shared, 2 * 160 + 360, 1e-9);  // two vertical lines through both rows, one horizontal
+  EXPECT_NEAR(check.boundary_cut_mm, l.perimeters - l.shared, 0.01);
+  // 6 holes, the outline of the group, 2 vertical and 1 horizontal common line.
+  EXPECT_EQ(check.runs, 6 + 1 + 3);
+  EXPECT_EQ(check.pierces_on_a_cut, 0);
+  // Common lines are centre lines: cut without compensation; everything else with it.
+  EXPECT_EQ(compensated_runs(program), 6 + 1);
+}
+
+// With the technique chosen automatically both alternatives are reported and the faster one is
+// kept; on this grid that is common-line cutting (less cut, fewer pierces).
+TEST(CommonOptimize, AutoReportsAlternativesAndKeepsTheFaster) {
+  const auto dir = fresh_temp_dir("common-auto");
+  const Layout l = grid(dir, 3, 2, 120, 80, 15);
+  const auto rep = dir / "out.json";
+  const auto check = optimize_and_check(l.dxf, dir, "--report " + rep.string(), 0.005);
+  EXPECT_NEAR(check.boundary_cut_mm, l.perimeters - l.shared, 0.01);
+  const auto report = nlohmann::json::parse(read_text(rep));
+  const nlohmann::json* standard = nullptr;
+  const nlohmann::json* common = nullptr;
+  double best = 1e300;
+  std::string best_name;
+  for (const auto& a : report.at("alternatives")) {
+    if (!a.value("available", true)) continue;
+    if (a.at("name") == "standard") standard = &a;
+    if (a.at("name") == "common") common = &a;
+    if (a.at("t_cut_s").get<double>() < best) {
+      best = a.at("t_cut_s").get<double>();
+      best_name = a.at("name").get<std::string>();
+    }
+  }
+  ASSERT_TRUE(standard && common);
+  EXPECT_EQ(standard->at("pierces").get<int>(), 12);
+  EXPECT_EQ(common->at("pierces").get<int>(), 10);
+  EXPECT_EQ(common->at("basic_segments").get<int>(), 10);
+  // L_on includes leads, whose number changes with the pierces: 2 lead pairs fewer here.
+  EXPECT_LT(common->at("cut_length_mm").get<double>(), standard->at("cut_length_mm").get<double>() - l.shared + 1.0);
+  EXPECT_EQ(report.at("chosen"), best_name);
+  EXPECT_EQ(best_name, "common");
+}
+
+// A row of four parts drawn one kerf apart: the common cuts run on the centre lines of the gaps.
+TEST(CommonOptimize, KerfApartRow) {
+  const auto dir = fresh_temp_dir("common-kerf");
+  const double k = 0.2;
+  DxfBuilder b;
+  b.insunits(4);
+  b.lwpolyline({Vertex{{0, 0}, 0}, Vertex{{1000, 0}, 0}, Vertex{{1000, 600}, 0}, Vertex{{0, 600}, 0}}, true, "SHEET");
+  double perimeters = 0;
+  for (int i = 0; i < 4; ++i) {
+    const double x = 100 + i * (150 + k);
+    b.lwpolyline({Vertex{{x, 100}, 0}, Vertex{{x + 150, 100}, 0}, Vertex{{x + 150, 190}, 0}, Vertex{{x, 190}, 0}}, true,
+                 "PARTS");
+    perimeters += 2 * (150 + 90);
+  }
+  const std::string dxf = (dir / "row.dxf").string();
+  std::ofstream(dxf) << b.str();
+  const auto check = optimize_and_check(dxf, dir, "--technique common --kerf 0.2", k / 2 + 0.005);
+  EXPECT_EQ(check.runs, 1 + 3);
+  // Three 90 mm centre lines instead of six edges; the outline crosses each gap twice.
+  EXPECT_NEAR(check.boundary_cut_mm, perimeters - 3 * 90 + 6 * k, 0.05);
+}
+
+}  // namespace
+}  // namespace cutroute::test

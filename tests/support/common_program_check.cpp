@@ -1,0 +1,219 @@
+#include "support/common_program_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+
+#include <cutroute/geometry/contour.hpp>
+#include <cutroute/geometry/spatial_index.hpp>
+
+namespace cutroute::test {
+namespace {
+
+using geometry::Vec2;
+constexpr double kTwoPi = 2 * std::numbers::pi;
+
+// Exact distance from q to a probed line or arc move.
+double move_distance(const ProbeMove& m, Vec2 q) {
+  const Vec2 a{m.x0, m.y0}, b{m.x1, m.y1};
+  if (m.arc == 0) {
+    const Vec2 d = b - a;
+    const double l2 = geometry::dot(d, d);
+    const double t = l2 > 0 ? std::clamp(geometry::dot(q - a, d) / l2, 0.0, 1.0) : 0.0;
+    return geometry::distance(q, a + d * t);
+  }
+  const Vec2 c{m.cx, m.cy};
+  const double r = geometry::distance(a, c);
+  const auto ang = [&](Vec2 p) { return std::atan2(p.y - c.y, p.x - c.x); };
+  const auto wrap = [](double x) {
+    x = std::fmod(x, kTwoPi);
+    return x < 0 ? x + kTwoPi : x;
+  };
+  double sweep = wrap(m.arc > 0 ? ang(b) - ang(a) : ang(a) - ang(b));
+  if (sweep < 1e-12) sweep = kTwoPi;  // full circle
+  const double at = wrap(m.arc > 0 ? ang(q) - ang(a) : ang(a) - ang(q));
+  if (at <= sweep) return std::abs(geometry::distance(q, c) - r);
+  return std::min(geometry::distance(q, a), geometry::distance(q, b));
+}
+
+// Points every `step` mm along a contour, from its vertices (lines interpolated, arcs by angle).
+std::vector<Vec2> boundary_samples(const geometry::Contour& c, double step) {
+  std::vector<Vec2> out;
+  for (std::size_t i = 0; i < geometry::segment_count(c); ++i) {
+    const auto s = geometry::segment(c, i);
+    const int k = std::max(2, static_cast<int>(s.length() / step));
+    for (int j = 0; j < k; ++j) out.push_back(s.point_at(static_cast<double>(j) / k));
+  }
+  return out;
+}
+
+struct UnionFind {
+  std::vector<std::size_t> p;
+  explicit UnionFind(std::size_t n) : p(n) { std::iota(p.begin(), p.end(), std::size_t{0}); }
+  std::size_t find(std::size_t x) { return p[x] == x ? x : p[x] = find(p[x]); }
+};
+
+}  // namespace
+
+CommonProgramCheck check_common_program(const model::Nest& nest, const std::string& gcode, double on_mm) {
+  CommonProgramCheck out;
+  out.probe = probe_gcode(gcode);
+  const auto& moves = out.probe.moves;
+  for (const auto& e : out.probe.errors) out.failures.push_back("parse: " + e);
+  if (out.probe.cut_with_beam_off) out.failures.push_back("a feed move with the beam off");
+  if (!out.probe.ended) out.failures.push_back("no program end (M2/M30)");
+
+  std::vector<const model::NestContour*> parts;
+  std::vector<geometry::Box> part_boxes;
+  for (const auto& c : nest.contours)
+    if (c.role != model::ContourRole::sheet) {
+      parts.push_back(&c);
+      part_boxes.push_back(c.box);
+    }
+  const geometry::StaticSpatialIndex part_index(part_boxes);
+  std::vector<std::uint32_t> hits;
+  // Contours within d of q (box prefilter, then the exact distance), in index order.
+  const auto near_parts = [&](Vec2 q, double d) {
+    part_index.query(geometry::Box{q.x, q.y, q.x, q.y}.inflated(d), hits);
+    std::sort(hits.begin(), hits.end());
+    std::vector<std::size_t> found;
+    for (const auto h : hits)
+      if (geometry::distance(parts[h]->source.contour, q) <= d) found.push_back(h);
+    return found;
+  };
+  const auto on_boundary = [&](Vec2 q, std::size_t& which) {
+    const auto n = near_parts(q, on_mm);
+    if (n.empty()) return false;
+    which = n.front();
+    return true;
+  };
+  const auto in_material = [&](Vec2 q) {
+    part_index.query(geometry::Box{q.x, q.y, q.x, q.y}, hits);
+    int inside = 0;
+    for (const auto h : hits) inside += geometry::locate(parts[h]->source.contour, q, 1e-9) == geometry::Location::inside;
+    return inside % 2 == 1;
+  };
+
+  // Beam-on moves in program order; leads and connectors checked as they come.
+  std::vector<std::size_t> cuts;
+  bool beam = false;
+  for (std::size_t i = 0; i < moves.size(); ++i) {
+    const auto& m = moves[i];
+    if (m.rapid || !m.beam_on) {
+      beam = beam && !m.rapid;
+      continue;
+    }
+    std::size_t k = 0;
+    if (!beam) {
+      beam = true;
+      ++out.runs;
+      const Vec2 pierce{m.x0, m.y0};
+      if (on_boundary(pierce, k))
+        ++out.pierces_on_a_cut;
+      else if (in_material(pierce))
+        out.failures.push_back("line " + std::to_string(m.line) + ": pierce inside a part");
+    }
+    cuts.push_back(i);
+    bool all_on = true;
+    for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+      Vec2 q;
+      probe_point(m, t, q.x, q.y);
+      all_on = all_on && on_boundary(q, k);
+    }
+    if (all_on) {
+      out.boundary_cut_mm += m.length;
+      continue;
+    }
+    for (int j = 1; j < 20; ++j) {
+      Vec2 q;
+      probe_point(m, j / 20.0, q.x, q.y);
+      if (m.length * std::min(j, 20 - j) / 20.0 < 0.05) continue;  // where it meets a cut
+      if (!on_boundary(q, k) && in_material(q)) {
+        out.failures.push_back("line " + std::to_string(m.line) + ": a move off the boundaries runs through a part");
+        break;
+      }
+    }
+  }
+
+  // When is each boundary point first cut? (Index into `cuts`; moves found through their boxes.)
+  std::vector<geometry::Box> move_boxes;
+  for (const auto c : cuts) {
+    const auto& m = moves[c];
+    geometry::Box b;
+    for (int j = 0; j <= 16; ++j) {
+      Vec2 q;
+      probe_point(m, j / 16.0, q.x, q.y);
+      b.add(q);
+    }
+    // Between two of these points an arc (sweep up to 360°) strays by less than 5 % of their
+    // distance along it (the sagitta of 22.5°): the margin.
+    move_boxes.push_back(b.inflated(on_mm + 0.05 * m.length / 16.0));
+  }
+  const geometry::StaticSpatialIndex move_index(move_boxes);
+  std::vector<std::vector<Vec2>> samples(parts.size());
+  std::vector<std::vector<std::size_t>> cut_at(parts.size());
+  std::vector<std::size_t> done(parts.size(), 0);
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    samples[k] = boundary_samples(parts[k]->source.contour, 0.5);
+    for (const Vec2 q : samples[k]) {
+      std::size_t first = cuts.size();
+      move_index.visit(geometry::Box{q.x, q.y, q.x, q.y}, [&](std::uint32_t c) {
+        if (c < first && move_distance(moves[cuts[c]], q) <= on_mm) first = c;
+        return true;
+      });
+      if (first == cuts.size()) {
+        out.failures.push_back("contour " + std::to_string(k + 1) + ": boundary point (" + std::to_string(q.x) + ", " +
+                               std::to_string(q.y) + ") is never cut");
+        break;
+      }
+      cut_at[k].push_back(first);
+      done[k] = std::max(done[k], first);
+    }
+  }
+  if (!out.failures.empty()) return out;
+
+  // Holes before their part, parts in a hole before the hole.
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    const auto parent = parts[k]->parent;
+    if (!parent.valid()) continue;
+    const auto pk = static_cast<std::size_t>(
+        std::find(parts.begin(), parts.end(), &nest.contours[parent]) - parts.begin());
+    if (pk < parts.size() && done[k] >= done[pk])
+      out.failures.push_back("contour " + std::to_string(k + 1) + " is finished after the contour around it");
+  }
+
+  // Groups: contours whose boundaries share points. Shared points cut before the group's own
+  // outer boundary is complete.
+  UnionFind uf(parts.size());
+  std::vector<std::vector<char>> shared(parts.size());
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    shared[k].assign(samples[k].size(), 0);
+    for (std::size_t s = 0; s < samples[k].size(); ++s)
+      for (const std::size_t o : near_parts(samples[k][s], 2 * on_mm + 1e-9))
+        if (o != k) {
+          shared[k][s] = 1;
+          uf.p[uf.find(k)] = uf.find(o);
+        }
+  }
+  std::vector<std::size_t> outer_done(parts.size(), 0), shared_done(parts.size(), 0);
+  std::vector<char> has_shared(parts.size(), 0);
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    const std::size_t g = uf.find(k);
+    for (std::size_t s = 0; s < samples[k].size(); ++s) {
+      if (shared[k][s]) {
+        has_shared[g] = 1;
+        shared_done[g] = std::max(shared_done[g], cut_at[k][s]);
+      } else if (parts[k]->role == model::ContourRole::outer && !parts[k]->parent.valid()) {
+        outer_done[g] = std::max(outer_done[g], cut_at[k][s]);
+      }
+    }
+  }
+  for (std::size_t g = 0; g < parts.size(); ++g)
+    if (has_shared[g] && shared_done[g] >= outer_done[g])
+      out.failures.push_back("a common line of the group of contour " + std::to_string(g + 1) +
+                             " is cut after the group's outer boundary");
+  return out;
+}
+
+}  // namespace cutroute::test

@@ -1,0 +1,34 @@
+// check_common_program(): re-parses a cutting program and checks it against a nest whose parts may share cuts.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <cutroute/model/nest.hpp>
+
+#include "support/gcode_probe.hpp"
+
+namespace cutroute::test {
+
+struct CommonProgramCheck {
+  std::vector<std::string> failures;  // empty when the program is admissible
+  ProbeResult probe;
+  int runs = 0;                       // beam-on runs (= pierces)
+  int pierces_on_a_cut = 0;           // runs starting on a drawn boundary (no lead-in)
+  double boundary_cut_mm = 0;         // beam-on length lying on drawn part boundaries [mm]
+};
+
+// Independently of the route data, from the program text alone:
+//  - every point of every part boundary (sampled every 0.5 mm) lies within `on_mm` of some
+//    beam-on move: every part is cut free of everything around it;
+//  - each contour's boundary is complete before that of the contour around it (holes before
+//    their part, parts in a hole before the hole);
+//  - for parts sharing boundary stretches (a group), every shared stretch is cut before the
+//    group's outer boundary is complete (after that the parts are free and may move);
+//  - moves lying on no boundary (leads, connectors across a kerf gap) never pass through the
+//    material of a part (sampled, away from their ends), and every pierce lies in scrap or on a
+//    drawn boundary; no feed move with the beam off; the program ends.
+// `on_mm`: 0.005 for parts drawn touching; half the kerf (plus that) for parts drawn kerf apart.
+CommonProgramCheck check_common_program(const model::Nest& nest, const std::string& gcode, double on_mm);
+
+}  // namespace cutroute::test

@@ -108,6 +108,11 @@ TEST(OptimizeCli, DemoSheetAutoChoosesChainsLikeThePaper) {
   for (auto at = picture.find("class=\"bridge\""); at != std::string::npos; at = picture.find("class=\"bridge\"", at + 1)) ++drawn;
   EXPECT_EQ(drawn, 3u);
 
+  // With the gap limit below the demo's 5 mm nothing is chained.
+  const OptRun narrow = optimize(dxf, dir, "--technique chain --chain-gap 4");
+  ASSERT_EQ(narrow.cmd.exit_code, 0) << narrow.cmd.err;
+  EXPECT_EQ(narrow.report["pierces"], 21);
+
   // Asked for explicitly, a technique that is not available is an error, not a silent fallback.
   const OptRun common = optimize(dxf, dir, "--technique common");
   EXPECT_EQ(common.cmd.exit_code, 2);

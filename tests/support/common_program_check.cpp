@@ -6,6 +6,8 @@
 #include <numeric>
 
 #include <cutroute/geometry/contour.hpp>
+#include <cutroute/geometry/intersect.hpp>
+#include <cutroute/geometry/segment_set.hpp>
 #include <cutroute/geometry/spatial_index.hpp>
 
 namespace cutroute::test {
@@ -72,14 +74,25 @@ CommonProgramCheck check_common_program(const model::Nest& nest, const std::stri
       part_boxes.push_back(c.box);
     }
   const geometry::StaticSpatialIndex part_index(part_boxes);
+  std::vector<geometry::SegmentSet> sets;
+  for (const auto* c : parts) sets.push_back(geometry::make_segment_set(c->source.contour));
   std::vector<std::uint32_t> hits;
-  // Contours within d of q (box prefilter, then the exact distance), in index order.
+  // Is contour k within d of q? Only its segments whose boxes come that near are measured.
+  const auto within = [&](std::size_t k, Vec2 q, double d) {
+    bool hit = false;
+    sets[k].index.visit(geometry::Box{q.x, q.y, q.x, q.y}.inflated(d), [&](std::uint32_t s) {
+      hit = geometry::closest_point(sets[k].segments[s], q).distance <= d;
+      return !hit;
+    });
+    return hit;
+  };
+  // Contours within d of q, in index order.
   const auto near_parts = [&](Vec2 q, double d) {
     part_index.query(geometry::Box{q.x, q.y, q.x, q.y}.inflated(d), hits);
     std::sort(hits.begin(), hits.end());
     std::vector<std::size_t> found;
     for (const auto h : hits)
-      if (geometry::distance(parts[h]->source.contour, q) <= d) found.push_back(h);
+      if (within(h, q, d)) found.push_back(h);
     return found;
   };
   const auto on_boundary = [&](Vec2 q, std::size_t& which) {
@@ -91,7 +104,7 @@ CommonProgramCheck check_common_program(const model::Nest& nest, const std::stri
   const auto in_material = [&](Vec2 q) {
     part_index.query(geometry::Box{q.x, q.y, q.x, q.y}, hits);
     int inside = 0;
-    for (const auto h : hits) inside += geometry::locate(parts[h]->source.contour, q, 1e-9) == geometry::Location::inside;
+    for (const auto h : hits) inside += geometry::locate(sets[h], q, 1e-9) == geometry::Location::inside;
     return inside % 2 == 1;
   };
 

@@ -1,6 +1,7 @@
 #include "support/common_program_check.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <numbers>
 #include <numeric>
@@ -58,7 +59,8 @@ struct UnionFind {
 
 }  // namespace
 
-CommonProgramCheck check_common_program(const model::Nest& nest, const std::string& gcode, double on_mm) {
+CommonProgramCheck check_common_program(const model::Nest& nest, const std::string& gcode, double on_mm,
+                                        bool group_rule) {
   CommonProgramCheck out;
   out.probe = probe_gcode(gcode);
   const auto& moves = out.probe.moves;
@@ -110,6 +112,7 @@ CommonProgramCheck check_common_program(const model::Nest& nest, const std::stri
 
   // Beam-on moves in program order; leads and connectors checked as they come.
   std::vector<std::size_t> cuts;
+  std::vector<std::vector<std::size_t>> common_of;  // per cut: the contours a common line separates
   bool beam = false;
   for (std::size_t i = 0; i < moves.size(); ++i) {
     const auto& m = moves[i];
@@ -129,11 +132,21 @@ CommonProgramCheck check_common_program(const model::Nest& nest, const std::stri
     }
     cuts.push_back(i);
     bool all_on = true;
+    std::vector<std::size_t> on_all;  // contours the whole move lies on
     for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
       Vec2 q;
       probe_point(m, t, q.x, q.y);
       all_on = all_on && on_boundary(q, k);
+      const auto n = near_parts(q, on_mm);
+      if (t == 0.0) {
+        on_all = n;
+      } else {
+        std::vector<std::size_t> both;
+        std::set_intersection(on_all.begin(), on_all.end(), n.begin(), n.end(), std::back_inserter(both));
+        on_all = std::move(both);
+      }
     }
+    common_of.push_back(on_all.size() >= 2 ? on_all : std::vector<std::size_t>{});
     if (all_on) {
       out.boundary_cut_mm += m.length;
       continue;
@@ -196,18 +209,16 @@ CommonProgramCheck check_common_program(const model::Nest& nest, const std::stri
       out.failures.push_back("contour " + std::to_string(k + 1) + " is finished after the contour around it");
   }
 
-  // Groups: contours whose boundaries share points. Shared points cut before the group's own
-  // outer boundary is complete.
+  if (!group_rule) return out;
+  // Groups: contours separated by common lines (moves lying on two boundaries at once). Every
+  // point first cut by such a move is cut before the group's own outer boundary is complete.
   UnionFind uf(parts.size());
+  for (const auto& on : common_of)
+    for (std::size_t j = 1; j < on.size(); ++j) uf.p[uf.find(on[j])] = uf.find(on[0]);
   std::vector<std::vector<char>> shared(parts.size());
   for (std::size_t k = 0; k < parts.size(); ++k) {
     shared[k].assign(samples[k].size(), 0);
-    for (std::size_t s = 0; s < samples[k].size(); ++s)
-      for (const std::size_t o : near_parts(samples[k][s], 2 * on_mm + 1e-9))
-        if (o != k) {
-          shared[k][s] = 1;
-          uf.p[uf.find(k)] = uf.find(o);
-        }
+    for (std::size_t s = 0; s < samples[k].size(); ++s) shared[k][s] = !common_of[cut_at[k][s]].empty();
   }
   std::vector<std::size_t> outer_done(parts.size(), 0), shared_done(parts.size(), 0);
   std::vector<char> has_shared(parts.size(), 0);
@@ -217,7 +228,7 @@ CommonProgramCheck check_common_program(const model::Nest& nest, const std::stri
       if (shared[k][s]) {
         has_shared[g] = 1;
         shared_done[g] = std::max(shared_done[g], cut_at[k][s]);
-      } else if (parts[k]->role == model::ContourRole::outer && !parts[k]->parent.valid()) {
+      } else if (parts[k]->role == model::ContourRole::outer) {
         outer_done[g] = std::max(outer_done[g], cut_at[k][s]);
       }
     }

@@ -1,11 +1,14 @@
 #include "support/common_program_check.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <numbers>
 #include <numeric>
 
 #include <cutroute/geometry/contour.hpp>
+#include <cutroute/geometry/intersect.hpp>
+#include <cutroute/geometry/segment_set.hpp>
 #include <cutroute/geometry/spatial_index.hpp>
 
 namespace cutroute::test {
@@ -56,7 +59,8 @@ struct UnionFind {
 
 }  // namespace
 
-CommonProgramCheck check_common_program(const model::Nest& nest, const std::string& gcode, double on_mm) {
+CommonProgramCheck check_common_program(const model::Nest& nest, const std::string& gcode, double on_mm,
+                                        bool group_rule) {
   CommonProgramCheck out;
   out.probe = probe_gcode(gcode);
   const auto& moves = out.probe.moves;
@@ -72,14 +76,25 @@ CommonProgramCheck check_common_program(const model::Nest& nest, const std::stri
       part_boxes.push_back(c.box);
     }
   const geometry::StaticSpatialIndex part_index(part_boxes);
+  std::vector<geometry::SegmentSet> sets;
+  for (const auto* c : parts) sets.push_back(geometry::make_segment_set(c->source.contour));
   std::vector<std::uint32_t> hits;
-  // Contours within d of q (box prefilter, then the exact distance), in index order.
+  // Is contour k within d of q? Only its segments whose boxes come that near are measured.
+  const auto within = [&](std::size_t k, Vec2 q, double d) {
+    bool hit = false;
+    sets[k].index.visit(geometry::Box{q.x, q.y, q.x, q.y}.inflated(d), [&](std::uint32_t s) {
+      hit = geometry::closest_point(sets[k].segments[s], q).distance <= d;
+      return !hit;
+    });
+    return hit;
+  };
+  // Contours within d of q, in index order.
   const auto near_parts = [&](Vec2 q, double d) {
     part_index.query(geometry::Box{q.x, q.y, q.x, q.y}.inflated(d), hits);
     std::sort(hits.begin(), hits.end());
     std::vector<std::size_t> found;
     for (const auto h : hits)
-      if (geometry::distance(parts[h]->source.contour, q) <= d) found.push_back(h);
+      if (within(h, q, d)) found.push_back(h);
     return found;
   };
   const auto on_boundary = [&](Vec2 q, std::size_t& which) {
@@ -91,12 +106,13 @@ CommonProgramCheck check_common_program(const model::Nest& nest, const std::stri
   const auto in_material = [&](Vec2 q) {
     part_index.query(geometry::Box{q.x, q.y, q.x, q.y}, hits);
     int inside = 0;
-    for (const auto h : hits) inside += geometry::locate(parts[h]->source.contour, q, 1e-9) == geometry::Location::inside;
+    for (const auto h : hits) inside += geometry::locate(sets[h], q, 1e-9) == geometry::Location::inside;
     return inside % 2 == 1;
   };
 
   // Beam-on moves in program order; leads and connectors checked as they come.
   std::vector<std::size_t> cuts;
+  std::vector<std::vector<std::size_t>> common_of;  // per cut: the contours a common line separates
   bool beam = false;
   for (std::size_t i = 0; i < moves.size(); ++i) {
     const auto& m = moves[i];
@@ -116,11 +132,21 @@ CommonProgramCheck check_common_program(const model::Nest& nest, const std::stri
     }
     cuts.push_back(i);
     bool all_on = true;
+    std::vector<std::size_t> on_all;  // contours the whole move lies on
     for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
       Vec2 q;
       probe_point(m, t, q.x, q.y);
       all_on = all_on && on_boundary(q, k);
+      const auto n = near_parts(q, on_mm);
+      if (t == 0.0) {
+        on_all = n;
+      } else {
+        std::vector<std::size_t> both;
+        std::set_intersection(on_all.begin(), on_all.end(), n.begin(), n.end(), std::back_inserter(both));
+        on_all = std::move(both);
+      }
     }
+    common_of.push_back(on_all.size() >= 2 ? on_all : std::vector<std::size_t>{});
     if (all_on) {
       out.boundary_cut_mm += m.length;
       continue;
@@ -183,18 +209,16 @@ CommonProgramCheck check_common_program(const model::Nest& nest, const std::stri
       out.failures.push_back("contour " + std::to_string(k + 1) + " is finished after the contour around it");
   }
 
-  // Groups: contours whose boundaries share points. Shared points cut before the group's own
-  // outer boundary is complete.
+  if (!group_rule) return out;
+  // Groups: contours separated by common lines (moves lying on two boundaries at once). Every
+  // point first cut by such a move is cut before the group's own outer boundary is complete.
   UnionFind uf(parts.size());
+  for (const auto& on : common_of)
+    for (std::size_t j = 1; j < on.size(); ++j) uf.p[uf.find(on[j])] = uf.find(on[0]);
   std::vector<std::vector<char>> shared(parts.size());
   for (std::size_t k = 0; k < parts.size(); ++k) {
     shared[k].assign(samples[k].size(), 0);
-    for (std::size_t s = 0; s < samples[k].size(); ++s)
-      for (const std::size_t o : near_parts(samples[k][s], 2 * on_mm + 1e-9))
-        if (o != k) {
-          shared[k][s] = 1;
-          uf.p[uf.find(k)] = uf.find(o);
-        }
+    for (std::size_t s = 0; s < samples[k].size(); ++s) shared[k][s] = !common_of[cut_at[k][s]].empty();
   }
   std::vector<std::size_t> outer_done(parts.size(), 0), shared_done(parts.size(), 0);
   std::vector<char> has_shared(parts.size(), 0);
@@ -204,7 +228,7 @@ CommonProgramCheck check_common_program(const model::Nest& nest, const std::stri
       if (shared[k][s]) {
         has_shared[g] = 1;
         shared_done[g] = std::max(shared_done[g], cut_at[k][s]);
-      } else if (parts[k]->role == model::ContourRole::outer && !parts[k]->parent.valid()) {
+      } else if (parts[k]->role == model::ContourRole::outer) {
         outer_done[g] = std::max(outer_done[g], cut_at[k][s]);
       }
     }

@@ -29,6 +29,10 @@ struct CommonProgramCheck {
 //    material of a part (sampled, away from their ends), and every pierce lies in scrap or on a
 //    drawn boundary; no feed move with the beam off; the program ends.
 // `on_mm`: 0.005 for parts drawn touching; half the kerf (plus that) for parts drawn kerf apart.
-CommonProgramCheck check_common_program(const model::Nest& nest, const std::string& gcode, double on_mm);
+// `group_rule` false: skip the third check. Drawings whose contours touch along stretches that
+// are not common lines (cut twice, e.g. d2g_DRAAK) make "a move lying on two boundaries" an
+// ambiguous sign of a common line there.
+CommonProgramCheck check_common_program(const model::Nest& nest, const std::string& gcode, double on_mm,
+                                        bool group_rule = true);
 
 }  // namespace cutroute::test

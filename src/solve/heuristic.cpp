@@ -47,6 +47,9 @@ bool or_opt_pass(const Problem& p, std::vector<NodeId>& r) {
 bool swap_pass(const Problem& p, std::vector<NodeId>& r) {
   return on_route(p, r, [](const Ops& o, Tour& t) { return o.swap_pass(t); });
 }
+bool segment_exchange_pass(const Problem& p, std::vector<NodeId>& r) {
+  return on_route(p, r, [](const Ops& o, Tour& t) { return o.segment_exchange_pass(t); });
+}
 bool cluster_optimise(const Problem& p, std::vector<NodeId>& r, double max_work) {
   return on_route(p, r, [max_work](const Ops& o, Tour& t) { return o.cluster_optimise(t, max_work); });
 }
@@ -120,15 +123,31 @@ class Worker {
     removed_.clear();
     const Problem& p = ops_.problem();
     const int L = static_cast<int>(t.seq.size());
-    const bool bridge_ok = !p.has_precedence() && L >= 8;
+    const bool bridge_ok = L >= 8;
     switch (rng_.below(bridge_ok ? 5 : 4)) {
       case 4: {  // double bridge: S A B C D -> S A C B D (segment exchange that 2-opt/Or-opt rarely undo)
-        int cut[3];
-        for (int& c : cut) c = 1 + static_cast<int>(rng_.below(static_cast<std::uint64_t>(L - 1)));
-        std::sort(cut, cut + 3);
-        if (cut[0] == cut[1] || cut[1] == cut[2]) break;
-        std::rotate(t.seq.begin() + cut[0], t.seq.begin() + cut[1], t.seq.begin() + cut[2]);
-        ops_.init(t);
+        // With precedence: a few random tries for B and C such that nothing in B must precede C.
+        for (int attempt = 0; attempt < 8; ++attempt) {
+          int cut[3];
+          for (int& c : cut) c = 1 + static_cast<int>(rng_.below(static_cast<std::uint64_t>(L - 1)));
+          std::sort(cut, cut + 3);
+          if (cut[0] == cut[1] || cut[1] == cut[2]) continue;
+          if (!bridge_feasible(t, cut[0], cut[1], cut[2])) continue;
+          // Only the three junctions change: mark them instead of re-examining the whole route.
+          const int b = cut[0], c = cut[1], e = cut[2];
+          auto at = [&](int i) { return t.seq[static_cast<std::size_t>(i)]; };
+          const NodeId after_e = e < L ? at(e) : ops_.after(t, L - 1);
+          Cost delta = ops_.link(at(b - 1), at(c)) + ops_.link(at(e - 1), at(b)) - ops_.link(at(b - 1), at(b)) - ops_.link(at(c - 1), at(c));
+          if (after_e.valid()) delta += ops_.link(at(c - 1), after_e) - ops_.link(at(e - 1), after_e);
+          std::rotate(t.seq.begin() + b, t.seq.begin() + c, t.seq.begin() + e);
+          ops_.reindex(t, b, e);
+          t.cost += delta;
+          ops_.mark_around(t, b - 1);
+          ops_.mark_around(t, b + e - c - 1);
+          ops_.mark_around(t, e - 1);
+          ops_.mark_around(t, e);
+          break;
+        }
         break;
       }
       case 0: {  // random clusters
@@ -165,6 +184,18 @@ class Worker {
         break;
       }
     }
+  }
+
+  // Exchanging seq[b, c) and seq[c, e) keeps precedence iff no cluster of the first must precede one of the second.
+  bool bridge_feasible(const Tour& t, int b, int c, int e) const {
+    const Problem& p = ops_.problem();
+    if (!p.has_precedence()) return true;
+    for (int i = b; i < c; ++i)
+      for (ClusterId y : p.all_after(ops_.cl(t.seq[static_cast<std::size_t>(i)]))) {
+        const int q = t.pos[y.index()];
+        if (q >= c && q < e) return false;
+      }
+    return true;
   }
 
   // Removes k clusters from scored_ (lower score first), the r-th pick drawn at rank floor(u^3 * size).

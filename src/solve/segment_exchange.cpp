@@ -11,7 +11,7 @@ namespace cutroute::solve::detail {
 namespace {
 // With precedence the full enumeration costs O(L^2) per examined position; above this route length
 // it would dominate the local search (large cutting nests), so only the other moves run there.
-constexpr int kMaxPrecedenceLength = 400;
+constexpr int kMaxPrecedenceLength = 160;
 }  // namespace
 
 // Exchange left = seq[i+1..j] and right = seq[j+1..h] (0 <= i < j < h < L):

@@ -29,7 +29,7 @@ std::vector<NodeId> construct_route(const Problem& p, Rng& rng);
 //   swap: exchange two clusters (used on problems with precedence). O(m^2) a pass.
 //   segment_exchange: swap two adjacent segments, both kept in direction (SOP-3-exchange, the
 //     orientation-preserving 3-opt move), feasibility checked lexicographically. O(m^2) per examined
-//     position with precedence (routes <= 400 clusters), O(k^2) with candidate lists without.
+//     position with precedence (routes <= 160 clusters), O(k^2) with candidate lists without.
 //   cluster_optimise: for the fixed cluster order, the best node of every cluster (shortest path
 //     through the layered graph, all nodes of the smallest cluster tried as the cyclic start when
 //     the work fits `max_work`, else only its current node). O(k_min * sum |C_i||C_i+1|).

@@ -614,6 +614,7 @@ void Ops::local_search(Tour& t) const {
         begin_round(t);
         improved = two_opt_pass(t) || improved;
         improved = or_opt_pass(t) || improved;
+        improved = segment_exchange_pass(t) || improved;
         if (prec_) improved = swap_pass(t) || improved;
         if (!improved) break;
       }
@@ -631,6 +632,7 @@ void Ops::local_search(Tour& t) const {
       begin_round(t);
       improved = two_opt_pass(t) || improved;
       improved = or_opt_pass(t) || improved;
+      improved = segment_exchange_pass(t) || improved;
       if (prec_) improved = swap_pass(t) || improved;
       if (!improved) break;
     }

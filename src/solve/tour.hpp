@@ -81,6 +81,7 @@ class Ops {
   bool two_opt_pass(Tour& t) const;
   bool or_opt_pass(Tour& t) const;
   bool swap_pass(Tour& t) const;
+  bool segment_exchange_pass(Tour& t) const;  // segment_exchange.cpp
   bool cluster_optimise(Tour& t, double max_work) const;
   // Best nodes for positions [lo, hi] with the nodes around them fixed. O(sum |C_i||C_i+1|) there.
   bool window_optimise(Tour& t, int lo, int hi) const;

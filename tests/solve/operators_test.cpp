@@ -36,6 +36,7 @@ TEST(Operators, NeverWorsenAndKeepPrecedence) {
                                               {"two_opt", two_opt_pass},
                                               {"or_opt", or_opt_pass},
                                               {"swap", swap_pass},
+                                              {"segment_exchange", segment_exchange_pass},
                                               {"cluster_optimise", [](const Problem& q, std::vector<NodeId>& x) { return cluster_optimise(q, x); }}};
     for (int round = 0; round < 3; ++round)
       for (auto [name, op] : ops) {

@@ -27,6 +27,9 @@ std::vector<NodeId> construct_route(const Problem& p, Rng& rng);
 //   two_opt: reverse a segment (symmetric problems only; no precedence pair inside it). O(m^2) a pass.
 //   or_opt: move a segment of 2 or 3 clusters elsewhere, same direction. O(m^2) a pass.
 //   swap: exchange two clusters (used on problems with precedence). O(m^2) a pass.
+//   segment_exchange: swap two adjacent segments, both kept in direction (SOP-3-exchange, the
+//     orientation-preserving 3-opt move), feasibility checked lexicographically. O(m^2) per examined
+//     position with precedence (routes <= 160 clusters), O(k^2) with candidate lists without.
 //   cluster_optimise: for the fixed cluster order, the best node of every cluster (shortest path
 //     through the layered graph, all nodes of the smallest cluster tried as the cyclic start when
 //     the work fits `max_work`, else only its current node). O(k_min * sum |C_i||C_i+1|).
@@ -34,6 +37,7 @@ bool reinsertion_pass(const Problem& p, std::vector<NodeId>& route);
 bool two_opt_pass(const Problem& p, std::vector<NodeId>& route);
 bool or_opt_pass(const Problem& p, std::vector<NodeId>& route);
 bool swap_pass(const Problem& p, std::vector<NodeId>& route);
+bool segment_exchange_pass(const Problem& p, std::vector<NodeId>& route);
 bool cluster_optimise(const Problem& p, std::vector<NodeId>& route, double max_work = 2.0e6);
 // All of the above until none improves.
 void local_search(const Problem& p, std::vector<NodeId>& route);

@@ -33,17 +33,19 @@ struct SolveParams {
   // 6 below kLargeClusters clusters, 20 from there on (tuned on GTSPLIB for the time targets:
   // small instances converge in few rounds, large ones keep improving slowly).
   int stagnation_rounds = 0;
-  // ... and only after (iterations without progress, all threads) x (node count) reaches this:
-  // tiny instances, whose iterations cost microseconds, get thousands of them; large ones are
-  // governed by stagnation_rounds alone.
+  // ... and only after (iterations without progress, all threads) x (node count) x max(1, average
+  // cluster size / 8) reaches this (a tenth of that counted on problems with precedence): tiny
+  // instances, whose iterations cost microseconds, get thousands of them; large ones are governed
+  // by stagnation_rounds alone.
   long long min_stagnation_work = 1000000;
   // Largest share of the clusters one destroy step may remove (at least 3 clusters). 0: automatic,
-  // 0.3 below kLargeClusters clusters, 0.05 from there on (large routes are improved by small,
-  // local repairs; big ones are mostly undone by the local search).
+  // 0.3 below kLargeClusters clusters (and with precedence below 200 clusters), 0.05 otherwise
+  // (large routes are improved by small, local repairs; big ones are mostly undone by the local
+  // search, except where precedence blocks the small moves).
   double max_removal_fraction = 0.0;
   // Threshold acceptance: a worse route is accepted when it costs at most this many mean steps
   // (route cost / clusters) more than the current one; decays linearly to 0 over each round.
-  // 0: automatic, 0.5 below kLargeClusters clusters, 1.0 from there on.
+  // 0: automatic, 2.0 with precedence, else 0.5 below kLargeClusters clusters, 1.0 from there on.
   double accept_threshold = 0.0;
   static constexpr int kLargeClusters = 96;
 

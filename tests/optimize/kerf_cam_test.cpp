@@ -1,5 +1,7 @@
 // `cutroute optimize --kerf-mode cam`: the written program re-parsed, every cut point measured
 // against the drawn contours (independently of the offset code), and the kerf diagnostics.
+// One pierce per contour is asserted below: these runs ask for the standard technique (chains are
+// checked with cam kerf in the corpus test).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -96,13 +98,13 @@ TEST(KerfCam, GeneratedNestIsCutAtHalfTheKerfWithArcs) {
   const std::string fine = fine_dialect(dir);
   for (double kerf : {0.3, 1.0}) {
     SCOPED_TRACE("kerf " + format_fixed(kerf, 2));
-    OptRun run = optimize(dxf, dir, "--kerf-mode cam --dialect " + fine + " --kerf " + format_fixed(kerf, 2));
+    OptRun run = optimize(dxf, dir, "--technique standard --kerf-mode cam --dialect " + fine + " --kerf " + format_fixed(kerf, 2));
     ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
     expect_cam_program(dxf, run, kerf);
     EXPECT_EQ(run.report["pierces"], 9);
     // The shipped generic dialect (1 µm): end points and arc centres (I, J) are each rounded by
     // up to 0.7 µm, so a point on an arc may be 2.5 µm off.
-    run = optimize(dxf, dir, "--kerf-mode cam --kerf " + format_fixed(kerf, 2));
+    run = optimize(dxf, dir, "--technique standard --kerf-mode cam --kerf " + format_fixed(kerf, 2));
     ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
     expect_cam_program(dxf, run, kerf, 2.5e-3);
     expect_rs274_accepts(dir / "out.ngc");
@@ -122,11 +124,11 @@ TEST(KerfCam, CutLengthChangesByTheOffsetOfConvexOutlines) {
   write(dxf, b.str());
   const double kerf = 0.4;
   const std::string common = "--kerf " + format_fixed(kerf, 2);
-  const OptRun ctl = optimize(dxf, dir, common + " --kerf-mode controller");
+  const OptRun ctl = optimize(dxf, dir, common + " --technique standard --kerf-mode controller");
   ASSERT_EQ(ctl.cmd.exit_code, 0) << ctl.cmd.err;
   EXPECT_NE(ctl.program.find("G41"), std::string::npos);
   const ProbeResult pc = probe_gcode(ctl.program);
-  const OptRun cam = optimize(dxf, dir, common + " --kerf-mode cam --dialect " + fine_dialect(dir));
+  const OptRun cam = optimize(dxf, dir, common + " --technique standard --kerf-mode cam --dialect " + fine_dialect(dir));
   ASSERT_EQ(cam.cmd.exit_code, 0) << cam.cmd.err;
   expect_cam_program(dxf, cam, kerf);
   // Contour lengths: drawn outer 2·(50 + 30) + 2π·5, hole 2π·6; offsets: outer + 2π·0.2, hole - 2π·0.2.
@@ -141,14 +143,14 @@ TEST(KerfCam, DemoSheetSameOptionsSameBytes) {
   const auto dir = temp_dir("cam-det");
   const auto dxf = (dir / "demo.dxf").string();
   ASSERT_EQ(run_command(cli_path() + " demo " + dxf).exit_code, 0);
-  const OptRun first = optimize(dxf, dir, "--kerf-mode cam --seed 3 --threads 2 --dialect " + fine_dialect(dir));
+  const OptRun first = optimize(dxf, dir, "--technique standard --kerf-mode cam --seed 3 --threads 2 --dialect " + fine_dialect(dir));
   ASSERT_EQ(first.cmd.exit_code, 0) << first.cmd.err;
   expect_cam_program(dxf, first, first.report["kerf_mm"].get<double>());
   std::string outs[2];
   for (int i = 0; i < 2; ++i) {
     const auto base = (dir / ("run" + std::to_string(i))).string();
     const auto r = run_command(cli_path() + " optimize " + dxf + " -o " + base + ".ngc --svg " + base + ".svg --html " +
-                               base + ".html --quiet --seed 7 --threads 2 --kerf-mode cam");
+                               base + ".html --quiet --seed 7 --threads 2 --technique standard --kerf-mode cam");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     outs[i] = slurp(base + ".ngc") + slurp(base + ".svg") + slurp(base + ".html");
   }
@@ -168,7 +170,7 @@ TEST(KerfCam, HoleSmallerThanTheKerfIsAnInputError) {
   b.circle({5, 5}, 1.0);
   write(dxf, b.str());
   const auto prog = dir / "p.ngc";
-  auto r = run_command(cli_path() + " optimize " + dxf + " -o " + prog.string() + " --quiet --kerf 0.3 --kerf-mode cam");
+  auto r = run_command(cli_path() + " optimize " + dxf + " -o " + prog.string() + " --quiet --kerf 0.3 --technique standard --kerf-mode cam");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("hole 2 (part 1) is too small for the kerf (0.3 mm)"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(prog));
@@ -198,13 +200,13 @@ TEST(KerfCam, PartsCloserThanTheKerfAreRefusedUnlessAllowed) {
   b.lwpolyline({{{0, 30}, 0}, {{20, 30}, 0}, {{20, 50}, 0}, {{0, 50}, 0}}, true);
   b.lwpolyline({{{20.4, 30}, 0}, {{40, 30}, 0}, {{40, 50}, 0}, {{20.4, 50}, 0}}, true);  // 0.4 apart: fine
   write(dxf, b.str());
-  auto r = optimize(dxf, dir, "--kerf 0.3 --kerf-mode cam");
+  auto r = optimize(dxf, dir, "--kerf 0.3 --technique standard --kerf-mode cam");
   EXPECT_EQ(r.cmd.exit_code, 2);
   EXPECT_NE(r.cmd.err.find("the toolpaths of contour 1 (part 1) and contour 2 (part 2) meet"), std::string::npos) << r.cmd.err;
   EXPECT_NE(r.cmd.err.find("--allow-kerf-overlap"), std::string::npos) << r.cmd.err;
   EXPECT_EQ(r.cmd.err.find("more kerf errors"), std::string::npos) << r.cmd.err;  // the 0.4 mm pair is fine
 
-  r = optimize(dxf, dir, "--kerf 0.3 --kerf-mode cam --allow-kerf-overlap --dialect " + fine_dialect(dir));
+  r = optimize(dxf, dir, "--kerf 0.3 --technique standard --kerf-mode cam --allow-kerf-overlap --dialect " + fine_dialect(dir));
   ASSERT_EQ(r.cmd.exit_code, 0) << r.cmd.err;
   int overlaps = 0;
   for (const auto& d : r.report["diagnostics"]) overlaps += d.value("code", "") == "kerf.overlap";
@@ -224,11 +226,11 @@ TEST(KerfCam, CheckerRejectsCutsAtTheWrongDistance) {
   ASSERT_TRUE(loaded.ok());
   ProgramCheckOptions opt;
   opt.on_contour_mm = 1e-3;
-  const OptRun ctl = optimize(dxf, dir, "--kerf 0.3 --kerf-mode controller --dialect " + fine);
+  const OptRun ctl = optimize(dxf, dir, "--kerf 0.3 --technique standard --kerf-mode controller --dialect " + fine);
   ASSERT_EQ(ctl.cmd.exit_code, 0) << ctl.cmd.err;
   opt.kerf_offset_mm = 0.15;
   EXPECT_FALSE(check_program(loaded->nest, ctl.program, opt).failures.empty());
-  const OptRun cam = optimize(dxf, dir, "--kerf 0.3 --kerf-mode cam --dialect " + fine);
+  const OptRun cam = optimize(dxf, dir, "--kerf 0.3 --technique standard --kerf-mode cam --dialect " + fine);
   ASSERT_EQ(cam.cmd.exit_code, 0) << cam.cmd.err;
   EXPECT_TRUE(check_program(loaded->nest, cam.program, opt).failures.empty());
   opt.kerf_offset_mm = 0.148;  // 2 µm off

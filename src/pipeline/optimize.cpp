@@ -15,6 +15,7 @@
 #include <cutroute/solve/solve.hpp>
 
 #include "refine.hpp"
+#include "shop_rules_steps.hpp"
 
 namespace cutroute::pipeline {
 namespace {
@@ -85,6 +86,7 @@ struct Evaluated {
   std::size_t frames = 0;
   cost::TimeEstimate estimate;
   double objective = 0;  // t_cut_s (time) or cost (cost form)
+  nlohmann::json rules;  // shop rules applied to the toolpath (detours, tabs)
 };
 
 Evaluated evaluate(const model::Nest& nest, const std::vector<model::EntryCandidate>& seq, const Setup& s,
@@ -100,6 +102,7 @@ Evaluated evaluate(const model::Nest& nest, const std::vector<model::EntryCandid
   to.kerf = o.kerf_mode;
   Evaluated ev;
   ev.toolpath = nc::build_toolpath(nest, ptrs, to);
+  if (o.rules.any()) ev.rules = rules::apply_to_toolpath(ev.toolpath, nest, o.rules);  // shop rules
   ev.program = nc::write_gcode(ev.toolpath, s.dialect, nc::GcodeWriteOptions{o.title, true});
   ev.frames = nc::count_frames(ev.program.text);
   cost::ProgramTotals totals;
@@ -150,6 +153,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   };
   if (nest.parts.empty()) return make_error("the nest has no closed contour to cut", loaded.file);
 
+  if (const auto bad = check(o.rules); !bad.empty()) return make_error(bad.front());
   // 1. Conditions.
   auto st = setup(o);
   if (!st) return st.error();
@@ -159,7 +163,8 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   if (progress) progress({"entries", -1, {}});
 
   // 2. Cut job.
-  const model::CutJob job = model::make_cut_job(nest, s.entries);
+  model::CutJob job = model::make_cut_job(nest, s.entries);
+  rules::restrict_candidates(job, nest, o.rules);  // shop rules: part rigidity
   for (const auto& d : job.diagnostics) result.diagnostics.push_back(d);
   lap("entries");
 
@@ -177,8 +182,12 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   const solve::Solution sol = solve::solve(rp->problem, params, stop, progress);
   if (sol.route.empty()) return make_error("the route solver stopped before it found any route", loaded.file);
   lap("solve");
+  nlohmann::json rules_json;  // shop rules: history-dependent re-ordering
+  const std::vector<solve::NodeId> route =
+      o.rules.orders() ? rules::reorder(nest, job, *rp, sol.route, o.rules, stop, rules_json) : sol.route;
+  if (o.rules.orders()) rules_json["route"] = rules::route_effects(nest, job, *rp, route, o.rules);
   std::vector<model::EntryCandidate> seq;
-  for (const auto* e : cost::route_entries(job, *rp, sol.route)) seq.push_back(*e);
+  for (const auto* e : cost::route_entries(job, *rp, route)) seq.push_back(*e);
 
   // 4. Continuous refinement of the entries for the fixed order.
   model::EntryPlanner planner(nest, s.entries);
@@ -187,6 +196,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     if (progress) progress({"refine", -1, {}});
     moved = refine_entries(planner, s.prices, s.start, s.start, seq, 2, stop);
   }
+  const int rigid_corners = rules::place_rigid_entries(nest, job, seq, o.rules);  // shop rules: part rigidity
   lap("refine");
 
   // 5-6. Program, frames, V_on*(n); lead types compared by the corrected objective.
@@ -257,6 +267,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   for (const auto& d : loaded.diagnostics) diags.push_back(io::to_json(d));
   for (const auto& d : result.diagnostics) diags.push_back(io::to_json(d));
   r["diagnostics"] = diags;
+  if (o.rules.any()) r["rules"] = rules::report(o.rules, rules_json, best.rules, rigid_corners);  // shop rules
 
   result.toolpath = std::move(best.toolpath);
   result.program = std::move(best.program);

@@ -147,6 +147,42 @@ std::vector<NodeId> order_by_priority(const Problem& p, std::span<const NodeId> 
   return out;  // shorter than route only if route broke precedence (a cycle cannot exist in a Problem)
 }
 
+std::vector<NodeId> greedy_route(const Problem& p, const SequenceCost& cost, std::span<const NodeId> nodes) {
+  std::vector<NodeId> route;
+  if (nodes.empty()) return route;
+  std::vector<int> waiting(static_cast<std::size_t>(p.cluster_count()), 0);
+  std::vector<int> pos;
+  fill_positions(p, nodes, pos);
+  for (auto [a, b] : p.precedence())
+    if (pos[a.index()] >= 0 && pos[b.index()] >= 0) ++waiting[b.index()];
+  std::vector<char> placed(nodes.size(), 0);
+  auto place = [&](std::size_t i) {
+    placed[i] = 1;
+    route.push_back(nodes[i]);
+    const ClusterId c = p.cluster_of(nodes[i]);
+    for (auto [a, b] : p.precedence())
+      if (a == c && pos[b.index()] >= 0) --waiting[b.index()];
+  };
+  place(0);
+  for (std::size_t step = 1; step < nodes.size(); ++step) {
+    std::size_t best = nodes.size();
+    Cost best_cost = 0;
+    for (std::size_t i = 1; i < nodes.size(); ++i) {
+      if (placed[i] || waiting[p.cluster_of(nodes[i]).index()] > 0) continue;
+      route.push_back(nodes[i]);
+      const Cost c = cost(route);
+      route.pop_back();
+      if (best == nodes.size() || c < best_cost) {
+        best = i;
+        best_cost = c;
+      }
+    }
+    if (best == nodes.size()) break;  // only when `nodes` breaks precedence
+    place(best);
+  }
+  return route;
+}
+
 HistorySearchResult history_search(const Problem& p, const SequenceCost& cost, const std::vector<std::vector<NodeId>>& starts,
                                    const HistorySearchParams& params, const StopToken& stop) {
   std::vector<NodeId> best;

@@ -1,2 +1,1 @@
-set(CUTROUTE_SOLVE_SOURCES problem.cpp solution.cpp params.cpp exact_dp.cpp tour.cpp heuristic.cpp solve.cpp
-  history_search.cpp)  # shop rules (s2-rules)
+set(CUTROUTE_SOLVE_SOURCES problem.cpp solution.cpp params.cpp exact_dp.cpp tour.cpp heuristic.cpp solve.cpp)

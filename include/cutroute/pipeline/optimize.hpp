@@ -13,6 +13,7 @@
 #include <cutroute/io/nest_loader.hpp>
 #include <cutroute/nc/build_toolpath.hpp>
 #include <cutroute/nc/gcode_writer.hpp>
+#include <cutroute/pipeline/shop_rules.hpp>
 #include <cutroute/solve/params.hpp>
 
 namespace cutroute::pipeline {
@@ -42,6 +43,7 @@ struct OptimizeOptions {
   // drawn over each other would be ruined. With this set they are cut anyway, each once, with a
   // warning; crossing contours get no order between them.
   bool allow_crossing = false;
+  ShopRules rules;                           // shop rules (pipeline/shop_rules.hpp): all off by default
 };
 
 struct OptimizeResult {

@@ -57,6 +57,12 @@ HistorySearchResult history_search(const Problem& p, const SequenceCost& cost,
                                    const std::vector<std::vector<NodeId>>& starts, const HistorySearchParams& params,
                                    const StopToken& stop = {});
 
+// A route built step by step: from route[0] of `nodes` (the start), always append the node, among
+// those of `nodes` whose clusters' predecessors are all placed, that makes cost(prefix) smallest
+// (ties: earliest in `nodes`). `nodes` holds one node per cluster (e.g. a solver route: the node
+// choice is kept, only the order is rebuilt). O(m²) evaluations of cost on prefixes.
+std::vector<NodeId> greedy_route(const Problem& p, const SequenceCost& cost, std::span<const NodeId> nodes);
+
 // Whether route keeps every precedence pair of p (transitive closure included). O(m + pairs).
 bool keeps_precedence(const Problem& p, std::span<const NodeId> route);
 

@@ -14,11 +14,6 @@ using geometry::Vec2;
 
 double orient(Vec2 a, Vec2 b, Vec2 c) { return geometry::cross(b - a, c - a); }
 
-bool proper_cross(Vec2 a, Vec2 b, Vec2 p, Vec2 q) {
-  const double d1 = orient(a, b, p), d2 = orient(a, b, q), d3 = orient(p, q, a), d4 = orient(p, q, b);
-  return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
-}
-
 bool inside(const std::vector<Vec2>& poly, Vec2 p) {
   bool in = false;
   for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
@@ -77,11 +72,23 @@ PartObstacles::PartObstacles(const model::Nest& nest, double margin_mm) {
 bool PartObstacles::crosses(int part, Vec2 a, Vec2 b) const {
   const Obstacle& o = parts_[static_cast<std::size_t>(part)];
   if (o.polygon.size() < 3 || !o.box.intersects(box_of(a, b))) return false;
-  for (std::size_t i = 0, j = o.polygon.size() - 1; i < o.polygon.size(); j = i++)
-    if (proper_cross(a, b, o.polygon[j], o.polygon[i])) return true;
-  // No proper crossing: the move is wholly inside or outside (or only touches a corner).
-  for (double t : {0.25, 0.5, 0.75})
-    if (inside(o.polygon, a + (b - a) * t)) return true;
+  // Where the move meets the boundary (crossings, and touches at corners, which a crossing test
+  // alone misses when the move runs corner to corner); between two such places the move is wholly
+  // inside or outside, so one point between each pair decides.
+  std::vector<double> ts{0.0, 1.0};
+  const Vec2 d = b - a;
+  for (std::size_t i = 0, j = o.polygon.size() - 1; i < o.polygon.size(); j = i++) {
+    const Vec2 p = o.polygon[j], e = o.polygon[i] - p;
+    const double den = geometry::cross(d, e);
+    if (std::abs(den) < 1e-300) continue;  // parallel: the ends of the neighbouring edges are met instead
+    const double t = geometry::cross(p - a, e) / den, u = geometry::cross(p - a, d) / den;
+    if (t > 0 && t < 1 && u >= 0 && u <= 1) ts.push_back(t);
+  }
+  std::sort(ts.begin(), ts.end());
+  for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
+    if (ts[k + 1] - ts[k] < 1e-12) continue;
+    if (inside(o.polygon, a + d * ((ts[k] + ts[k + 1]) / 2))) return true;
+  }
   return false;
 }
 

@@ -15,6 +15,10 @@ struct ProgramCheckOptions {
   double clearance_mm = 0.5;      // leads must keep this far from other contours
   double max_lead_mm = 20.0;      // lead-in + lead-out length per pierce
   double max_overcut_mm = 2.0;    // extra length cut along a contour past one full loop
+  // Micro-joints: every outer contour is cut in tabs + 1 runs and left uncut over tabs gaps of
+  // tab_width_mm in total tabs * tab_width_mm (0: no tabs, each contour in one run, whole).
+  int tabs = 0;
+  double tab_width_mm = 0.0;      // [mm]
 };
 
 struct ProgramCheck {

@@ -14,7 +14,7 @@ namespace cutroute::nc {
 // The outer contour of every part as a polygon (arcs flattened within tol::kArcChordMm) with its
 // convex hull grown by `margin_mm` (the hull of a margin circle around every hull vertex, so every
 // point of the grown hull's boundary is at least margin_mm from the part). A rapid "passes over" a
-// part when the straight move crosses one of the polygon's edges or runs inside it.
+// part when some stretch of the straight move lies inside the polygon (corner to corner included).
 class PartObstacles {
  public:
   PartObstacles(const model::Nest& nest, double margin_mm);

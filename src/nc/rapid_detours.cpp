@@ -1,6 +1,7 @@
 #include <cutroute/nc/rapid_detours.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -12,8 +13,6 @@ namespace {
 
 using geometry::Vec2;
 
-double orient(Vec2 a, Vec2 b, Vec2 c) { return geometry::cross(b - a, c - a); }
-
 bool inside(const std::vector<Vec2>& poly, Vec2 p) {
   bool in = false;
   for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
@@ -21,24 +20,6 @@ bool inside(const std::vector<Vec2>& poly, Vec2 p) {
     if ((u.y > p.y) != (v.y > p.y) && p.x < (v.x - u.x) * (p.y - u.y) / (v.y - u.y) + u.x) in = !in;
   }
   return in;
-}
-
-// Andrew's monotone chain; counter-clockwise, no repeated first point.
-std::vector<Vec2> convex_hull(std::vector<Vec2> pts) {
-  std::sort(pts.begin(), pts.end(), [](Vec2 a, Vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
-  if (pts.size() < 3) return pts;
-  std::vector<Vec2> h(2 * pts.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    while (k >= 2 && orient(h[k - 2], h[k - 1], pts[i]) <= 0) --k;
-    h[k++] = pts[i];
-  }
-  for (std::size_t i = pts.size() - 1, t = k + 1; i-- > 0;) {
-    while (k >= t && orient(h[k - 2], h[k - 1], pts[i]) <= 0) --k;
-    h[k++] = pts[i];
-  }
-  h.resize(k - 1);
-  return h;
 }
 
 geometry::Box box_of(Vec2 a, Vec2 b) {
@@ -51,20 +32,31 @@ geometry::Box box_of(Vec2 a, Vec2 b) {
 }  // namespace
 
 PartObstacles::PartObstacles(const model::Nest& nest, double margin_mm) {
-  // Eight points on a circle of radius margin / cos(22.5°) around each hull corner: their hull
-  // contains the margin disc around the corner, so the grown hull keeps margin from the part.
-  const double r = std::max(margin_mm, 0.0) / std::cos(std::numbers::pi / 8);
+  // The grown hull is the 16-gon of the part's extents in 16 directions pushed out by the margin:
+  // every edge keeps at least the margin from the part, and 16 corners per part keep the
+  // visibility graph of a detour small (curved parts would otherwise bring hundreds).
+  constexpr int kSides = 16;
+  const double margin = std::max(margin_mm, 0.0);
   for (const auto& part : nest.parts) {
     Obstacle o;
     o.polygon = geometry::flatten(nest.contours[part.outer].source.contour, tol::kArcChordMm);
     for (const auto& p : o.polygon) o.box.add(p);
-    std::vector<Vec2> grown;
-    for (const auto& p : convex_hull(o.polygon))
-      for (int k = 0; k < 8; ++k) {
-        const double phi = std::numbers::pi / 4 * k + std::numbers::pi / 8;
-        grown.push_back(p + Vec2{r * std::cos(phi), r * std::sin(phi)});
-      }
-    o.hull = convex_hull(std::move(grown));
+    std::array<Vec2, kSides> normal{};
+    std::array<double, kSides> reach{};
+    for (int k = 0; k < kSides; ++k) {
+      const double phi = 2 * std::numbers::pi * k / kSides;
+      normal[static_cast<std::size_t>(k)] = {std::cos(phi), std::sin(phi)};
+      double h = -std::numeric_limits<double>::infinity();
+      for (const auto& p : o.polygon) h = std::max(h, geometry::dot(p, normal[static_cast<std::size_t>(k)]));
+      reach[static_cast<std::size_t>(k)] = h + margin;
+    }
+    // Corner between the supporting lines k and k+1: n_k . x = h_k, n_k+1 . x = h_k+1.
+    for (int k = 0; k < kSides && !o.polygon.empty(); ++k) {
+      const auto i = static_cast<std::size_t>(k), j = static_cast<std::size_t>((k + 1) % kSides);
+      const Vec2 a = normal[i], b = normal[j];
+      const double det = geometry::cross(a, b);
+      o.hull.push_back({(reach[i] * b.y - reach[j] * a.y) / det, (a.x * reach[j] - b.x * reach[i]) / det});
+    }
     parts_.push_back(std::move(o));
   }
 }

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 
 #include <cutroute/core/units.hpp>
 #include <cutroute/geometry/intersect.hpp>
@@ -106,8 +105,15 @@ struct Effects {
 // closing arc) plus the rules' penalties. Not thread-safe (caches); history_search is one thread.
 class RuleCost {
  public:
-  RuleCost(const model::Nest& nest, const model::CutJob& job, const cost::RouteProblem& rp, const ShopRules& r)
+  RuleCost(const model::Nest& nest, const model::CutJob& job, const cost::RouteProblem& rp, const ShopRules& r,
+           std::span<const NodeId> route)
       : nest_(nest), rp_(rp), r_(r), obstacles_(nest, r.tip_up_margin_mm) {
+    local_.assign(rp.nodes.size(), -1);
+    if (r.avoid_tip_up && r.tabs <= 0) {
+      for (const NodeId v : route) local_[v.index()] = static_cast<int>(local_count_++);
+      cache_.resize(local_count_ * local_count_);
+      known_.assign(local_count_ * local_count_, 0);
+    }
     const std::size_t m = job.contours.size();
     contour_.resize(m);
     outer_part_.assign(m, -1);
@@ -154,12 +160,20 @@ class RuleCost {
  private:
   int contour_at(NodeId v) const { return rp_.nodes[v.index()].contour; }
 
-  // Parts the straight rapid from a's tool-off point to b's pierce point passes over (cached).
+  // Parts the straight rapid from a's tool-off point to b's pierce point passes over; cached in a
+  // dense table over the nodes of the route being searched (the search keeps the node choice).
   const std::vector<int>& crossed(NodeId a, NodeId b) const {
-    const auto key = static_cast<std::uint64_t>(a.index()) * rp_.nodes.size() + b.index();
-    auto it = cache_.find(key);
-    if (it == cache_.end()) it = cache_.emplace(key, obstacles_.crossed(rp_.tool_off[a.index()], rp_.pierce[b.index()])).first;
-    return it->second;
+    const int la = local_[a.index()], lb = local_[b.index()];
+    if (la < 0 || lb < 0) {
+      scratch_ = obstacles_.crossed(rp_.tool_off[a.index()], rp_.pierce[b.index()]);
+      return scratch_;
+    }
+    const std::size_t key = static_cast<std::size_t>(la) * local_count_ + static_cast<std::size_t>(lb);
+    if (!known_[key]) {
+      cache_[key] = obstacles_.crossed(rp_.tool_off[a.index()], rp_.pierce[b.index()]);
+      known_[key] = 1;
+    }
+    return cache_[key];
   }
   bool over_freed(NodeId a, NodeId b, std::size_t before) const {
     for (int part : crossed(a, b))
@@ -232,7 +246,11 @@ class RuleCost {
   std::vector<int> outer_part_;
   std::vector<double> key_;
   std::vector<std::vector<int>> near_;
-  mutable std::unordered_map<std::uint64_t, std::vector<int>> cache_;
+  std::vector<int> local_;        // node index -> index among the searched route's nodes, -1
+  std::size_t local_count_ = 0;
+  mutable std::vector<std::vector<int>> cache_;
+  mutable std::vector<char> known_;
+  mutable std::vector<int> scratch_;
   mutable std::vector<std::uint64_t> freed_stamp_;
   mutable std::vector<std::size_t> freed_pos_;
   mutable std::uint64_t stamp_ = 0;
@@ -281,7 +299,7 @@ void restrict_candidates(model::CutJob& job, const model::Nest& nest, const Shop
 std::vector<NodeId> reorder(const model::Nest& nest, const model::CutJob& job, const cost::RouteProblem& rp,
                             const std::vector<NodeId>& route, const ShopRules& r, const StopToken& stop,
                             nlohmann::json& report) {
-  const RuleCost rc(nest, job, rp, r);
+  const RuleCost rc(nest, job, rp, r, route);
   const solve::SequenceCost cost = [&rc](std::span<const NodeId> x) { return rc(x); };
   std::vector<std::vector<NodeId>> starts{route};
   const auto m = static_cast<long long>(route.size());
@@ -296,8 +314,8 @@ std::vector<NodeId> reorder(const model::Nest& nest, const model::CutJob& job, c
     starts.push_back(solve::order_by_priority(rp.problem, route, prio));
   }
   solve::HistorySearchParams params;
-  // Each evaluation prices the whole route: keep the total work near 3e8 rule steps.
-  params.max_evaluations = std::min(r.search_evaluations, std::max<long long>(1000, 300000000LL / std::max<long long>(1, m)));
+  // Each evaluation prices the whole route: keep the total work near 4e7 rule steps (a few seconds).
+  params.max_evaluations = std::min(r.search_evaluations, std::max<long long>(1000, 40000000LL / std::max<long long>(1, m)));
   const auto res = solve::history_search(rp.problem, cost, starts, params, stop);
   if (res.route.empty()) return route;
   Effects before, after;
@@ -316,7 +334,7 @@ std::vector<NodeId> reorder(const model::Nest& nest, const model::CutJob& job, c
 
 nlohmann::json route_effects(const model::Nest& nest, const model::CutJob& job, const cost::RouteProblem& rp,
                              const std::vector<NodeId>& route, const ShopRules& r) {
-  const RuleCost rc(nest, job, rp, r);
+  const RuleCost rc(nest, job, rp, r, route);
   Effects fx;
   rc.price(route, &fx);
   return effects_json(fx, r);

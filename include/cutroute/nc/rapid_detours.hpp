@@ -11,9 +11,9 @@
 
 namespace cutroute::nc {
 
-// The outer contour of every part as a polygon (arcs flattened within tol::kArcChordMm) with its
-// convex hull grown by `margin_mm` (the hull of a margin circle around every hull vertex, so every
-// point of the grown hull's boundary is at least margin_mm from the part). A rapid "passes over" a
+// The outer contour of every part as a polygon (arcs flattened within tol::kArcChordMm) with a
+// grown hull: the 16-gon of its extents in 16 directions pushed out by `margin_mm` (every point of
+// its boundary at least margin_mm from the part). A rapid "passes over" a
 // part when some stretch of the straight move lies inside the polygon (corner to corner included).
 class PartObstacles {
  public:
@@ -35,7 +35,7 @@ class PartObstacles {
  private:
   struct Obstacle {
     std::vector<geometry::Vec2> polygon;  // outer contour, flattened [mm]
-    std::vector<geometry::Vec2> hull;     // grown convex hull, counter-clockwise [mm]
+    std::vector<geometry::Vec2> hull;     // grown hull (16 corners), counter-clockwise [mm]
     geometry::Box box;                    // of the polygon [mm]
   };
   std::vector<Obstacle> parts_;

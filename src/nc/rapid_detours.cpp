@@ -29,6 +29,29 @@ geometry::Box box_of(Vec2 a, Vec2 b) {
   return x;
 }
 
+// Does some stretch of the move a -> b lie inside the polygon? Where the move meets the boundary
+// (crossings, and touches at corners, which a crossing test alone misses when the move runs corner
+// to corner), it may change sides; between two such places it is wholly inside or outside, so one
+// point between each pair decides.
+bool passes_inside(const std::vector<Vec2>& poly, const geometry::Box& box, Vec2 a, Vec2 b) {
+  if (poly.size() < 3 || !box.intersects(box_of(a, b))) return false;
+  std::vector<double> ts{0.0, 1.0};
+  const Vec2 d = b - a;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const Vec2 p = poly[j], e = poly[i] - p;
+    const double den = geometry::cross(d, e);
+    if (std::abs(den) < 1e-300) continue;  // parallel: the ends of the neighbouring edges are met instead
+    const double t = geometry::cross(p - a, e) / den, u = geometry::cross(p - a, d) / den;
+    if (t > 0 && t < 1 && u >= 0 && u <= 1) ts.push_back(t);
+  }
+  std::sort(ts.begin(), ts.end());
+  for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
+    if (ts[k + 1] - ts[k] < 1e-12) continue;
+    if (inside(poly, a + d * ((ts[k] + ts[k + 1]) / 2))) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 PartObstacles::PartObstacles(const model::Nest& nest, double margin_mm) {
@@ -41,21 +64,32 @@ PartObstacles::PartObstacles(const model::Nest& nest, double margin_mm) {
     Obstacle o;
     o.polygon = geometry::flatten(nest.contours[part.outer].source.contour, tol::kArcChordMm);
     for (const auto& p : o.polygon) o.box.add(p);
-    std::array<Vec2, kSides> normal{};
-    std::array<double, kSides> reach{};
-    for (int k = 0; k < kSides; ++k) {
-      const double phi = 2 * std::numbers::pi * k / kSides;
-      normal[static_cast<std::size_t>(k)] = {std::cos(phi), std::sin(phi)};
-      double h = -std::numeric_limits<double>::infinity();
-      for (const auto& p : o.polygon) h = std::max(h, geometry::dot(p, normal[static_cast<std::size_t>(k)]));
-      reach[static_cast<std::size_t>(k)] = h + margin;
-    }
-    // Corner between the supporting lines k and k+1: n_k . x = h_k, n_k+1 . x = h_k+1.
-    for (int k = 0; k < kSides && !o.polygon.empty(); ++k) {
-      const auto i = static_cast<std::size_t>(k), j = static_cast<std::size_t>((k + 1) % kSides);
-      const Vec2 a = normal[i], b = normal[j];
-      const double det = geometry::cross(a, b);
-      o.hull.push_back({(reach[i] * b.y - reach[j] * a.y) / det, (a.x * reach[j] - b.x * reach[i]) / det});
+    auto sixteen_gon = [&](double grow) {
+      std::array<Vec2, kSides> normal{};
+      std::array<double, kSides> reach{};
+      for (int k = 0; k < kSides; ++k) {
+        const double phi = 2 * std::numbers::pi * k / kSides;
+        normal[static_cast<std::size_t>(k)] = {std::cos(phi), std::sin(phi)};
+        double h = -std::numeric_limits<double>::infinity();
+        for (const auto& p : o.polygon) h = std::max(h, geometry::dot(p, normal[static_cast<std::size_t>(k)]));
+        reach[static_cast<std::size_t>(k)] = h + grow;
+      }
+      // Corner between the supporting lines k and k+1: n_k . x = h_k, n_k+1 . x = h_k+1.
+      std::vector<Vec2> out;
+      for (int k = 0; k < kSides && !o.polygon.empty(); ++k) {
+        const auto i = static_cast<std::size_t>(k), j = static_cast<std::size_t>((k + 1) % kSides);
+        const Vec2 a = normal[i], b = normal[j];
+        const double det = geometry::cross(a, b);
+        out.push_back({(reach[i] * b.y - reach[j] * a.y) / det, (a.x * reach[j] - b.x * reach[i]) / det});
+      }
+      return out;
+    };
+    o.hull = sixteen_gon(margin);
+    // Legs of a detour run along the hull's edges: they are checked against a hull a hair smaller,
+    // so that running along an edge is not "inside".
+    if (margin > 0) {
+      o.guard = sixteen_gon(margin * (1 - 1e-3));
+      for (const auto& p : o.guard) o.guard_box.add(p);
     }
     parts_.push_back(std::move(o));
   }
@@ -63,25 +97,15 @@ PartObstacles::PartObstacles(const model::Nest& nest, double margin_mm) {
 
 bool PartObstacles::crosses(int part, Vec2 a, Vec2 b) const {
   const Obstacle& o = parts_[static_cast<std::size_t>(part)];
-  if (o.polygon.size() < 3 || !o.box.intersects(box_of(a, b))) return false;
-  // Where the move meets the boundary (crossings, and touches at corners, which a crossing test
-  // alone misses when the move runs corner to corner); between two such places the move is wholly
-  // inside or outside, so one point between each pair decides.
-  std::vector<double> ts{0.0, 1.0};
-  const Vec2 d = b - a;
-  for (std::size_t i = 0, j = o.polygon.size() - 1; i < o.polygon.size(); j = i++) {
-    const Vec2 p = o.polygon[j], e = o.polygon[i] - p;
-    const double den = geometry::cross(d, e);
-    if (std::abs(den) < 1e-300) continue;  // parallel: the ends of the neighbouring edges are met instead
-    const double t = geometry::cross(p - a, e) / den, u = geometry::cross(p - a, d) / den;
-    if (t > 0 && t < 1 && u >= 0 && u <= 1) ts.push_back(t);
-  }
-  std::sort(ts.begin(), ts.end());
-  for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
-    if (ts[k + 1] - ts[k] < 1e-12) continue;
-    if (inside(o.polygon, a + d * ((ts[k] + ts[k + 1]) / 2))) return true;
-  }
-  return false;
+  return passes_inside(o.polygon, o.box, a, b);
+}
+
+bool PartObstacles::blocks(int part, Vec2 a, Vec2 b) const {
+  const Obstacle& o = parts_[static_cast<std::size_t>(part)];
+  // An end point within the margin (a tool-off point beside the part just cut) cannot keep the
+  // margin: for that part only the part itself counts.
+  if (o.guard.empty() || inside(o.guard, a) || inside(o.guard, b)) return crosses(part, a, b);
+  return passes_inside(o.guard, o.guard_box, a, b);
 }
 
 std::vector<int> PartObstacles::crossed(Vec2 a, Vec2 b) const {
@@ -95,7 +119,7 @@ std::optional<std::vector<Vec2>> PartObstacles::detour(Vec2 a, Vec2 b, const std
   auto blockers = [&](Vec2 u, Vec2 v, std::vector<int>* out) {
     bool blocked = false;
     for (int k = 0; k < part_count(); ++k) {
-      if (!freed[static_cast<std::size_t>(k)] || !crosses(k, u, v)) continue;
+      if (!freed[static_cast<std::size_t>(k)] || !blocks(k, u, v)) continue;
       blocked = true;
       if (!out) return true;
       out->push_back(k);

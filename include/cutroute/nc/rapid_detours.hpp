@@ -25,8 +25,9 @@ class PartObstacles {
   // Every part the straight move passes over, in increasing index order.
   std::vector<int> crossed(geometry::Vec2 a, geometry::Vec2 b) const;
   // The shortest polyline a -> b (waypoints only, a and b excluded) through the corners of the
-  // grown hulls that passes over none of the parts with freed[part] != 0; empty when the straight
-  // move is already clear; nullopt when there is none (an end point enclosed by freed parts).
+  // grown hulls that passes over none of the parts with freed[part] != 0 and keeps the margin
+  // from them (except from a part an end point is already that close to); empty when the straight
+  // move passes over no freed part; nullopt when there is none (an end point enclosed by freed parts).
   // Visibility graph over the hulls of the parts in the way, grown until no leg crosses a freed
   // part: O(V² · E) per round for V hull corners and E polygon edges near the legs.
   std::optional<std::vector<geometry::Vec2>> detour(geometry::Vec2 a, geometry::Vec2 b,
@@ -37,7 +38,12 @@ class PartObstacles {
     std::vector<geometry::Vec2> polygon;  // outer contour, flattened [mm]
     std::vector<geometry::Vec2> hull;     // grown hull (16 corners), counter-clockwise [mm]
     geometry::Box box;                    // of the polygon [mm]
+    std::vector<geometry::Vec2> guard;    // the hull grown by 0.999 margin: what detour legs avoid [mm]
+    geometry::Box guard_box;              // of the guard [mm]
   };
+  // Does a detour leg a -> b come closer than the margin to the part (or pass over it, when an
+  // end point itself is that close)?
+  bool blocks(int part, geometry::Vec2 a, geometry::Vec2 b) const;
   std::vector<Obstacle> parts_;
 };
 

@@ -392,6 +392,26 @@ TEST(ShopRules, TabsLeaveNGapsOfWidthW) {
   fs::remove_all(dir);
 }
 
+TEST(ShopRules, OffMeansOffAndAllRulesTogetherStayAdmissibleAndDeterministic) {
+  const auto dir = temp_dir("all");
+  const auto parts = grid(3, 3);
+  const auto dxf = write_nest(dir, parts, 220, 220);
+  // Rules given at their "off" values change nothing, byte for byte.
+  const Program plain = optimize(dxf, dir, "", parts);
+  const Program off = optimize(dxf, dir, "--heat-distance 0 --tabs 0 --heat-weight 99 --sheet-weight 3", parts);
+  EXPECT_EQ(plain.text, off.text);
+  EXPECT_FALSE(off.report.contains("rules"));
+  // Everything at once: admissible with the tabs, the same bytes twice.
+  const std::string all = "--heat-distance 15 --heat-memory 2 --part-rigidity --sheet-clamp bottom --tabs 2 --tab-width 2";
+  const Program a = optimize(dxf, dir, all, parts);
+  expect_admissible(dxf, a, 2, 2.0);
+  EXPECT_TRUE(monotone(a, parts, false, false));  // clamped at the bottom: rows bottom to top
+  const Program b = optimize(dxf, dir, all, parts);
+  EXPECT_EQ(a.text, b.text);
+  EXPECT_EQ(a.report["rules"]["active"], nlohmann::json::array({"heat", "part_rigidity", "sheet_rigidity", "tabs"}));
+  fs::remove_all(dir);
+}
+
 TEST(ShopRules, BadRuleOptionsAreUsageErrors) {
   const auto dir = temp_dir("bad");
   const auto dxf = write_nest(dir, grid(2, 1), 160, 100);

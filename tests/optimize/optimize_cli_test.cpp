@@ -11,6 +11,7 @@
 
 #include <cutroute/io/nest_loader.hpp>
 
+#include "support/files.hpp"
 #include "support/paths.hpp"
 #include "support/program_check.hpp"
 
@@ -19,19 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-fs::path temp_dir(const std::string& name) {
-  auto d = fs::temp_directory_path() / ("cutroute-opt-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path temp_dir(const std::string& name) { return fresh_temp_dir("opt", name); }
 
 bool sanitized() { return std::getenv("CUTROUTE_SANITIZED") != nullptr; }
 

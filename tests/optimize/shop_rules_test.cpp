@@ -14,6 +14,7 @@
 #include <cutroute/io/nest_loader.hpp>
 
 #include "support/dxf_builder.hpp"
+#include "support/files.hpp"
 #include "support/paths.hpp"
 #include "support/program_check.hpp"
 
@@ -23,19 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 using geometry::Vec2;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-fs::path temp_dir(const std::string& name) {
-  auto d = fs::temp_directory_path() / ("cutroute-rules-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path temp_dir(const std::string& name) { return fresh_temp_dir("rules", name); }
 
 struct Rect {
   double x0, y0, x1, y1;  // [mm]
@@ -191,8 +180,8 @@ TEST(ShopRules, HeatKeepsConsecutiveCutsApart) {
 }
 
 TEST(ShopRules, HeatMemoryLooksFurtherBack) {
-  // Nine squares in a row 5 mm apart, D = 50 mm (only neighbours are closer), memory 2: a cut
-  // should not be next to either of the last two cuts. Such orders exist (e.g. 1 4 7 2 5 8 3 6 9).
+  // Nine 20 mm squares in a row 5 mm apart, D = 20 mm (neighbours are 5 mm apart, the next but one
+  // 30 mm), memory 2: a cut should not be next to either of the last two cuts. Such orders exist (e.g. 1 4 7 2 5 8 3 6 9).
   const auto dir = temp_dir("heatmem");
   const auto parts = row_of_squares(9, 20, 5, 30);
   const auto dxf = write_nest(dir, parts, 260, 100);

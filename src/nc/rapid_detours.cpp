@@ -93,6 +93,9 @@ PartObstacles::PartObstacles(const model::Nest& nest, double margin_mm) {
     }
     parts_.push_back(std::move(o));
   }
+  std::vector<geometry::Box> boxes;
+  for (const auto& o : parts_) boxes.push_back(o.guard.empty() ? o.box : o.guard_box);
+  index_ = geometry::StaticSpatialIndex(boxes);
 }
 
 bool PartObstacles::crosses(int part, Vec2 a, Vec2 b) const {
@@ -102,6 +105,7 @@ bool PartObstacles::crosses(int part, Vec2 a, Vec2 b) const {
 
 bool PartObstacles::blocks(int part, Vec2 a, Vec2 b) const {
   const Obstacle& o = parts_[static_cast<std::size_t>(part)];
+  if (!(o.guard.empty() ? o.box : o.guard_box).intersects(box_of(a, b))) return false;
   // An end point within the margin (a tool-off point beside the part just cut) cannot keep the
   // margin: for that part only the part itself counts.
   if (o.guard.empty() || inside(o.guard, a) || inside(o.guard, b)) return crosses(part, a, b);
@@ -118,12 +122,13 @@ std::vector<int> PartObstacles::crossed(Vec2 a, Vec2 b) const {
 std::optional<std::vector<Vec2>> PartObstacles::detour(Vec2 a, Vec2 b, const std::vector<char>& freed) const {
   auto blockers = [&](Vec2 u, Vec2 v, std::vector<int>* out) {
     bool blocked = false;
-    for (int k = 0; k < part_count(); ++k) {
-      if (!freed[static_cast<std::size_t>(k)] || !blocks(k, u, v)) continue;
+    index_.visit(box_of(u, v), [&](std::uint32_t i) {
+      const int k = static_cast<int>(i);
+      if (!freed[i] || !blocks(k, u, v)) return true;
       blocked = true;
-      if (!out) return true;
-      out->push_back(k);
-    }
+      if (out) out->push_back(k);
+      return out != nullptr;
+    });
     return blocked;
   };
   std::vector<int> set;
@@ -133,6 +138,7 @@ std::optional<std::vector<Vec2>> PartObstacles::detour(Vec2 a, Vec2 b, const std
   for (int round = 0; round < 8; ++round) {
     std::sort(set.begin(), set.end());
     set.erase(std::unique(set.begin(), set.end()), set.end());
+    if (set.size() > kMaxDetourParts) break;  // a way round that many freed parts: give up
     std::vector<Vec2> nodes{a, b};
     for (int k : set)
       for (const auto& p : parts_[static_cast<std::size_t>(k)].hull) nodes.push_back(p);
@@ -141,7 +147,7 @@ std::optional<std::vector<Vec2>> PartObstacles::detour(Vec2 a, Vec2 b, const std
     std::vector<double> dist(n, kInf);
     std::vector<std::size_t> prev(n, n);
     std::vector<char> done(n, 0);
-    std::vector<int> more;
+    std::vector<int> more, hit;
     dist[0] = 0;
     for (;;) {
       std::size_t u = n;
@@ -153,7 +159,7 @@ std::optional<std::vector<Vec2>> PartObstacles::detour(Vec2 a, Vec2 b, const std
         if (done[v] || v == u) continue;
         const double d = dist[u] + geometry::distance(nodes[u], nodes[v]);
         if (d >= dist[v]) continue;
-        std::vector<int> hit;
+        hit.clear();
         if (blockers(nodes[u], nodes[v], &hit)) {
           more.insert(more.end(), hit.begin(), hit.end());
           continue;

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include <cutroute/geometry/box.hpp>
+#include <cutroute/geometry/spatial_index.hpp>
 #include <cutroute/geometry/vec2.hpp>
 #include <cutroute/model/nest.hpp>
 #include <cutroute/nc/toolpath.hpp>
@@ -27,9 +28,11 @@ class PartObstacles {
   // The shortest polyline a -> b (waypoints only, a and b excluded) through the corners of the
   // grown hulls that passes over none of the parts with freed[part] != 0 and keeps the margin
   // from them (except from a part an end point is already that close to); empty when the straight
-  // move passes over no freed part; nullopt when there is none (an end point enclosed by freed parts).
+  // move passes over no freed part; nullopt when there is none (an end point enclosed by freed
+  // parts) or when more than kMaxDetourParts parts would have to be gone around.
   // Visibility graph over the hulls of the parts in the way, grown until no leg crosses a freed
   // part: O(V² · E) per round for V hull corners and E polygon edges near the legs.
+  static constexpr std::size_t kMaxDetourParts = 24;
   std::optional<std::vector<geometry::Vec2>> detour(geometry::Vec2 a, geometry::Vec2 b,
                                                     const std::vector<char>& freed) const;
 
@@ -45,6 +48,7 @@ class PartObstacles {
   // end point itself is that close)?
   bool blocks(int part, geometry::Vec2 a, geometry::Vec2 b) const;
   std::vector<Obstacle> parts_;
+  geometry::StaticSpatialIndex index_;  // over the guard boxes (the polygon boxes when no margin)
 };
 
 struct DetourStats {

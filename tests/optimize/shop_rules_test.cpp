@@ -237,6 +237,11 @@ TEST(ShopRules, TipUpRapidsGoAroundFreedParts) {
   EXPECT_GT(detours, 0);
   EXPECT_GE(static_cast<int>(tip.rapids.size()), static_cast<int>(tip.runs.size()) + 1 + detours);
   EXPECT_EQ(rules["tip_up_program"]["rapids_over_freed_parts"].get<int>(), detours);
+  // The picture draws the detours too: one dashed rapid line per G0 move of the program.
+  const std::string svg = slurp(dir / "out.svg");
+  std::size_t dashed = 0;
+  for (auto at = svg.find("stroke-dasharray=\"5 4\""); at != std::string::npos; at = svg.find("stroke-dasharray=\"5 4\"", at + 1)) ++dashed;
+  EXPECT_EQ(dashed, tip.rapids.size());
   fs::remove_all(dir);
 }
 

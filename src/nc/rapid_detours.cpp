@@ -13,6 +13,10 @@ namespace {
 
 using geometry::Vec2;
 
+// Detour legs run along the grown hull's edges; they are tested against a hull shrunk by this
+// factor (2 µm for a 2 mm margin) so that running along an edge does not count as inside.
+constexpr double kGuardShrink = 1 - 1e-3;
+
 bool inside(const std::vector<Vec2>& poly, Vec2 p) {
   bool in = false;
   for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
@@ -40,13 +44,13 @@ bool passes_inside(const std::vector<Vec2>& poly, const geometry::Box& box, Vec2
   for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
     const Vec2 p = poly[j], e = poly[i] - p;
     const double den = geometry::cross(d, e);
-    if (std::abs(den) < 1e-300) continue;  // parallel: the ends of the neighbouring edges are met instead
+    if (den == 0) continue;  // parallel: the ends of the neighbouring edges are met instead
     const double t = geometry::cross(p - a, e) / den, u = geometry::cross(p - a, d) / den;
     if (t > 0 && t < 1 && u >= 0 && u <= 1) ts.push_back(t);
   }
   std::sort(ts.begin(), ts.end());
   for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
-    if (ts[k + 1] - ts[k] < 1e-12) continue;
+    if (ts[k + 1] - ts[k] <= 0) continue;  // the same place met twice (a corner)
     if (inside(poly, a + d * ((ts[k] + ts[k + 1]) / 2))) return true;
   }
   return false;
@@ -85,10 +89,8 @@ PartObstacles::PartObstacles(const model::Nest& nest, double margin_mm) {
       return out;
     };
     o.hull = sixteen_gon(margin);
-    // Legs of a detour run along the hull's edges: they are checked against a hull a hair smaller,
-    // so that running along an edge is not "inside".
     if (margin > 0) {
-      o.guard = sixteen_gon(margin * (1 - 1e-3));
+      o.guard = sixteen_gon(margin * kGuardShrink);
       for (const auto& p : o.guard) o.guard_box.add(p);
     }
     parts_.push_back(std::move(o));

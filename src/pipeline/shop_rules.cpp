@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include <cutroute/core/tolerances.hpp>
 #include <cutroute/core/units.hpp>
 #include <cutroute/geometry/intersect.hpp>
 #include <cutroute/nc/micro_joints.hpp>
@@ -352,7 +353,7 @@ int place_rigid_entries(const model::Nest& nest, const model::CutJob& job, std::
     const model::EntryCandidate* best = nullptr;
     for (const auto& e : it->candidates) {
       if (!e.corner || e.clockwise != seq[i].clockwise) continue;
-      if (!best || geometry::distance(e.point, target) < geometry::distance(best->point, target) - 1e-9) best = &e;
+      if (!best || geometry::distance(e.point, target) < geometry::distance(best->point, target) - tol::kSamePointMm) best = &e;
     }
     if (!best) continue;
     seq[i] = *best;

@@ -43,6 +43,8 @@ struct Opts {
   std::string technique = "auto";
   double chain_gap = 20;
   InputOptions input;
+  pipeline::ShopRules rules;  // shop rules (docs/SHOP-RULES.md)
+  std::string sheet_clamp;
 };
 
 struct Outputs {
@@ -127,6 +129,8 @@ int run(const Opts& o) {
                  : o.technique == "common" ? pipeline::Technique::common
                                            : pipeline::Technique::automatic;
   po.chain.max_gap_mm = o.chain_gap;
+  po.rules = o.rules;  // shop rules
+  if (!o.sheet_clamp.empty()) po.rules.sheet_clamp = pipeline::parse_clamp_side(o.sheet_clamp);
 
   // Output paths: one nest -> -o is the program file; several -> -o is a folder for all outputs.
   const bool batch = o.nests.size() > 1;
@@ -224,6 +228,31 @@ int run(const Opts& o) {
   return code;
 }
 
+// Shop rules (docs/SHOP-RULES.md): every rule off unless asked for.
+void add_shop_rule_options(CLI::App* app, pipeline::ShopRules& r, std::string& clamp) {
+  const char* g = "Shop rules";
+  app->add_option("--heat-distance", r.heat_distance_mm, "Heat: consecutive cuts at least this far apart where possible [mm] (0: off)")
+      ->check(CLI::Range(0.0, 1e5))->group(g);
+  app->add_option("--heat-weight", r.heat_weight, "Heat: price of a too-close pair [s]")->check(CLI::Range(0.0, 1e6))->capture_default_str()->group(g);
+  app->add_option("--heat-memory", r.heat_memory, "Heat: segments looked back (each further one counts half)")
+      ->check(CLI::Range(1, 16))->capture_default_str()->group(g);
+  app->add_flag("--avoid-tip-up", r.avoid_tip_up, "Tip-up: rapids go around parts already cut free")->group(g);
+  app->add_option("--tip-up-weight", r.tip_up_weight, "Tip-up: price of a rapid over a freed part while sequencing [s]")
+      ->check(CLI::Range(0.0, 1e6))->capture_default_str()->group(g);
+  app->add_option("--tip-up-margin", r.tip_up_margin_mm, "Tip-up: detour distance from freed parts [mm]")
+      ->check(CLI::Range(0.0, 1e3))->capture_default_str()->group(g);
+  app->add_flag("--part-rigidity", r.part_rigidity, "Part rigidity: outer contours entered at the corner toward the uncut material")->group(g);
+  app->add_option("--sheet-clamp", clamp, "Sheet rigidity: clamped side; the order sweeps away from it")
+      ->check(CLI::IsMember({"left", "right", "bottom", "top"}))->group(g);
+  app->add_option("--sheet-weight", r.sheet_weight_per_mm, "Sheet rigidity: price per mm behind the sweep front [s/mm]")
+      ->check(CLI::Range(0.0, 1e6))->capture_default_str()->group(g);
+  app->add_option("--sheet-band", r.sheet_band_mm, "Sheet rigidity: allowed step back behind the front [mm]")
+      ->check(CLI::Range(0.0, 1e6))->capture_default_str()->group(g);
+  app->add_option("--tabs", r.tabs, "Micro-joints: uncut tabs per outer contour (0: off)")->check(CLI::Range(0, 64))->group(g);
+  app->add_option("--tab-width", r.tab_width_mm, "Micro-joints: tab width [mm]")
+      ->check(CLI::Range(0.001, 1e3))->capture_default_str()->group(g);
+}
+
 }  // namespace
 
 void add_optimize(CLI::App& root, Commands& out) {
@@ -265,6 +294,7 @@ void add_optimize(CLI::App& root, Commands& out) {
       ->check(CLI::Range(0.0, 1000.0))
       ->capture_default_str();
   app->add_flag("-q,--quiet", o->quiet, "No progress and no summary");
+  add_shop_rule_options(app, o->rules, o->sheet_clamp);
   add_input_options(app, o->input);
   out.push_back({app, [o] { return run(*o); }});
 }

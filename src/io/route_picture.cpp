@@ -21,6 +21,16 @@ geometry::Box world_box(const model::Nest& nest, const nc::Toolpath& path) {
   return b;
 }
 
+// A rapid as drawn: straight, or through the waypoints of a detour (shop rules).
+void add_rapid(SvgDocument& svg, geometry::Vec2 from, const std::vector<geometry::Vec2>& via, geometry::Vec2 to) {
+  const std::string style = std::string("fill=\"none\" stroke=\"#2f6fdf\" stroke-width=\"1\" stroke-dasharray=\"5 4\" ") + kNs;
+  for (const auto& p : via) {
+    svg.add_line(from, p, style);
+    from = p;
+  }
+  svg.add_line(from, to, style);
+}
+
 }  // namespace
 
 std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, const RoutePictureOptions& options) {
@@ -51,7 +61,7 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
     const auto& s = path.segments[k];
     svg.begin_group("class=\"seg\" data-k=\"" + std::to_string(k + 1) + "\"");
     svg.add_raw("<title>" + std::to_string(k + 1) + ": " + xml_escape(s.label) + "</title>\n");
-    svg.add_line(at, s.pierce, std::string("fill=\"none\" stroke=\"#2f6fdf\" stroke-width=\"1\" stroke-dasharray=\"5 4\" ") + kNs);
+    add_rapid(svg, at, s.rapid_via, s.pierce);
     for (const auto& piece : s.pieces) {
       const bool lead = piece.role == nc::PieceRole::lead_in || piece.role == nc::PieceRole::lead_out;
       const bool bridge = piece.role == nc::PieceRole::bridge;
@@ -80,7 +90,7 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
     at = nc::tool_off_point(s);
   }
   svg.begin_group("class=\"seg\" data-k=\"" + std::to_string(path.segments.size() + 1) + "\"");
-  svg.add_line(at, path.end, std::string("fill=\"none\" stroke=\"#2f6fdf\" stroke-width=\"1\" stroke-dasharray=\"5 4\" ") + kNs);
+  add_rapid(svg, at, path.end_via, path.end);
   svg.end_group();
   svg.add_circle(path.start, mark_mm * 2.5, "fill=\"none\" stroke=\"#111111\" stroke-width=\"2\" " + std::string(kNs));
   svg.add_text(path.start + geometry::Vec2{mark_mm * 3, -mark_mm * 6}, "start", label_mm,

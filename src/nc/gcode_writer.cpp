@@ -212,6 +212,7 @@ WrittenProgram write_gcode(const Toolpath& path, const PostDialect& d, const Gco
 
   for (const auto& seg : path.segments) {
     if (options.comments && !seg.label.empty()) e.comment(seg.label);
+    for (const Vec2 via : seg.rapid_via) e.rapid(via);  // shop rules: detour around freed parts
     e.rapid(seg.pierce);
     e.codes(d.beam_on, path.pierce_time_s, seg.feed_mm_min);
     e.codes(d.pierce, path.pierce_time_s, seg.feed_mm_min);
@@ -241,6 +242,7 @@ WrittenProgram write_gcode(const Toolpath& path, const PostDialect& d, const Gco
     if (thc) e.codes(d.thc_off, path.pierce_time_s, seg.feed_mm_min);
     e.codes(d.beam_off, path.pierce_time_s, seg.feed_mm_min);
   }
+  for (const Vec2 via : path.end_via) e.rapid(via);  // shop rules: detour around freed parts
   e.rapid(path.end);
   for (const auto& f : d.footer) e.block(f);
   e.block(d.program_end);

@@ -19,6 +19,7 @@
 #include <cutroute/solve/solve.hpp>
 
 #include "refine.hpp"
+#include "shop_rules_steps.hpp"
 
 namespace cutroute::pipeline {
 
@@ -100,6 +101,7 @@ struct Evaluated {
   std::size_t frames = 0;
   cost::TimeEstimate estimate;
   double objective = 0;  // t_cut_s (time) or cost (cost form)
+  nlohmann::json rules;  // shop rules applied to the toolpath (detours, tabs)
 };
 
 Evaluated evaluate(const model::Nest& nest, const std::vector<model::EntryCandidate>& seq, const Setup& s,
@@ -115,6 +117,7 @@ Evaluated evaluate(const model::Nest& nest, const std::vector<model::EntryCandid
   to.kerf = o.kerf_mode;
   Evaluated ev;
   ev.toolpath = nc::build_toolpath(nest, ptrs, to);
+  if (o.rules.any()) ev.rules = rules::apply_to_toolpath(ev.toolpath, nest, o.rules);  // shop rules
   ev.program = nc::write_gcode(ev.toolpath, s.dialect, nc::GcodeWriteOptions{o.title, true});
   ev.frames = nc::count_frames(ev.program.text);
   cost::ProgramTotals totals;
@@ -223,6 +226,8 @@ struct Alternative {
   Evaluated best;
   std::string lead_name;
   nlohmann::json leads_json;
+  nlohmann::json rules_json;  // shop rules: the history-dependent re-ordering's search and effects
+  int rigid_corners = 0;      // shop rules: outer contours entered at a rigid corner
 };
 
 // Steps 3-6 for one set of basic segments.
@@ -242,14 +247,20 @@ Result<Alternative> solve_alternative(const model::Nest& nest, const model::CutJ
   Alternative alt;
   alt.solution = solve::solve(rp->problem, params, stop, progress);
   if (alt.solution.route.empty()) return make_error("the route solver stopped before it found any route");
+  // Shop rules: history-dependent re-ordering of the solver's route.
+  const std::vector<solve::NodeId> route =
+      o.rules.orders() ? rules::reorder(nest, job, *rp, alt.solution.route, o.rules, stop, alt.rules_json)
+                       : alt.solution.route;
+  if (o.rules.orders()) alt.rules_json["route"] = rules::route_effects(nest, job, *rp, route, o.rules);
   auto& seq = alt.sequence;
-  for (const auto* e : cost::route_entries(job, *rp, alt.solution.route)) seq.push_back(*e);
+  for (const auto* e : cost::route_entries(job, *rp, route)) seq.push_back(*e);
 
   // 4. Continuous refinement of the entries for the fixed order.
   if (o.refine_entries) {
     if (progress) progress({"refine", -1, {}});
     alt.moved = refine_entries(planner, s.prices, s.start, s.start, seq, 2, stop);
   }
+  alt.rigid_corners = rules::place_rigid_entries(nest, job, seq, o.rules);  // shop rules: part rigidity
 
   // 5-6. Program, frames, V_on*(n); lead types compared by the corrected objective.
   alt.best = evaluate(nest, seq, s, o);
@@ -313,6 +324,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   };
   if (nest.parts.empty()) return make_error("the nest has no closed contour to cut", loaded.file);
 
+  if (const auto bad = check(o.rules); !bad.empty()) return make_error(bad.front());
   // 1. Conditions.
   auto st = setup(o);
   if (!st) return st.error();
@@ -335,7 +347,12 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   const model::Nest& cut_nest = o.kerf_mode == nc::KerfMode::cam ? kerf.nest : nest;
   // 2-6 for each alternative set of basic segments (GSCCP), the best kept.
   std::vector<Technique> wanted;
-  if (o.technique == Technique::automatic) wanted = {Technique::standard, Technique::chain, Technique::common};
+  // The shop rules are written for one pierce per contour: with any rule on, only the standard
+  // technique is built (asked for another one explicitly: an error, not a silent change).
+  if (o.rules.any() && o.technique != Technique::automatic && o.technique != Technique::standard)
+    return make_error(std::string("the shop rules work with --technique standard only, not ") + to_string(o.technique));
+  if (o.technique == Technique::automatic && !o.rules.any()) wanted = {Technique::standard, Technique::chain, Technique::common};
+  else if (o.technique == Technique::automatic) wanted = {Technique::standard};
   else wanted = {o.technique};
   std::vector<model::CutJob> jobs;
   std::vector<Technique> built;
@@ -353,6 +370,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
       alternatives.push_back({{"name", to_string(t)}, {"available", false}, {"reason", "nothing to join: same basic segments as standard"}});
       continue;
     }
+    if (t == Technique::standard) rules::restrict_candidates(*job, cut_nest, o.rules);  // shop rules: part rigidity
     jobs.push_back(std::move(job).value());
     built.push_back(t);
     slot.push_back(alternatives.size());
@@ -453,6 +471,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   for (const auto& d : loaded.diagnostics) diags.push_back(io::to_json(d));
   for (const auto& d : result.diagnostics) diags.push_back(io::to_json(d));
   r["diagnostics"] = diags;
+  if (o.rules.any()) r["rules"] = rules::report(o.rules, win.rules_json, best_ev.rules, win.rigid_corners);  // shop rules
 
   result.toolpath = std::move(best_ev.toolpath);
   result.program = std::move(best_ev.program);

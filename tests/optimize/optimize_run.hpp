@@ -18,17 +18,11 @@
 #include <cutroute/io/nest_loader.hpp>
 
 #include "support/common_program_check.hpp"
+#include "support/files.hpp"
 #include "support/paths.hpp"
 #include "support/program_check.hpp"
 
 namespace cutroute::test {
-
-inline std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 inline std::filesystem::path temp_dir(const std::string& name) {
   auto d = std::filesystem::temp_directory_path() / ("cutroute-opt-" + name + "-" + std::to_string(::getpid()));

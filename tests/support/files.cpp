@@ -1,8 +1,9 @@
 #include "support/files.hpp"
 
+#include <unistd.h>
+
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 namespace cutroute::test {
 
@@ -11,6 +12,10 @@ std::filesystem::path fresh_temp_dir(const std::string& name) {
   std::filesystem::remove_all(d);
   std::filesystem::create_directories(d);
   return d;
+}
+
+std::filesystem::path fresh_temp_dir(const std::string& prefix, const std::string& name) {
+  return fresh_temp_dir(prefix + "-" + name);
 }
 
 std::string read_text(const std::filesystem::path& path) {

@@ -1,4 +1,4 @@
-// Small file helpers for tests that run the CLI: a fresh temporary folder, a file read whole.
+// Small file helpers for tests that run the CLI: fresh temporary folders, files read whole.
 #pragma once
 
 #include <filesystem>
@@ -9,7 +9,13 @@ namespace cutroute::test {
 // <temp>/cutroute-<name>-<pid>, emptied and created.
 std::filesystem::path fresh_temp_dir(const std::string& name);
 
+// An empty folder <temp>/cutroute-<prefix>-<name>-<pid>, removed first if it exists.
+std::filesystem::path fresh_temp_dir(const std::string& prefix, const std::string& name);
+
 // The file's bytes; empty when it cannot be read.
 std::string read_text(const std::filesystem::path& path);
+
+// The same as read_text() (the name the optimize tests use).
+inline std::string slurp(const std::filesystem::path& p) { return read_text(p); }
 
 }  // namespace cutroute::test

@@ -225,15 +225,20 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
       out.failures.push_back(name + " is never cut");
       continue;
     }
-    if (runs_of[k].size() > 1) out.failures.push_back(name + " is cut in " + std::to_string(runs_of[k].size()) + " runs");
+    // With micro-joints an outer contour is cut in tabs + 1 runs, short of tabs gaps.
+    const bool tabbed = opt.tabs > 0 && cut[k]->role == model::ContourRole::outer;
+    const std::size_t want_runs = tabbed ? static_cast<std::size_t>(opt.tabs) + 1 : 1;
+    const double gaps = tabbed ? opt.tabs * opt.tab_width_mm : 0.0;
+    if (runs_of[k].size() != want_runs)
+      out.failures.push_back(name + " is cut in " + std::to_string(runs_of[k].size()) + " runs (want " + std::to_string(want_runs) + ")");
     run_of[k] = *runs_of[k].begin();
     if (off > 0) {
       check_offset_cover(k, run_of[k], name, covered[k], len);
     } else {
       // Every vertex is rounded to the dialect's resolution (1 µm), so a contour's cut length may
       // differ from the drawing's by a few µm; a real gap would be a tenth of a kerf or more.
-      if (covered[k] < len - 0.01 - len * 1e-5) out.failures.push_back(name + " is cut only over " + format_fixed(covered[k], 3) + " mm");
-      if (covered[k] > len + opt.max_overcut_mm + 1e-3) out.failures.push_back(name + " is cut over " + format_fixed(covered[k], 3) + " mm: twice?");
+      if (covered[k] < len - gaps - 0.01 - len * 1e-5) out.failures.push_back(name + " is cut only over " + format_fixed(covered[k], 3) + " mm");
+      if (covered[k] > len - gaps + opt.max_overcut_mm + 1e-3) out.failures.push_back(name + " is cut over " + format_fixed(covered[k], 3) + " mm: twice?");
     }
     ++out.contours_cut;
   }

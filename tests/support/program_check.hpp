@@ -19,6 +19,10 @@ struct ProgramCheckOptions {
   // (± on_contour_mm) from the drawn contour, on its scrap side (outside an outer contour, inside
   // a hole). 0: on the drawn contour.
   double kerf_offset_mm = 0.0;
+  // Micro-joints: every outer contour is cut in tabs + 1 runs and left uncut over tabs gaps of
+  // tab_width_mm in total tabs * tab_width_mm (0: no tabs, each contour in one run, whole).
+  int tabs = 0;
+  double tab_width_mm = 0.0;      // [mm]
 };
 
 struct ProgramCheck {

@@ -30,12 +30,16 @@ struct CutSegment {
   KerfSide kerf = KerfSide::none;    // with --kerf-mode controller
   double feed_mm_min = 0.0;          // programmed cutting feed [mm/min]
   std::string label;                 // e.g. "part 3 hole 2", written as a comment
+  // Shop rules (nc/rapid_detours.hpp): rapid waypoints before the pierce, so the rapid to this
+  // segment goes around parts already cut free; empty: one straight rapid [mm].
+  std::vector<geometry::Vec2> rapid_via;
 };
 
 struct Toolpath {
   geometry::Vec2 start;              // machine position before the program [mm]
   std::vector<CutSegment> segments;  // in cutting order
   geometry::Vec2 end;                // where the head parks after the last cut [mm]
+  std::vector<geometry::Vec2> end_via;  // shop rules: rapid waypoints before parking [mm]
   double pierce_time_s = 0.0;        // dwell after beam on [s]
 };
 

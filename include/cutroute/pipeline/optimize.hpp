@@ -14,6 +14,7 @@
 #include <cutroute/model/chains.hpp>
 #include <cutroute/nc/build_toolpath.hpp>
 #include <cutroute/nc/gcode_writer.hpp>
+#include <cutroute/pipeline/shop_rules.hpp>
 #include <cutroute/solve/params.hpp>
 
 namespace cutroute::pipeline {
@@ -58,6 +59,7 @@ struct OptimizeOptions {
   bool allow_crossing = false;
   Technique technique = Technique::automatic;
   model::ChainOptions chain;                 // chain technique: gap limit, run length
+  ShopRules rules;                           // shop rules (pipeline/shop_rules.hpp): all off by default
 };
 
 struct OptimizeResult {

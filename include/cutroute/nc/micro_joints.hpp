@@ -1,0 +1,29 @@
+// Micro-joints (tabs): a post-pass that leaves N uncut gaps of width w on every outer contour of a toolpath.
+#pragma once
+
+#include <cutroute/model/nest.hpp>
+#include <cutroute/nc/toolpath.hpp>
+
+namespace cutroute::nc {
+
+struct MicroJointOptions {
+  int tabs = 0;              // tabs per outer contour; 0: off
+  double width_mm = 1.0;     // length of each uncut gap, measured along the programmed path [mm]
+};
+
+struct MicroJointStats {
+  int contours = 0;          // outer contours that got tabs
+  int tabs = 0;              // gaps left in total
+  int skipped = 0;           // outer contours too short for their tabs (left whole)
+};
+
+// Every contour piece of an outer contour (of length L, the overcut past it excluded) gets its
+// tabs centred at (k + 1/2) L / N from the entry point, k = 0..N-1, so none sits at the entry
+// where the lead-in joins or at the end where the part drops last. The segment is split there:
+// the beam goes off before each gap, the head moves over the gap, and the next piece is a new
+// segment pierced on the contour (no lead-in) with the same feed and kerf side. The lead-in stays
+// on the first piece, the lead-out (and the overcut) on the last. A contour whose gaps would not
+// leave at least one gap width of cut between them (N · 2w > L) is left whole and counted.
+MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const MicroJointOptions& options);
+
+}  // namespace cutroute::nc

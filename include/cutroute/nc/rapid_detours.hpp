@@ -1,0 +1,66 @@
+// Tip-up avoidance: parts' outer contours as obstacles, and a post-pass that routes rapids around parts already cut free.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include <cutroute/geometry/box.hpp>
+#include <cutroute/geometry/spatial_index.hpp>
+#include <cutroute/geometry/vec2.hpp>
+#include <cutroute/model/nest.hpp>
+#include <cutroute/nc/toolpath.hpp>
+
+namespace cutroute::nc {
+
+// The outer contour of every part as a polygon (arcs flattened within tol::kArcChordMm) with a
+// grown hull: the 16-gon of its extents in 16 directions pushed out by `margin_mm` (every point of
+// its boundary at least margin_mm from the part). A rapid "passes over" a
+// part when some stretch of the straight move lies inside the polygon (corner to corner included).
+class PartObstacles {
+ public:
+  PartObstacles(const model::Nest& nest, double margin_mm);
+
+  int part_count() const { return static_cast<int>(parts_.size()); }
+  // Does the straight move a -> b pass over part `part` (index into nest.parts)?
+  bool crosses(int part, geometry::Vec2 a, geometry::Vec2 b) const;
+  // Every part the straight move passes over, in increasing index order.
+  std::vector<int> crossed(geometry::Vec2 a, geometry::Vec2 b) const;
+  // The shortest polyline a -> b (waypoints only, a and b excluded) through the corners of the
+  // grown hulls that passes over none of the parts with freed[part] != 0 and keeps the margin
+  // from them (except from a part an end point is already that close to); empty when the straight
+  // move passes over no freed part; nullopt when there is none (an end point enclosed by freed
+  // parts) or when more than kMaxDetourParts parts would have to be gone around.
+  // Visibility graph over the hulls of the parts in the way, grown until no leg crosses a freed
+  // part: O(V² · E) per round for V hull corners and E polygon edges near the legs.
+  static constexpr std::size_t kMaxDetourParts = 24;
+  std::optional<std::vector<geometry::Vec2>> detour(geometry::Vec2 a, geometry::Vec2 b,
+                                                    const std::vector<char>& freed) const;
+
+ private:
+  struct Obstacle {
+    std::vector<geometry::Vec2> polygon;  // outer contour, flattened [mm]
+    std::vector<geometry::Vec2> hull;     // grown hull (16 corners), counter-clockwise [mm]
+    geometry::Box box;                    // of the polygon [mm]
+    std::vector<geometry::Vec2> guard;    // the hull grown by 0.999 margin: what detour legs avoid [mm]
+    geometry::Box guard_box;              // of the guard [mm]
+  };
+  // Does a detour leg a -> b come closer than the margin to the part (or pass over it, when an
+  // end point itself is that close)?
+  bool blocks(int part, geometry::Vec2 a, geometry::Vec2 b) const;
+  std::vector<Obstacle> parts_;
+  geometry::StaticSpatialIndex index_;  // over the guard boxes (the polygon boxes when no margin)
+};
+
+struct DetourStats {
+  int rapids_over_freed = 0;   // straight rapids that would pass over a part already cut free
+  int detours = 0;             // of these, routed around (waypoints written as extra G0 moves)
+  int unavoidable = 0;         // no way around found: left straight
+  double extra_mm = 0.0;       // added rapid length of the detours [mm]
+};
+
+// Post-pass on a finished toolpath: a part is free once the segment that cuts its outer contour is
+// done; every later rapid (and the one to the park position) that would pass over a free part gets
+// the waypoints of PartObstacles::detour() in CutSegment::rapid_via / Toolpath::end_via.
+DetourStats route_rapids_around_freed_parts(Toolpath& path, const model::Nest& nest, double margin_mm);
+
+}  // namespace cutroute::nc

@@ -1,0 +1,98 @@
+#include <cutroute/nc/micro_joints.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include <cutroute/core/tolerances.hpp>
+
+namespace cutroute::nc {
+namespace {
+
+using geometry::Contour;
+using geometry::Vec2;
+
+// The part of an open path between arc lengths s0 < s1 (clamped to the path), arcs split exactly.
+Contour sub_path(const Contour& c, double s0, double s1) {
+  Contour out;
+  double at = 0;
+  const std::size_t n = geometry::segment_count(c);
+  for (std::size_t i = 0; i < n && at < s1; ++i) {
+    const geometry::Segment seg = geometry::segment(c, i);
+    const double l = seg.length();
+    if (l <= 0 || at + l <= s0) {
+      at += l;
+      continue;
+    }
+    const double u0 = std::max(0.0, (s0 - at) / l), u1 = std::min(1.0, (s1 - at) / l);
+    const double bulge = seg.is_arc() ? std::tan(seg.sweep() * (u1 - u0) / 4) : 0.0;
+    if (out.vertices.empty()) out.vertices.push_back({seg.point_at(u0), bulge});
+    else out.vertices.back().bulge = bulge;
+    out.vertices.push_back({seg.point_at(u1), 0.0});
+    at += l;
+  }
+  return out;
+}
+
+}  // namespace
+
+MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const MicroJointOptions& o) {
+  MicroJointStats st;
+  if (o.tabs <= 0 || o.width_mm <= 0) return st;
+  std::vector<CutSegment> out;
+  out.reserve(path.segments.size());
+  for (auto& seg : path.segments) {
+    // The piece that cuts an outer contour (one per segment in the standard technique).
+    auto it = std::find_if(seg.pieces.begin(), seg.pieces.end(), [&](const CutPiece& p) {
+      return p.role == PieceRole::contour && p.contour >= 0 &&
+             nest.contours[model::ContourId(p.contour)].role == model::ContourRole::outer;
+    });
+    if (it == seg.pieces.end()) {
+      out.push_back(std::move(seg));
+      continue;
+    }
+    const double contour_len = geometry::length(nest.contours[model::ContourId(it->contour)].source.contour);
+    const double piece_len = geometry::length(it->path);
+    const double w = o.width_mm;
+    const int n = o.tabs;
+    if (n * 2 * w > std::min(contour_len, piece_len)) {
+      ++st.skipped;
+      out.push_back(std::move(seg));
+      continue;
+    }
+    ++st.contours;
+    st.tabs += n;
+    // Cut stretches between the gaps: [0, g0 - w/2], [g0 + w/2, g1 - w/2], ..., [g_{n-1} + w/2, piece end].
+    std::vector<std::pair<double, double>> keep;
+    double from = 0;
+    for (int k = 0; k < n; ++k) {
+      const double g = (k + 0.5) * contour_len / n;
+      keep.emplace_back(from, g - w / 2);
+      from = g + w / 2;
+    }
+    keep.emplace_back(from, piece_len);
+    const auto first = static_cast<std::size_t>(it - seg.pieces.begin());
+    for (std::size_t j = 0; j < keep.size(); ++j) {
+      CutSegment part;
+      part.kerf = seg.kerf;
+      part.feed_mm_min = seg.feed_mm_min;
+      Contour stretch = sub_path(it->path, keep[j].first, keep[j].second);
+      if (j == 0) {
+        part.pierce = seg.pierce;
+        part.label = seg.label;
+        part.rapid_via = seg.rapid_via;
+        part.pieces.assign(seg.pieces.begin(), seg.pieces.begin() + static_cast<std::ptrdiff_t>(first));
+      } else {
+        part.pierce = stretch.vertices.front().p;
+        part.label = seg.label + " after tab " + std::to_string(j);
+      }
+      part.pieces.push_back({std::move(stretch), PieceRole::contour, it->contour});
+      if (j + 1 == keep.size())
+        part.pieces.insert(part.pieces.end(), seg.pieces.begin() + static_cast<std::ptrdiff_t>(first) + 1, seg.pieces.end());
+      out.push_back(std::move(part));
+    }
+  }
+  path.segments = std::move(out);
+  return st;
+}
+
+}  // namespace cutroute::nc

@@ -1,0 +1,418 @@
+#include <cutroute/pipeline/shop_rules.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <cutroute/core/tolerances.hpp>
+#include <cutroute/core/units.hpp>
+#include <cutroute/geometry/intersect.hpp>
+#include <cutroute/nc/micro_joints.hpp>
+#include <cutroute/nc/rapid_detours.hpp>
+#include <cutroute/solve/history_search.hpp>
+#include <cutroute/solve/solution.hpp>
+
+#include "shop_rules_steps.hpp"
+
+namespace cutroute::pipeline {
+
+const char* to_string(ClampSide s) {
+  switch (s) {
+    case ClampSide::left: return "left";
+    case ClampSide::right: return "right";
+    case ClampSide::bottom: return "bottom";
+    case ClampSide::top: return "top";
+  }
+  return "left";
+}
+
+std::optional<ClampSide> parse_clamp_side(const std::string& s) {
+  for (ClampSide c : {ClampSide::left, ClampSide::right, ClampSide::bottom, ClampSide::top})
+    if (s == to_string(c)) return c;
+  return std::nullopt;
+}
+
+std::vector<std::string> check(const ShopRules& r) {
+  std::vector<std::string> e;
+  auto finite_nonneg = [&](double v, const char* name) {
+    if (!std::isfinite(v) || v < 0) e.push_back(std::string(name) + " must be a finite number >= 0");
+  };
+  finite_nonneg(r.heat_distance_mm, "--heat-distance");
+  finite_nonneg(r.heat_weight, "--heat-weight");
+  finite_nonneg(r.tip_up_weight, "--tip-up-weight");
+  finite_nonneg(r.tip_up_margin_mm, "--tip-up-margin");
+  finite_nonneg(r.sheet_weight_per_mm, "--sheet-weight");
+  finite_nonneg(r.sheet_band_mm, "--sheet-band");
+  if (r.heat_memory < 1 || r.heat_memory > 16) e.push_back("--heat-memory must be in 1..16");
+  if (r.tabs < 0 || r.tabs > 64) e.push_back("--tabs must be in 0..64");
+  if (r.tabs > 0 && (!std::isfinite(r.tab_width_mm) || r.tab_width_mm <= 0)) e.push_back("--tab-width must be > 0");
+  if (r.search_evaluations < 0) e.push_back("the rules' search budget must be >= 0");
+  return e;
+}
+
+namespace rules {
+namespace {
+
+using geometry::Vec2;
+using solve::Cost;
+using solve::NodeId;
+
+double box_gap(const geometry::Box& a, const geometry::Box& b) {
+  const double dx = std::max({0.0, a.xmin - b.xmax, b.xmin - a.xmax});
+  const double dy = std::max({0.0, a.ymin - b.ymax, b.ymin - a.ymax});
+  return std::hypot(dx, dy);
+}
+
+// Are two contours closer than d anywhere? Exact with arcs (segment to segment distances).
+bool closer_than(const geometry::Contour& a, const geometry::Contour& b, const geometry::Box& bb, double d) {
+  const std::size_t na = geometry::segment_count(a), nb = geometry::segment_count(b);
+  for (std::size_t i = 0; i < na; ++i) {
+    const geometry::Segment s = geometry::segment(a, i);
+    if (box_gap(s.bounding_box(), bb) >= d) continue;
+    for (std::size_t j = 0; j < nb; ++j) {
+      const geometry::Segment t = geometry::segment(b, j);
+      if (box_gap(s.bounding_box(), t.bounding_box()) >= d) continue;
+      if (geometry::distance(s, t) < d) return true;
+    }
+  }
+  return false;
+}
+
+// Where a cut contour stands along the sweep: larger = farther from the clamped side [mm].
+double sweep_key(const model::Nest& nest, model::ContourId id, ClampSide side) {
+  const auto& c = nest.contours[id];
+  const Vec2 centre = c.part.valid() ? nest.contours[nest.parts[c.part].outer].box.center() : c.box.center();
+  switch (side) {
+    case ClampSide::left: return centre.x;
+    case ClampSide::right: return -centre.x;
+    case ClampSide::bottom: return centre.y;
+    case ClampSide::top: return -centre.y;
+  }
+  return centre.x;
+}
+
+struct Effects {
+  int heat_pairs = 0;          // consecutive contours closer than D
+  int heat_near = 0;           // close pairs within the memory window (all distances)
+  double heat_penalty = 0;     // [objective unit]
+  int tip_up_rapids = 0;       // straight rapids over freed parts
+  double tip_up_penalty = 0;
+  double behind_mm = 0;        // sum over steps behind the sweep front beyond the band [mm]
+  int behind_steps = 0;
+  double sheet_penalty = 0;
+};
+
+// The SequenceCost of the pipeline: the problem's own price of the route (a prefix without the
+// closing arc) plus the rules' penalties. Not thread-safe (caches); history_search is one thread.
+class RuleCost {
+ public:
+  RuleCost(const model::Nest& nest, const model::CutJob& job, const cost::RouteProblem& rp, const ShopRules& r,
+           std::span<const NodeId> route)
+      : nest_(nest), rp_(rp), r_(r), obstacles_(nest, r.tip_up_margin_mm) {
+    local_.assign(rp.nodes.size(), -1);
+    if (r.avoid_tip_up && r.tabs <= 0) {
+      for (const NodeId v : route) local_[v.index()] = static_cast<int>(local_count_++);
+      cache_.resize(local_count_ * local_count_);
+      known_.assign(local_count_ * local_count_, 0);
+    }
+    const std::size_t m = job.segments.size();
+    contour_.resize(m);
+    outer_part_.assign(m, -1);
+    key_.assign(m, 0.0);
+    for (std::size_t j = 0; j < m; ++j) {
+      const model::ContourId id = job.segments[j].contours.front();  // standard jobs: one contour each
+      contour_[j] = id;
+      const auto& c = nest.contours[id];
+      if (c.role == model::ContourRole::outer && c.part.valid()) outer_part_[j] = c.part.value();
+      if (r.sheet_clamp) key_[j] = sweep_key(nest, id, *r.sheet_clamp);
+    }
+    near_.resize(m);
+    if (r.heat_distance_mm > 0) {
+      const double d = r.heat_distance_mm;
+      for (std::size_t a = 0; a < m; ++a)
+        for (std::size_t b = a + 1; b < m; ++b) {
+          const auto& ca = nest.contours[contour_[a]];
+          const auto& cb = nest.contours[contour_[b]];
+          if (box_gap(ca.box, cb.box) >= d) continue;
+          if (!closer_than(ca.source.contour, cb.source.contour, cb.box, d)) continue;
+          near_[a].push_back(static_cast<int>(b));
+          near_[b].push_back(static_cast<int>(a));
+        }
+      for (auto& v : near_) std::sort(v.begin(), v.end());
+    }
+    freed_stamp_.assign(nest.parts.size(), 0);
+    freed_pos_.assign(nest.parts.size(), 0);
+  }
+
+  bool near(int a, int b) const { return std::binary_search(near_[static_cast<std::size_t>(a)].begin(), near_[static_cast<std::size_t>(a)].end(), b); }
+
+  Cost operator()(std::span<const NodeId> route) const { return price(route, nullptr); }
+
+  Cost price(std::span<const NodeId> route, Effects* fx) const {
+    const auto& p = rp_.problem;
+    if (route.empty()) return 0;
+    Cost c = p.inner_cost(route[0]);
+    for (std::size_t i = 1; i < route.size(); ++i) c += p.arc_cost(route[i - 1], route[i]) + p.inner_cost(route[i]);
+    const bool complete = static_cast<int>(route.size()) == p.cluster_count();
+    if (complete && p.closed() && route.size() > 1) c += p.arc_cost(route.back(), route.front());
+    return c + units::seconds_to_ticks(penalty(route, complete, fx));
+  }
+
+ private:
+  int contour_at(NodeId v) const { return rp_.nodes[v.index()].segment; }
+
+  // Parts the straight rapid from a's tool-off point to b's pierce point passes over; cached in a
+  // dense table over the nodes of the route being searched (the search keeps the node choice).
+  const std::vector<int>& crossed(NodeId a, NodeId b) const {
+    const int la = local_[a.index()], lb = local_[b.index()];
+    if (la < 0 || lb < 0) {
+      scratch_ = obstacles_.crossed(rp_.tool_off[a.index()], rp_.pierce[b.index()]);
+      return scratch_;
+    }
+    const std::size_t key = static_cast<std::size_t>(la) * local_count_ + static_cast<std::size_t>(lb);
+    if (!known_[key]) {
+      cache_[key] = obstacles_.crossed(rp_.tool_off[a.index()], rp_.pierce[b.index()]);
+      known_[key] = 1;
+    }
+    return cache_[key];
+  }
+  bool over_freed(NodeId a, NodeId b, std::size_t before) const {
+    for (int part : crossed(a, b))
+      if (freed_stamp_[static_cast<std::size_t>(part)] == stamp_ && freed_pos_[static_cast<std::size_t>(part)] < before) return true;
+    return false;
+  }
+
+  double penalty(std::span<const NodeId> route, bool complete, Effects* fx) const {
+    double pen = 0;
+    const bool tip = r_.avoid_tip_up && r_.tabs <= 0;
+    ++stamp_;
+    double front = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 1; i < route.size(); ++i) {
+      const int j = contour_at(route[i]);
+      if (r_.heat_distance_mm > 0) {
+        double w = r_.heat_weight;
+        for (std::size_t k = 1; k <= static_cast<std::size_t>(r_.heat_memory) && k < i; ++k, w /= 2) {
+          if (!near(j, contour_at(route[i - k]))) continue;
+          pen += w;
+          if (fx) {
+            fx->heat_penalty += w;
+            ++fx->heat_near;
+            fx->heat_pairs += k == 1;
+          }
+        }
+      }
+      if (r_.sheet_clamp) {
+        const double key = key_[static_cast<std::size_t>(j)];
+        const double behind = front - key - r_.sheet_band_mm;
+        if (behind > 0) {
+          pen += r_.sheet_weight_per_mm * behind;
+          if (fx) {
+            fx->behind_mm += behind;
+            ++fx->behind_steps;
+            fx->sheet_penalty += r_.sheet_weight_per_mm * behind;
+          }
+        }
+        front = std::max(front, key);
+      }
+      if (tip) {
+        if (over_freed(route[i - 1], route[i], i)) {
+          pen += r_.tip_up_weight;
+          if (fx) {
+            ++fx->tip_up_rapids;
+            fx->tip_up_penalty += r_.tip_up_weight;
+          }
+        }
+        const int part = outer_part_[static_cast<std::size_t>(j)];
+        if (part >= 0) {
+          freed_stamp_[static_cast<std::size_t>(part)] = stamp_;
+          freed_pos_[static_cast<std::size_t>(part)] = i;
+        }
+      }
+    }
+    if (tip && complete && rp_.problem.closed() && route.size() > 1 && over_freed(route.back(), route.front(), route.size())) {
+      pen += r_.tip_up_weight;
+      if (fx) {
+        ++fx->tip_up_rapids;
+        fx->tip_up_penalty += r_.tip_up_weight;
+      }
+    }
+    return pen;
+  }
+
+  const model::Nest& nest_;
+  const cost::RouteProblem& rp_;
+  const ShopRules& r_;
+  nc::PartObstacles obstacles_;
+  std::vector<model::ContourId> contour_;
+  std::vector<int> outer_part_;
+  std::vector<double> key_;
+  std::vector<std::vector<int>> near_;
+  std::vector<int> local_;        // node index -> index among the searched route's nodes, -1
+  std::size_t local_count_ = 0;
+  mutable std::vector<std::vector<int>> cache_;
+  mutable std::vector<char> known_;
+  mutable std::vector<int> scratch_;
+  mutable std::vector<std::uint64_t> freed_stamp_;
+  mutable std::vector<std::size_t> freed_pos_;
+  mutable std::uint64_t stamp_ = 0;
+};
+
+nlohmann::json effects_json(const Effects& fx, const ShopRules& r) {
+  nlohmann::json j;
+  if (r.heat_distance_mm > 0)
+    j["heat"] = {{"consecutive_closer_than_d", fx.heat_pairs}, {"close_pairs_in_memory", fx.heat_near}, {"penalty", fx.heat_penalty}};
+  if (r.avoid_tip_up && r.tabs <= 0) j["tip_up"] = {{"straight_rapids_over_freed_parts", fx.tip_up_rapids}, {"penalty", fx.tip_up_penalty}};
+  if (r.sheet_clamp)
+    j["sheet"] = {{"steps_behind_front", fx.behind_steps}, {"behind_front_mm", fx.behind_mm}, {"penalty", fx.sheet_penalty}};
+  return j;
+}
+
+// The centre of the material still uncut after position i of the sequence: the mean centre of the
+// parts whose outer contour is cut later; the sheet's (else the nest's) centre when none is.
+Vec2 uncut_centre(const model::Nest& nest, const std::vector<model::EntryCandidate>& seq, std::size_t i) {
+  Vec2 sum{0, 0};
+  int n = 0;
+  for (std::size_t k = i + 1; k < seq.size(); ++k) {
+    const auto& c = nest.contours[seq[k].contour];
+    if (c.role != model::ContourRole::outer) continue;
+    sum = sum + c.box.center();
+    ++n;
+  }
+  if (n > 0) return sum / n;
+  if (nest.sheet) return nest.contours[*nest.sheet].box.center();
+  geometry::Box all;
+  for (const auto& c : nest.contours) all.add(c.box);
+  return all.center();
+}
+
+}  // namespace
+
+void restrict_candidates(model::CutJob& job, const model::Nest& nest, const ShopRules& r) {
+  if (!r.part_rigidity) return;
+  for (auto& ce : job.segments) {
+    if (ce.contours.size() != 1 || nest.contours[ce.contours.front()].role != model::ContourRole::outer) continue;
+    const bool any_corner = std::any_of(ce.candidates.begin(), ce.candidates.end(), [](const auto& e) { return e.corner; });
+    if (!any_corner) continue;
+    std::erase_if(ce.candidates, [](const model::EntryCandidate& e) { return !e.corner; });
+  }
+}
+
+std::vector<NodeId> reorder(const model::Nest& nest, const model::CutJob& job, const cost::RouteProblem& rp,
+                            const std::vector<NodeId>& route, const ShopRules& r, const StopToken& stop,
+                            nlohmann::json& report) {
+  const RuleCost rc(nest, job, rp, r, route);
+  const solve::SequenceCost cost = [&rc](std::span<const NodeId> x) { return rc(x); };
+  std::vector<std::vector<NodeId>> starts{route};
+  const auto m = static_cast<long long>(route.size());
+  // Greedy costs O(m³) rule steps: only where that is below the search's own budget.
+  if (m <= 300) starts.push_back(solve::greedy_route(rp.problem, cost, route));
+  if (r.sheet_clamp) {
+    std::vector<double> prio(static_cast<std::size_t>(rp.problem.cluster_count()), 0.0);
+    for (const NodeId v : route) {
+      const int j = rp.nodes[v.index()].segment;
+      if (j >= 0)
+        prio[rp.problem.cluster_of(v).index()] =
+            sweep_key(nest, job.segments[static_cast<std::size_t>(j)].contours.front(), *r.sheet_clamp);
+    }
+    starts.push_back(solve::order_by_priority(rp.problem, route, prio));
+  }
+  solve::HistorySearchParams params;
+  // Each evaluation prices the whole route: keep the total work near 4e7 rule steps (a few seconds).
+  params.max_evaluations = std::min(r.search_evaluations, std::max<long long>(1000, 40000000LL / std::max<long long>(1, m)));
+  const auto res = solve::history_search(rp.problem, cost, starts, params, stop);
+  if (res.route.empty()) return route;
+  Effects before, after;
+  rc.price(route, &before);
+  rc.price(res.route, &after);
+  report["search"] = {{"starts", starts.size()},
+                      {"evaluations", res.evaluations},
+                      {"moves", res.improvements},
+                      {"local_optimum", res.local_optimum},
+                      {"solver_route_s", units::ticks_to_seconds(cost(route))},
+                      {"best_start_s", units::ticks_to_seconds(res.initial_cost)},
+                      {"final_s", units::ticks_to_seconds(res.cost)},
+                      {"solver_route", effects_json(before, r)}};
+  return res.route;
+}
+
+nlohmann::json route_effects(const model::Nest& nest, const model::CutJob& job, const cost::RouteProblem& rp,
+                             const std::vector<NodeId>& route, const ShopRules& r) {
+  const RuleCost rc(nest, job, rp, r, route);
+  Effects fx;
+  rc.price(route, &fx);
+  return effects_json(fx, r);
+}
+
+int place_rigid_entries(const model::Nest& nest, const model::CutJob& job, std::vector<model::EntryCandidate>& seq,
+                        const ShopRules& r) {
+  if (!r.part_rigidity) return 0;
+  int corners = 0;
+  for (std::size_t i = 0; i < seq.size(); ++i) {
+    if (nest.contours[seq[i].contour].role != model::ContourRole::outer) continue;
+    const auto it = std::find_if(job.segments.begin(), job.segments.end(), [&](const auto& ce) {
+      return ce.contours.size() == 1 && ce.contours.front() == seq[i].contour;
+    });
+    if (it == job.segments.end()) continue;
+    const Vec2 target = uncut_centre(nest, seq, i);
+    const model::EntryCandidate* best = nullptr;
+    for (const auto& e : it->candidates) {
+      if (!e.corner || e.clockwise != seq[i].clockwise) continue;
+      if (!best || geometry::distance(e.point, target) < geometry::distance(best->point, target) - tol::kSamePointMm) best = &e;
+    }
+    if (!best) continue;
+    seq[i] = *best;
+    ++corners;
+  }
+  return corners;
+}
+
+nlohmann::json apply_to_toolpath(nc::Toolpath& path, const model::Nest& nest, const ShopRules& r) {
+  nlohmann::json j;
+  if (r.avoid_tip_up && r.tabs <= 0) {
+    const nc::DetourStats st = nc::route_rapids_around_freed_parts(path, nest, r.tip_up_margin_mm);
+    j["tip_up_program"] = {{"rapids_over_freed_parts", st.rapids_over_freed},
+                           {"detours", st.detours},
+                           {"unavoidable", st.unavoidable},
+                           {"detour_extra_mm", st.extra_mm}};
+  }
+  if (r.tabs > 0) {
+    const nc::MicroJointStats st = nc::add_micro_joints(path, nest, {r.tabs, r.tab_width_mm});
+    j["tabs"] = {{"per_outer_contour", r.tabs}, {"width_mm", r.tab_width_mm}, {"contours", st.contours},
+                 {"tabs", st.tabs}, {"contours_too_short", st.skipped}};
+  }
+  return j;
+}
+
+nlohmann::json report(const ShopRules& r, const nlohmann::json& order, const nlohmann::json& toolpath, int corner_entries) {
+  nlohmann::json j;
+  auto active = nlohmann::json::array();
+  nlohmann::json settings;
+  if (r.heat_distance_mm > 0) {
+    active.push_back("heat");
+    settings["heat"] = {{"distance_mm", r.heat_distance_mm}, {"weight", r.heat_weight}, {"memory", r.heat_memory}};
+  }
+  if (r.avoid_tip_up) {
+    active.push_back("tip_up");
+    settings["tip_up"] = {{"weight", r.tip_up_weight}, {"margin_mm", r.tip_up_margin_mm}, {"held_by_tabs", r.tabs > 0}};
+  }
+  if (r.part_rigidity) active.push_back("part_rigidity");
+  if (r.sheet_clamp) {
+    active.push_back("sheet_rigidity");
+    settings["sheet_rigidity"] = {{"clamp", to_string(*r.sheet_clamp)}, {"weight_per_mm", r.sheet_weight_per_mm},
+                                  {"band_mm", r.sheet_band_mm}};
+  }
+  if (r.tabs > 0) {
+    active.push_back("tabs");
+    settings["tabs"] = {{"count", r.tabs}, {"width_mm", r.tab_width_mm}};
+  }
+  j["active"] = active;
+  j["settings"] = settings;
+  if (order.contains("search")) j["search"] = order["search"];
+  if (order.contains("route")) j["route"] = order["route"];
+  if (r.part_rigidity) j["part_rigidity"] = {{"outer_contours_entered_at_a_corner", corner_entries}};
+  for (auto it = toolpath.begin(); it != toolpath.end(); ++it) j[it.key()] = it.value();
+  return j;
+}
+
+}  // namespace rules
+}  // namespace cutroute::pipeline

@@ -1,0 +1,48 @@
+// Private: where optimize_nest() applies the shop rules, one function per pipeline step.
+#pragma once
+
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include <cutroute/core/stop.hpp>
+#include <cutroute/cost/route_problem.hpp>
+#include <cutroute/model/cut_job.hpp>
+#include <cutroute/model/nest.hpp>
+#include <cutroute/nc/toolpath.hpp>
+#include <cutroute/pipeline/shop_rules.hpp>
+#include <cutroute/solve/problem.hpp>
+
+namespace cutroute::pipeline::rules {
+
+// Step 2 (cut job): with part rigidity, outer contours keep only their corner candidates (those
+// without any corner keep all, and are counted in the report).
+void restrict_candidates(model::CutJob& job, const model::Nest& nest, const ShopRules& r);
+
+// Step 3 (sequencing): the solver's route re-ordered under the history-dependent rules (heat,
+// tip-up, sheet rigidity) by solve::history_search() from three starts: the solver's route, the
+// greedy route under the rules, and (with a clamp) the route sorted along the sweep. Returns the
+// route and writes what it did into report["search"].
+std::vector<solve::NodeId> reorder(const model::Nest& nest, const model::CutJob& job, const cost::RouteProblem& rp,
+                                   const std::vector<solve::NodeId>& route, const ShopRules& r, const StopToken& stop,
+                                   nlohmann::json& report);
+
+// The rules' effects on a route (heat pairs, rapids over freed parts, steps behind the sweep
+// front), recomputed for the report.
+nlohmann::json route_effects(const model::Nest& nest, const model::CutJob& job, const cost::RouteProblem& rp,
+                             const std::vector<solve::NodeId>& route, const ShopRules& r);
+
+// Step 4 (after entry refinement): with part rigidity, each outer contour's entry is put back on
+// the corner candidate nearest the material still uncut after it. Returns the number of outer
+// contours entered at a corner.
+int place_rigid_entries(const model::Nest& nest, const model::CutJob& job, std::vector<model::EntryCandidate>& seq,
+                        const ShopRules& r);
+
+// Step 5 (toolpath): detours around freed parts, then tabs. Returns the report of both.
+nlohmann::json apply_to_toolpath(nc::Toolpath& path, const model::Nest& nest, const ShopRules& r);
+
+// The report's "rules" object: the active rules with their settings, and what they did (the
+// search's and the final route's effects, the toolpath passes, corner entries).
+nlohmann::json report(const ShopRules& r, const nlohmann::json& order, const nlohmann::json& toolpath, int corner_entries);
+
+}  // namespace cutroute::pipeline::rules

@@ -1,0 +1,152 @@
+// Toolpath post-passes of the shop rules: micro-joints (arcs split exactly) and rapid detours.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <cutroute/geometry/shapes.hpp>
+#include <cutroute/model/nest.hpp>
+#include <cutroute/nc/micro_joints.hpp>
+#include <cutroute/nc/rapid_detours.hpp>
+
+namespace cutroute::nc {
+namespace {
+
+using geometry::Vec2;
+
+model::Nest nest_of(const std::vector<geometry::Contour>& outers) {
+  std::vector<model::SourceContour> src;
+  for (const auto& c : outers) {
+    model::SourceContour s;
+    s.contour = c;
+    src.push_back(s);
+  }
+  model::NestOptions o;
+  o.detect_sheet = false;
+  return model::build_nest(std::move(src), o);
+}
+
+// One segment per outer contour: pierce on the contour, the whole contour from vertex 0, no leads.
+Toolpath whole_contours(const model::Nest& nest) {
+  Toolpath tp;
+  for (const auto& part : nest.parts) {
+    CutSegment s;
+    geometry::Contour open = nest.contours[part.outer].source.contour;
+    open.vertices.push_back({open.vertices.front().p, 0.0});
+    open.closed = false;
+    s.pierce = open.vertices.front().p;
+    s.pieces.push_back({open, PieceRole::contour, part.outer.value()});
+    tp.segments.push_back(std::move(s));
+  }
+  return tp;
+}
+
+TEST(MicroJoints, CircleGetsNGapsOfWidthWAlongTheArc) {
+  const double r = 20;
+  const auto nest = nest_of({geometry::circle({50, 50}, r)});
+  ASSERT_EQ(nest.parts.size(), 1u);
+  Toolpath tp = whole_contours(nest);
+  const int n = 4;
+  const double w = 2.0;
+  const auto st = add_micro_joints(tp, nest, {n, w});
+  EXPECT_EQ(st.contours, 1);
+  EXPECT_EQ(st.tabs, n);
+  ASSERT_EQ(tp.segments.size(), static_cast<std::size_t>(n + 1));
+  double cut = 0;
+  for (std::size_t k = 0; k < tp.segments.size(); ++k) {
+    const auto& piece = tp.segments[k].pieces.front().path;
+    cut += geometry::length(piece);
+    // Every point of every piece stays on the circle (arcs split exactly, not flattened).
+    for (double t : {0.0, 0.3, 0.7, 1.0}) {
+      const Vec2 p = geometry::point_at_length(piece, t * geometry::length(piece));
+      EXPECT_NEAR(geometry::distance(p, {50, 50}), r, 1e-9);
+    }
+    if (k > 0) {
+      // The gap before this piece: from the previous end to this pierce, w along the circle.
+      const Vec2 a = tp.segments[k - 1].pieces.back().path.vertices.back().p, b = tp.segments[k].pierce;
+      const double chord = geometry::distance(a, b);
+      EXPECT_NEAR(2 * r * std::asin(chord / (2 * r)), w, 1e-9);
+    }
+  }
+  EXPECT_NEAR(cut, 2 * std::numbers::pi * r - n * w, 1e-9);
+}
+
+TEST(MicroJoints, TooShortContoursStayWholeAndHolesAreNeverTabbed) {
+  auto outer = geometry::rectangle({0, 0, 100, 100});
+  auto hole = geometry::rectangle({40, 40, 60, 60});
+  auto tiny = geometry::rectangle({120, 0, 123, 3});
+  const auto nest = nest_of({outer, hole, tiny});
+  Toolpath tp = whole_contours(nest);
+  // The hole as its own segment too.
+  CutSegment hs;
+  geometry::Contour h = hole;
+  h.vertices.push_back({h.vertices.front().p, 0.0});
+  h.closed = false;
+  hs.pierce = h.vertices.front().p;
+  model::ContourId hole_id;
+  for (std::size_t i = 0; i < nest.contours.size(); ++i)
+    if (nest.contours[model::ContourId(static_cast<std::int32_t>(i))].role == model::ContourRole::hole) hole_id = model::ContourId(static_cast<std::int32_t>(i));
+  ASSERT_TRUE(hole_id.valid());
+  hs.pieces.push_back({h, PieceRole::contour, hole_id.value()});
+  tp.segments.insert(tp.segments.begin(), hs);
+  const auto st = add_micro_joints(tp, nest, {2, 4.0});  // tiny: 12 mm < 2 * 2 * 4 mm
+  EXPECT_EQ(st.contours, 1);
+  EXPECT_EQ(st.skipped, 1);
+  EXPECT_EQ(tp.segments.size(), 1u + 3u + 1u);
+}
+
+TEST(RapidDetours, CrossingIsDetectedCornerToCornerAndDetourKeepsClear) {
+  const auto nest = nest_of({geometry::rectangle({10, 10, 30, 30}), geometry::rectangle({50, 50, 70, 70})});
+  const PartObstacles obs(nest, 2.0);
+  // Exactly through two corners of the first square: a crossing test alone would miss it.
+  EXPECT_TRUE(obs.crosses(0, {0, 0}, {40, 40}));
+  EXPECT_FALSE(obs.crosses(0, {0, 40}, {40, 40}));
+  EXPECT_FALSE(obs.crosses(0, {0, 30}, {40, 30}));  // along an edge: touching is not passing over
+  EXPECT_EQ(obs.crossed({0, 0}, {80, 80}), (std::vector<int>{0, 1}));
+  std::vector<char> freed{1, 1};
+  const auto via = obs.detour({0, 0}, {80, 80}, freed);
+  ASSERT_TRUE(via.has_value());
+  ASSERT_FALSE(via->empty());
+  Vec2 at{0, 0};
+  std::vector<Vec2> legs = *via;
+  legs.push_back({80, 80});
+  double len = 0;
+  for (const auto& p : legs) {
+    EXPECT_TRUE(obs.crossed(at, p).empty()) << "leg to (" << p.x << ", " << p.y << ")";
+    // Independent check: samples of every leg keep the 2 mm margin from both squares (Euclidean).
+    for (int s = 0; s <= 100; ++s) {
+      const Vec2 q = at + (p - at) * (s / 100.0);
+      for (const geometry::Box b : {geometry::Box{10, 10, 30, 30}, geometry::Box{50, 50, 70, 70}}) {
+        const double dx = std::max({0.0, b.xmin - q.x, q.x - b.xmax}), dy = std::max({0.0, b.ymin - q.y, q.y - b.ymax});
+        EXPECT_GE(std::hypot(dx, dy), 2.0 - 1e-9) << "(" << q.x << ", " << q.y << ")";
+      }
+    }
+    len += geometry::distance(at, p);
+    at = p;
+  }
+  EXPECT_LT(len, std::hypot(80, 80) * 1.3);
+  // Nothing freed: no detour needed.
+  const std::vector<char> none{0, 0};
+  EXPECT_TRUE(obs.detour({0, 0}, {80, 80}, none)->empty());
+}
+
+TEST(RapidDetours, PostPassRoutesOnlyAroundPartsAlreadyCut) {
+  const auto nest = nest_of({geometry::rectangle({10, 10, 30, 30}), geometry::rectangle({50, 50, 70, 70})});
+  Toolpath tp = whole_contours(nest);  // part 1 cut first from (10,10), then part 2 from (50,50)
+  tp.start = {0, 0};
+  tp.end = {0, 0};
+  const auto st = route_rapids_around_freed_parts(tp, nest, 2.0);
+  // (0,0) -> (10,10): nothing free yet. (10,10) -> (50,50): runs diagonally over part 1, now free
+  // -> detour. Back from (50,50) to (0,0): over both -> detour.
+  EXPECT_TRUE(tp.segments[0].rapid_via.empty());
+  EXPECT_FALSE(tp.segments[1].rapid_via.empty());
+  EXPECT_EQ(st.rapids_over_freed, 2);
+  EXPECT_EQ(st.detours, 2);
+  EXPECT_EQ(st.unavoidable, 0);
+  EXPECT_FALSE(tp.end_via.empty());
+  EXPECT_GT(st.extra_mm, 0);
+}
+
+}  // namespace
+}  // namespace cutroute::nc

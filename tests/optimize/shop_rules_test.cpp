@@ -110,7 +110,7 @@ Program optimize(const std::string& dxf, const fs::path& dir, const std::string&
   const auto prog = dir / "out.ngc", rep = dir / "out.json";
   fs::remove(prog);
   const auto r = run_command(cli_path() + " optimize " + dxf + " -o " + prog.string() + " --report " + rep.string() +
-                             " --svg " + (dir / "out.svg").string() + " --quiet --time-limit 2 --threads 1 " + extra);
+                             " --svg " + (dir / "out.svg").string() + " --quiet --time-limit 2 --threads 1 --technique standard " + extra);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   if (r.exit_code != 0) return {};
   Program p = parse(slurp(prog), parts);
@@ -414,6 +414,13 @@ TEST(ShopRules, BadRuleOptionsAreUsageErrors) {
     EXPECT_EQ(r.exit_code, 1) << bad;
     EXPECT_FALSE(fs::exists(dir / "x.ngc"));
   }
+  // The rules are written for one pierce per contour: another technique asked for is refused, and
+  // auto builds only the standard one.
+  const auto chain = run_command(cli_path() + " optimize " + dxf + " -o " + (dir / "x.ngc").string() +
+                                 " --quiet --heat-distance 20 --technique chain");
+  EXPECT_EQ(chain.exit_code, 2);
+  EXPECT_NE(chain.err.find("--technique standard only"), std::string::npos) << chain.err;
+  EXPECT_FALSE(fs::exists(dir / "x.ngc"));
   fs::remove_all(dir);
 }
 

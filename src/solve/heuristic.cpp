@@ -290,8 +290,9 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
     // An iteration costs about n * max(1, avg/8) (cluster optimisation is quadratic in the cluster
     // size; the automatic round is shortened by the same factor).
     // Open paths with precedence (SOP) keep improving for longer, so their work counts a tenth.
-    // Not cutting routes (closed tours): a small nest would search ten times longer for nothing.
-    const double work_scale = std::max(1.0, avg_k / 8.0) * (p.has_precedence() && !p.closed() ? 0.1 : 1.0);
+    // Not cutting routes (closed tours) nor tiny paths: they would search ten times longer for nothing.
+    const double work_scale =
+        std::max(1.0, avg_k / 8.0) * (p.has_precedence() && !p.closed() && p.cluster_count() > 16 ? 0.1 : 1.0);
     const long long stagnant_work =
         static_cast<long long>(static_cast<double>(stagnant) * round_iters * threads * p.node_count() * work_scale);
     done = stop.stop_requested() || stop.target_reached(global.cost) ||

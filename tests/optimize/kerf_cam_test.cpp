@@ -152,7 +152,7 @@ TEST(KerfCam, DemoSheetSameOptionsSameBytes) {
     const auto r = run_command(cli_path() + " optimize " + dxf + " -o " + base + ".ngc --svg " + base + ".svg --html " +
                                base + ".html --quiet --seed 7 --threads 2 --technique standard --kerf-mode cam");
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    outs[i] = slurp(base + ".ngc") + slurp(base + ".svg") + slurp(base + ".html");
+    outs[i] = read_text(base + ".ngc") + read_text(base + ".svg") + read_text(base + ".html");
   }
   EXPECT_EQ(outs[0], outs[1]);
   EXPECT_NE(outs[0].find("cam (toolpath drawn offset by kerf/2)"), std::string::npos);  // the page says so

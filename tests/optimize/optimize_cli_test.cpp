@@ -103,7 +103,7 @@ TEST(OptimizeCli, DemoSheetAutoChoosesChainsLikeThePaper) {
   int chains = 0;
   for (const auto& seg : r["sequence"]) chains += seg.contains("contours") && seg["contours"].size() == 2;
   EXPECT_EQ(chains, 3);
-  const std::string picture = slurp(svg);
+  const std::string picture = read_text(svg);
   std::size_t drawn = 0;
   for (auto at = picture.find("class=\"bridge\""); at != std::string::npos; at = picture.find("class=\"bridge\"", at + 1)) ++drawn;
   EXPECT_EQ(drawn, 3u);
@@ -130,10 +130,10 @@ TEST(OptimizeCli, SameSeedSameBytes) {
     const auto r = run_command(cli_path() + " optimize " + dxf + " -o " + base + ".ngc --svg " + base + ".svg --html " +
                                base + ".html --report " + base + ".json --quiet --seed 7 --threads 2");
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    auto rep = nlohmann::json::parse(slurp(base + ".json"));
+    auto rep = nlohmann::json::parse(read_text(base + ".json"));
     rep.erase("timing_s");
     rep["solver"].erase("time_s");
-    outs[i] = slurp(base + ".ngc") + slurp(base + ".svg") + slurp(base + ".html") + rep.dump();
+    outs[i] = read_text(base + ".ngc") + read_text(base + ".svg") + read_text(base + ".html") + rep.dump();
   }
   EXPECT_EQ(outs[0], outs[1]);
   fs::remove_all(dir);

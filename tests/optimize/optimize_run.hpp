@@ -48,8 +48,8 @@ inline OptRun optimize(const std::string& dxf, const std::filesystem::path& dir,
   r.cmd = run_command(cli_path() + " optimize " + dxf + " -o " + prog.string() + " --report " + rep.string() +
                       " --quiet --time-limit " + time_limit + " " + extra);
   if (r.cmd.exit_code == 0) {
-    r.program = slurp(prog);
-    r.report = nlohmann::json::parse(slurp(rep));
+    r.program = read_text(prog);
+    r.report = nlohmann::json::parse(read_text(rep));
   }
   return r;
 }
@@ -100,7 +100,7 @@ inline void expect_admissible(const std::string& dxf, const OptRun& run, double 
 // The generic dialect with 4 decimals (0.1 µm), written to `dir`: with 3 the written end points
 // and arc centres (I, J) are rounded by up to 0.7 µm each, too coarse to measure kerf/2 ± 1 µm.
 inline std::string fine_dialect(const std::filesystem::path& dir) {
-  auto j = nlohmann::json::parse(slurp(test_data("../../data/dialects/generic.json")));
+  auto j = nlohmann::json::parse(read_text(test_data("../../data/dialects/generic.json")));
   j["name"] = "generic-0.1um";
   j["decimals"] = 4;
   const auto path = dir / "generic4.json";

@@ -113,8 +113,8 @@ Program optimize(const std::string& dxf, const fs::path& dir, const std::string&
                              " --svg " + (dir / "out.svg").string() + " --quiet --time-limit 2 --threads 1 --technique standard " + extra);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   if (r.exit_code != 0) return {};
-  Program p = parse(slurp(prog), parts);
-  p.report = nlohmann::json::parse(slurp(rep));
+  Program p = parse(read_text(prog), parts);
+  p.report = nlohmann::json::parse(read_text(rep));
   return p;
 }
 
@@ -238,7 +238,7 @@ TEST(ShopRules, TipUpRapidsGoAroundFreedParts) {
   EXPECT_GE(static_cast<int>(tip.rapids.size()), static_cast<int>(tip.runs.size()) + 1 + detours);
   EXPECT_EQ(rules["tip_up_program"]["rapids_over_freed_parts"].get<int>(), detours);
   // The picture draws the detours too: one dashed rapid line per G0 move of the program.
-  const std::string svg = slurp(dir / "out.svg");
+  const std::string svg = read_text(dir / "out.svg");
   std::size_t dashed = 0;
   for (auto at = svg.find("stroke-dasharray=\"5 4\""); at != std::string::npos; at = svg.find("stroke-dasharray=\"5 4\"", at + 1)) ++dashed;
   EXPECT_EQ(dashed, tip.rapids.size());
@@ -375,7 +375,7 @@ TEST(ShopRules, TabsLeaveNGapsOfWidthW) {
   }
   EXPECT_EQ(p.report["rules"]["tabs"]["tabs"], static_cast<int>(parts.size()) * n);
   // The picture shows every piece: one group per cutting segment (+ the park rapid).
-  const std::string svg = slurp(dir / "out.svg");
+  const std::string svg = read_text(dir / "out.svg");
   std::size_t groups = 0;
   for (auto at = svg.find("class=\"seg\""); at != std::string::npos; at = svg.find("class=\"seg\"", at + 1)) ++groups;
   EXPECT_EQ(groups, p.runs.size() + 1);

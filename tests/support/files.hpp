@@ -15,7 +15,4 @@ std::filesystem::path fresh_temp_dir(const std::string& prefix, const std::strin
 // The file's bytes; empty when it cannot be read.
 std::string read_text(const std::filesystem::path& path);
 
-// The same as read_text() (the name the optimize tests use).
-inline std::string slurp(const std::filesystem::path& p) { return read_text(p); }
-
 }  // namespace cutroute::test

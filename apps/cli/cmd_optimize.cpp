@@ -268,7 +268,7 @@ void add_optimize(CLI::App& root, Commands& out) {
   app->add_option("--machine", o->machine, "Machine profile JSON (default: the built-in ByStar 3015-class laser)");
   app->add_flag("--interpolate", o->interpolate, "Interpolate speeds between Table 1 thicknesses");
   app->add_option("--objective", o->objective, "time (eq. 10) or cost (eq. 3)")->check(CLI::IsMember({"time", "cost"}));
-  app->add_option("--time-limit", o->time_limit, "Solver time limit [s], shared by the techniques compared with --technique auto")->check(CLI::Range(0.0, 86400.0))->capture_default_str();
+  app->add_option("--time-limit", o->time_limit, "Time budget of the optimisation [s]: cut jobs, solver, refinement, technique and lead comparison (reading and writing come on top); 0 = stop on stagnation only")->check(CLI::Range(0.0, 86400.0))->capture_default_str();
   app->add_option("--seed", o->seed, "Random seed: same seed, input and options give identical outputs")->capture_default_str();
   app->add_option("--threads", o->threads, "Solver threads (0: all cores)")->check(CLI::Range(0, 64));
   app->add_option("--solver", o->solver, "auto, exact or heuristic")->check(CLI::IsMember({"auto", "exact", "heuristic"}));

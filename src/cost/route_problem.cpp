@@ -61,25 +61,30 @@ Result<RouteProblem> build_route_problem(const model::CutJob& job, const RoutePr
   b.set_kind(options.return_to_start ? solve::RouteKind::closed_tour : solve::RouteKind::open_path);
   for (auto [a, c] : job.precedence) b.add_precedence(solve::ClusterId(a + 1), solve::ClusterId(c + 1));
 
-  // Shared, immutable point tables: the cost callback may be called from several solver threads.
-  auto off = std::make_shared<const std::vector<geometry::Vec2>>(rp.tool_off);
-  auto in = std::make_shared<const std::vector<geometry::Vec2>>(rp.pierce);
   // A rapid's price is affine in its length: a + b·mm (computed once, not per call: the solver
   // asks for millions of arcs on large nests).
   const double a = prices.rapid_price(0.0), slope = prices.rapid_price(1.0) - a;
-  auto arc = [off, in, a, slope](solve::NodeId from, solve::NodeId to) -> solve::Cost {
-    const geometry::Vec2 d = (*in)[to.index()] - (*off)[from.index()];
-    return to_ticks(a + slope * std::sqrt(d.x * d.x + d.y * d.y));
-  };
   if (n <= options.matrix_max_nodes) {
+    auto arc = [&](int from, int to) {
+      const geometry::Vec2 d = rp.pierce[static_cast<std::size_t>(to)] - rp.tool_off[static_cast<std::size_t>(from)];
+      return to_ticks(a + slope * std::sqrt(d.x * d.x + d.y * d.y));
+    };
     std::vector<solve::Cost> m(static_cast<std::size_t>(n) * static_cast<std::size_t>(n), 0);
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j)
-        if (i != j) m[static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j)] =
-            arc(solve::NodeId(i), solve::NodeId(j));
+        if (i != j) m[static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(j)] = arc(i, j);
     b.set_cost_matrix(std::move(m));
   } else {
-    b.set_cost_function(arc, false);
+    // Same prices as the matrix (to_ticks of a + slope·mm), from the points on demand.
+    solve::PlanarCosts pc;
+    pc.out.reserve(rp.tool_off.size());
+    pc.in.reserve(rp.pierce.size());
+    for (const auto& q : rp.tool_off) pc.out.push_back({q.x, q.y});
+    for (const auto& q : rp.pierce) pc.in.push_back({q.x, q.y});
+    pc.base = a;
+    pc.per_unit = slope;
+    pc.scale = static_cast<double>(units::kTicksPerSecond);
+    b.set_planar_costs(std::move(pc));
   }
   auto problem = b.build();
   if (!problem) return problem.error();

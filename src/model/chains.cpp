@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <optional>
 
 #include <cutroute/geometry/intersect.hpp>
 #include <cutroute/geometry/segment_set.hpp>
@@ -211,11 +212,13 @@ std::vector<ChainLink> chain_links(const Nest& nest, const ChainOptions& options
 }
 
 CutJob make_chain_job(const Nest& nest, const EntryOptions& entries, const ChainOptions& options,
-                      const CutJob* standard) {
+                      const CutJob* standard, const EntryPlanner* given) {
+  std::optional<EntryPlanner> own_planner;
+  if (!given) own_planner.emplace(nest, entries);
+  const EntryPlanner& planner = given ? *given : *own_planner;
   CutJob own;
-  if (!standard) own = make_cut_job(nest, entries);
+  if (!standard) own = make_cut_job(nest, planner);
   const CutJob& base = standard ? *standard : own;
-  const EntryPlanner planner(nest, entries);
   std::vector<std::int32_t> seg_of(nest.contours.size(), -1);
   for (std::size_t k = 0; k < base.segments.size(); ++k) seg_of[base.segments[k].contours[0].index()] = static_cast<std::int32_t>(k);
 

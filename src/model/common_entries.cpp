@@ -195,17 +195,60 @@ class TrailLeads {
   mutable std::vector<std::uint32_t> scratch_;
 };
 
+// Per plan segment: may this untouched contour keep its standard candidates? Its box widened by
+// the longest lead and the clearance must meet no loop or trail (see plan_common_entries()).
+std::vector<char> reusable_standard(const Nest& nest, const CommonLinePlan& plan, const EntryOptions& options,
+                                    double clearance, const CutJob* standard) {
+  std::vector<char> ok(plan.segments.size(), 0);
+  if (!standard) return ok;
+  std::vector<geometry::Box> joined;
+  for (const auto& s : plan.segments)
+    if (s.kind != CommonSegmentKind::contour) joined.push_back(geometry::bounding_box(s.path));
+  const geometry::StaticSpatialIndex index(joined);
+  const auto& L = options.lead;
+  const double reach = L.in_length_mm + 2 * L.in_arc_radius_mm + L.out_length_mm + L.overcut_mm + clearance + 1.0;
+  std::vector<std::uint32_t> hits;
+  for (std::size_t i = 0; i < plan.segments.size(); ++i) {
+    const auto& s = plan.segments[i];
+    if (s.kind != CommonSegmentKind::contour) continue;
+    index.query(nest.contours[s.contours.front()].box.inflated(reach), hits);
+    ok[i] = hits.empty() ? 1 : 0;
+  }
+  return ok;
+}
+
+// Per nest contour: its basic segment in the standard job (one per contour there), else -1.
+std::vector<int> standard_segment_of(const Nest& nest, const CutJob* standard) {
+  std::vector<int> of(nest.contours.size(), -1);
+  if (!standard) return of;
+  for (std::size_t k = 0; k < standard->segments.size(); ++k) {
+    const auto& seg = standard->segments[k];
+    if (seg.contours.size() == 1 && seg.contours.front().index() < of.size()) of[seg.contours.front().index()] = static_cast<int>(k);
+  }
+  return of;
+}
+
 }  // namespace
 
 std::vector<std::vector<EntryCandidate>> plan_common_entries(const Nest& nest, const CommonLinePlan& plan,
-                                                             const EntryOptions& options, Diagnostics& diagnostics) {
+                                                             const EntryOptions& options, Diagnostics& diagnostics,
+                                                             const CutJob* standard) {
   std::vector<std::vector<EntryCandidate>> out(plan.segments.size());
   std::vector<std::size_t> segment_of;
   const Nest derived = derived_nest(nest, plan, segment_of);
   const EntryPlanner planner(derived, options);
+  const std::vector<char> reuse = reusable_standard(nest, plan, options, planner.clearance_mm(), standard);
+  const std::vector<int> standard_of = standard_segment_of(nest, standard);
   for (std::size_t d = 0; d < segment_of.size() && d < derived.contours.size(); ++d) {
     const std::size_t i = segment_of[d];
     auto& cands = out[i];
+    if (reuse[i]) {
+      const int k = standard_of[plan.segments[i].contours.front().index()];
+      if (k >= 0 && !standard->segments[static_cast<std::size_t>(k)].candidates.empty()) {
+        cands = standard->segments[static_cast<std::size_t>(k)].candidates;
+        continue;
+      }
+    }
     cands = planner.candidates(ContourId(static_cast<std::int32_t>(d)), diagnostics);
     const auto& seg = plan.segments[i];
     const bool stored_cw = geometry::orientation(seg.path) == geometry::Orientation::cw;

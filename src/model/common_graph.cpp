@@ -4,8 +4,10 @@
 #include <map>
 #include <numbers>
 #include <numeric>
+#include <optional>
 #include <string>
 
+#include <cutroute/geometry/segment_set.hpp>
 #include <cutroute/geometry/spatial_index.hpp>
 #include <cutroute/model/common_lines.hpp>
 
@@ -327,6 +329,9 @@ void containment_precedence(CommonLinePlan& plan) {
   }
   const geometry::StaticSpatialIndex index(boxes);
   std::vector<std::uint32_t> hits;
+  // Indexed outlines, built only for the segments that are asked (a spline outline of thousands of
+  // arcs around hundreds of sample points would otherwise be walked whole for each).
+  std::vector<std::optional<geometry::SegmentSet>> sets(segs.size());
   for (std::size_t i = 0; i < segs.size(); ++i) {
     const Vec2 p = sample_point(segs[i].path);
     geometry::Box b;
@@ -338,7 +343,8 @@ void containment_precedence(CommonLinePlan& plan) {
       // A container is larger than what it holds: with contours that cross or overlap (allowed
       // with a warning) each may hold a sample point of the other, and the order stays acyclic.
       if (h == i || area[h] <= area[i] || (parent >= 0 && area[h] >= area[static_cast<std::size_t>(parent)])) continue;
-      if (geometry::locate(segs[h].path, p, tol::kSamePointMm) == geometry::Location::inside) parent = static_cast<int>(h);
+      if (!sets[h]) sets[h] = geometry::make_segment_set(segs[h].path);
+      if (geometry::locate(*sets[h], p, tol::kSamePointMm) == geometry::Location::inside) parent = static_cast<int>(h);
     }
     if (parent >= 0) plan.precedence.emplace_back(static_cast<std::int32_t>(i), parent);
   }

@@ -3,14 +3,15 @@
 
 namespace cutroute::model {
 
-Result<CutJob> make_common_job(const Nest& nest, const EntryOptions& entries, const CommonLineOptions& options) {
+Result<CutJob> make_common_job(const Nest& nest, const EntryOptions& entries, const CommonLineOptions& options,
+                               const CutJob* standard) {
   CommonLineOptions o = options;
   o.kerf_mm = entries.kerf_mm;
   CommonLinePlan plan = plan_common_lines(nest, o);
   if (plan.stretches.empty()) return make_error("common-line cutting not available: no two parts share an edge");
   CutJob job;
   job.diagnostics = std::move(plan.diagnostics);
-  auto candidates = plan_common_entries(nest, plan, entries, job.diagnostics);
+  auto candidates = plan_common_entries(nest, plan, entries, job.diagnostics, standard);
   for (std::size_t i = 0; i < plan.segments.size(); ++i) {
     BasicSegment b;
     // Only an untouched contour is cut completely by one segment; loops and trails cut parts of

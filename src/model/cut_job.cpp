@@ -132,22 +132,18 @@ struct Site {
 
 }  // namespace
 
-struct EntryPlanner::Impl {
-  const Nest& nest;
-  EntryOptions opt;
-  double clearance;
+// Per contour, computed once and shared by planners of the same nest with other leads:
+// orientation, length, the contour reversed, its segments indexed (queries against outlines of
+// thousands of arcs cost O(log n), not O(n)) and measured (points at an arc length in O(log n)).
+struct PlannerGeometry {
   geometry::StaticSpatialIndex index;  // over every contour's box, sheet included
-  mutable std::vector<std::uint32_t> scratch;
-
-  // Per contour, computed once: orientation, length, the contour reversed, and its segments
-  // indexed (queries against outlines of thousands of arcs cost O(log n), not O(n)).
   std::vector<char> stored_cw;
   std::vector<double> length;
   std::vector<Contour> reversed;
   std::vector<geometry::SegmentSet> sets;
+  std::vector<detail::Measured> measured_stored, measured_reversed;
 
-  Impl(const Nest& n, const EntryOptions& o) : nest(n), opt(o) {
-    clearance = o.clearance_mm >= 0 ? o.clearance_mm : o.kerf_mm + 1.0;
+  explicit PlannerGeometry(const Nest& n) {
     std::vector<Box> boxes;
     boxes.reserve(n.contours.size());
     for (const auto& c : n.contours) {
@@ -156,15 +152,40 @@ struct EntryPlanner::Impl {
       length.push_back(geometry::length(c.source.contour));
       reversed.push_back(geometry::reversed(c.source.contour));
       sets.push_back(geometry::make_segment_set(c.source.contour));
+      measured_stored.push_back(detail::measure(c.source.contour));
+      measured_reversed.push_back(detail::measure(reversed.back()));
     }
     index = geometry::StaticSpatialIndex(boxes);
   }
+};
+
+struct EntryPlanner::Impl {
+  const Nest& nest;
+  EntryOptions opt;
+  double clearance;
+  std::shared_ptr<const PlannerGeometry> geo;
+  const geometry::StaticSpatialIndex& index;
+  const std::vector<char>& stored_cw;
+  const std::vector<double>& length;
+  const std::vector<Contour>& reversed;
+  const std::vector<geometry::SegmentSet>& sets;
+  const std::vector<detail::Measured>& measured_stored;
+  const std::vector<detail::Measured>& measured_reversed;
+  mutable std::vector<std::uint32_t> scratch;
+
+  Impl(const Nest& n, const EntryOptions& o, std::shared_ptr<const PlannerGeometry> g)
+      : nest(n), opt(o), clearance(o.clearance_mm >= 0 ? o.clearance_mm : o.kerf_mm + 1.0), geo(std::move(g)),
+        index(geo->index), stored_cw(geo->stored_cw), length(geo->length), reversed(geo->reversed), sets(geo->sets),
+        measured_stored(geo->measured_stored), measured_reversed(geo->measured_reversed) {}
 
   const NestContour& nc(ContourId id) const { return nest.contours[id]; }
 
   // The contour as cut: oriented in the cut direction.
   const Contour& oriented(ContourId id, bool clockwise) const {
     return (stored_cw[id.index()] != 0) == clockwise ? nc(id).source.contour : reversed[id.index()];
+  }
+  const detail::Measured& measured(ContourId id, bool clockwise) const {
+    return (stored_cw[id.index()] != 0) == clockwise ? measured_stored[id.index()] : measured_reversed[id.index()];
   }
   // Arc length along the oriented path of the point at arc length s of the stored contour.
   double to_path_s(ContourId id, double s, bool clockwise) const {
@@ -336,11 +357,11 @@ struct EntryPlanner::Impl {
   EntryCandidate shape(ContourId id, const Contour& path, double s_path, bool clockwise, bool corner, double scale,
                        double total_len) const {
     const bool left = scrap_on_left(nc(id).role, clockwise);
-    const auto at = detail::at_length(path, s_path);
+    const auto at = detail::at_length(path, measured(id, clockwise), s_path);
     Vec2 n = left ? geometry::perp(at.tangent) : -geometry::perp(at.tangent);
     if (corner) {
       // At a corner, lead in along the bisector of the two scrap-side normals.
-      const auto before = detail::at_length(path, s_path - 1e-6 * std::max(1.0, total_len));
+      const auto before = detail::at_length(path, measured(id, clockwise), s_path - 1e-6 * std::max(1.0, total_len));
       const Vec2 n0 = left ? geometry::perp(before.tangent) : -geometry::perp(before.tangent);
       const Vec2 sum = n + n0;
       if (geometry::norm(sum) > 1e-9) n = geometry::normalized(sum);
@@ -352,7 +373,7 @@ struct EntryPlanner::Impl {
     e.corner = corner;
     e.lead_in = lead_in(at.point, at.tangent, n, left, corner, scale);
     e.pierce = e.lead_in.vertices.empty() ? at.point : e.lead_in.vertices.front().p;
-    const auto end = opt.lead.overcut_mm > 0 ? detail::at_length(path, s_path + opt.lead.overcut_mm) : at;
+    const auto end = opt.lead.overcut_mm > 0 ? detail::at_length(path, measured(id, clockwise), s_path + opt.lead.overcut_mm) : at;
     const Vec2 n_end = left ? geometry::perp(end.tangent) : -geometry::perp(end.tangent);
     e.lead_out = lead_out(end.point, end.tangent, n_end, left, scale);
     return e;
@@ -366,8 +387,8 @@ struct EntryPlanner::Impl {
     if (lead_out_ok(normal, id)) return normal;
     const bool left = scrap_on_left(nc(id).role, clockwise);
     const double back = 1e-6 * std::max(1.0, total_len);
-    const auto end = detail::at_length(path, s_path + opt.lead.overcut_mm);
-    const auto before = detail::at_length(path, s_path + opt.lead.overcut_mm - back);
+    const auto end = detail::at_length(path, measured(id, clockwise), s_path + opt.lead.overcut_mm);
+    const auto before = detail::at_length(path, measured(id, clockwise), s_path + opt.lead.overcut_mm - back);
     const Vec2 n1 = left ? geometry::perp(end.tangent) : -geometry::perp(end.tangent);
     const Vec2 n0 = left ? geometry::perp(before.tangent) : -geometry::perp(before.tangent);
     const Vec2 bis = geometry::norm(n0 + n1) > 1e-9 ? geometry::normalized(n0 + n1) : n1;
@@ -385,7 +406,7 @@ struct EntryPlanner::Impl {
     const double lead_len = geometry::length(e.lead_in);
     if (!pierce_ok(e.pierce, id, std::min(clearance, 0.5 * lead_len))) return std::nullopt;
     if (!path_clear(e.lead_in, id, true)) return std::nullopt;
-    e.pieces = {SegmentPiece{PieceKind::contour, id, detail::sub_path(path, s_path, total_len + opt.lead.overcut_mm)}};
+    e.pieces = {SegmentPiece{PieceKind::contour, id, detail::sub_path(path, measured(id, clockwise), s_path, total_len + opt.lead.overcut_mm)}};
     e.lead_out = checked_lead_out(id, path, s_path, clockwise, scale, total_len, std::move(e.lead_out));
     // s along the stored contour: the oriented path runs backwards when it was reversed (the map
     // s -> total - s is its own inverse).
@@ -404,7 +425,7 @@ struct EntryPlanner::Impl {
     e.pierce = centre;
     e.lead_in.vertices = {Vertex{centre, 0}, Vertex{cp.point, 0}};
     if (!in_scrap(centre) || !path_clear(e.lead_in, id, true)) return std::nullopt;
-    e.pieces = {SegmentPiece{PieceKind::contour, id, detail::sub_path(path, cp.length_along, total + opt.lead.overcut_mm)}};
+    e.pieces = {SegmentPiece{PieceKind::contour, id, detail::sub_path(path, measured(id, clockwise), cp.length_along, total + opt.lead.overcut_mm)}};
     e.fallback = Fallback::centre_pierce;
     (void)total;
     e.s_mm = to_path_s(id, cp.length_along, clockwise);
@@ -412,7 +433,10 @@ struct EntryPlanner::Impl {
   }
 };
 
-EntryPlanner::EntryPlanner(const Nest& nest, const EntryOptions& options) : impl_(std::make_unique<Impl>(nest, options)) {}
+EntryPlanner::EntryPlanner(const Nest& nest, const EntryOptions& options)
+    : impl_(std::make_unique<Impl>(nest, options, std::make_shared<const PlannerGeometry>(nest))) {}
+EntryPlanner::EntryPlanner(const EntryPlanner& same_nest, const EntryOptions& options)
+    : impl_(std::make_unique<Impl>(same_nest.impl_->nest, options, same_nest.impl_->geo)) {}
 EntryPlanner::~EntryPlanner() = default;
 double EntryPlanner::clearance_mm() const { return impl_->clearance; }
 double EntryPlanner::contour_length(ContourId id) const { return impl_->length[id.index()]; }
@@ -433,7 +457,7 @@ EntryPlanner::Sketch EntryPlanner::sketch_at(ContourId id, double s_mm, bool clo
 }
 
 geometry::Contour EntryPlanner::whole_loop(ContourId id, double s_mm, bool clockwise, bool overcut) const {
-  return detail::sub_path(impl_->oriented(id, clockwise), impl_->to_path_s(id, s_mm, clockwise),
+  return detail::sub_path(impl_->oriented(id, clockwise), impl_->measured(id, clockwise), impl_->to_path_s(id, s_mm, clockwise),
                           impl_->length[id.index()] + (overcut ? impl_->opt.lead.overcut_mm : 0.0));
 }
 
@@ -469,7 +493,7 @@ std::pair<double, double> EntryPlanner::closest(ContourId id, geometry::Vec2 p) 
 }
 
 geometry::Vec2 EntryPlanner::point_at(ContourId id, double s_mm) const {
-  return detail::at_length(impl_->nc(id).source.contour, s_mm).point;
+  return detail::at_length(impl_->nc(id).source.contour, impl_->measured_stored[id.index()], s_mm).point;
 }
 
 std::vector<EntryCandidate> EntryPlanner::candidates(ContourId id, Diagnostics& diagnostics) const {
@@ -516,10 +540,11 @@ std::vector<EntryCandidate> EntryPlanner::candidates(ContourId id, Diagnostics& 
   EntryCandidate e;
   e.contour = id;
   e.clockwise = conv_cw;
-  const auto at = detail::at_length(path, 0);
+  const auto& m = impl_->measured(id, conv_cw);
+  const auto at = detail::at_length(path, m, 0);
   e.point = at.point;
   e.pierce = at.point;
-  e.pieces = {SegmentPiece{PieceKind::contour, id, detail::sub_path(path, 0, total + impl_->opt.lead.overcut_mm)}};
+  e.pieces = {SegmentPiece{PieceKind::contour, id, detail::sub_path(path, m, 0, total + impl_->opt.lead.overcut_mm)}};
   e.fallback = Fallback::on_contour;
   e.s_mm = 0;
   diag("contour " + std::to_string(id.value() + 1) + ": no admissible lead-in; pierced on the contour");
@@ -527,9 +552,10 @@ std::vector<EntryCandidate> EntryPlanner::candidates(ContourId id, Diagnostics& 
   return out;
 }
 
-CutJob make_cut_job(const Nest& nest, const EntryOptions& options) {
+CutJob make_cut_job(const Nest& nest, const EntryOptions& options) { return make_cut_job(nest, EntryPlanner(nest, options)); }
+
+CutJob make_cut_job(const Nest& nest, const EntryPlanner& planner) {
   CutJob job;
-  EntryPlanner planner(nest, options);
   std::vector<std::int32_t> job_index(nest.contours.size(), -1);
   for (std::size_t i = 0; i < nest.contours.size(); ++i) {
     const ContourId id(static_cast<std::int32_t>(i));

@@ -195,17 +195,17 @@ using Clock = std::chrono::steady_clock;
 
 // The basic segments of one technique (SCCP); an error when the technique cannot be built here.
 // `standard`: the standard job when already built (other techniques start from its candidates).
-Result<model::CutJob> build_job(const model::Nest& nest, const model::EntryOptions& entries, const OptimizeOptions& o,
-                                Technique t, const model::CutJob* standard) {
+Result<model::CutJob> build_job(const model::Nest& nest, const model::EntryPlanner& planner, const model::EntryOptions& entries,
+                                const OptimizeOptions& o, Technique t, const model::CutJob* standard) {
   switch (t) {
-    case Technique::standard: return model::make_cut_job(nest, entries);
-    case Technique::chain: return model::make_chain_job(nest, entries, o.chain, standard);
+    case Technique::standard: return model::make_cut_job(nest, planner);
+    case Technique::chain: return model::make_chain_job(nest, entries, o.chain, standard, &planner);
     case Technique::common:
       // Common lines are cut on the centre line between two parts, uncompensated; the cam offset
       // would move each part's side of it away from the other.
       if (o.kerf_mode == nc::KerfMode::cam)
         return make_error("common-line cutting runs on the centre line between parts: not with --kerf-mode cam (use controller)");
-      return model::make_common_job(nest, entries, model::CommonLineOptions{});
+      return model::make_common_job(nest, entries, model::CommonLineOptions{}, standard);
     case Technique::automatic: break;
   }
   return make_error("no cut job for technique 'auto'");
@@ -233,12 +233,19 @@ struct Alternative {
 // Steps 3-6 for one set of basic segments.
 Result<Alternative> solve_alternative(const model::Nest& nest, const model::CutJob& job, const model::EntryPlanner& planner,
                                       const Setup& s, const OptimizeOptions& o, double time_limit_s,
-                                      const StopToken& stop, const ProgressFn& progress) {
+                                      const StopToken& stop, const ProgressFn& progress, nlohmann::json& timing) {
+  auto t_mark = Clock::now();
+  auto lap = [&](const char* phase) {
+    const auto now = Clock::now();
+    timing[phase] = std::chrono::duration<double>(now - t_mark).count();
+    t_mark = now;
+  };
   // 3. Sequencing.
   cost::RouteProblemOptions rpo;
   rpo.start = s.start;
   auto rp = cost::build_route_problem(job, s.prices, rpo);
   if (!rp) return rp.error();
+  lap("route_problem");
   solve::SolveParams params;
   params.solver = o.solver;
   params.seed = o.seed;
@@ -254,6 +261,7 @@ Result<Alternative> solve_alternative(const model::Nest& nest, const model::CutJ
   if (o.rules.orders()) alt.rules_json["route"] = rules::route_effects(nest, job, *rp, route, o.rules);
   auto& seq = alt.sequence;
   for (const auto* e : cost::route_entries(job, *rp, route)) seq.push_back(*e);
+  lap("sequence");
 
   // 4. Continuous refinement of the entries for the fixed order.
   if (o.refine_entries) {
@@ -261,46 +269,53 @@ Result<Alternative> solve_alternative(const model::Nest& nest, const model::CutJ
     alt.moved = refine_entries(planner, s.prices, s.start, s.start, seq, 2, stop);
   }
   alt.rigid_corners = rules::place_rigid_entries(nest, job, seq, o.rules);  // shop rules: part rigidity
+  lap("refine");
 
-  // 5-6. Program, frames, V_on*(n); lead types compared by the corrected objective.
+  // 5-6. Program, frames, V_on*(n) with the lead type asked for (the others: compare_leads()).
   alt.best = evaluate(nest, seq, s, o);
   alt.lead_name = model::to_string(s.entries.lead.in_kind);
   alt.leads_json = nlohmann::json::array();
   alt.leads_json.push_back({{"lead_in", alt.lead_name}, {"frames", alt.best.frames}, {"t_cut_s", alt.best.estimate.t_cut_s},
                             {"objective", alt.best.objective}});
-  if (o.compare_leads) {
-    for (model::LeadKind kind : {model::LeadKind::line, model::LeadKind::arc}) {
-      if (kind == s.entries.lead.in_kind) continue;
-      model::EntryOptions alt_opt = s.entries;
-      alt_opt.lead.in_kind = kind;
-      model::EntryPlanner other(nest, alt_opt);
-      std::vector<model::EntryCandidate> alt_seq = seq;
-      for (auto& e : alt_seq) {
-        if (e.fallback != model::Fallback::none) continue;
-        auto moved_e = other.entry_at(e.contour, e.s_mm, e.clockwise);
-        if (!moved_e) continue;
-        // A multi-piece segment keeps its pieces and lead-out: only its lead-in changes, and only
-        // when the new one ends where its first piece starts (a common line's end may lie off
-        // the contour it is named after, in the middle of a kerf gap).
-        if (model::is_multi_piece(e)) {
-          if (geometry::distance(moved_e->point, e.pieces.front().path.vertices.front().p) > tol::kSamePointMm) continue;
-          e.lead_in = std::move(moved_e->lead_in);
-          e.pierce = moved_e->pierce;
-        } else {
-          e = std::move(*moved_e);
-        }
-      }
-      Evaluated ev = evaluate(nest, alt_seq, s, o);
-      alt.leads_json.push_back({{"lead_in", model::to_string(kind)}, {"frames", ev.frames}, {"t_cut_s", ev.estimate.t_cut_s},
-                                {"objective", ev.objective}});
-      if (ev.objective < alt.best.objective - 1e-9) {
-        alt.best = std::move(ev);
-        seq = std::move(alt_seq);
-        alt.lead_name = model::to_string(kind);
+  lap("evaluate");
+  return alt;
+}
+
+// The other lead-in types on the chosen route, each judged by the frame-corrected objective (the
+// lead type changes the program's frame count, hence V_on*(n)); the best one is kept.
+void compare_leads(const model::Nest& nest, const model::EntryPlanner& planner, const Setup& s, const OptimizeOptions& o,
+                   Alternative& alt) {
+  auto& seq = alt.sequence;
+  for (model::LeadKind kind : {model::LeadKind::line, model::LeadKind::arc}) {
+    if (kind == s.entries.lead.in_kind) continue;
+    model::EntryOptions alt_opt = s.entries;
+    alt_opt.lead.in_kind = kind;
+    const model::EntryPlanner other(planner, alt_opt);
+    std::vector<model::EntryCandidate> alt_seq = seq;
+    for (auto& e : alt_seq) {
+      if (e.fallback != model::Fallback::none) continue;
+      auto moved_e = other.entry_at(e.contour, e.s_mm, e.clockwise);
+      if (!moved_e) continue;
+      // A multi-piece segment keeps its pieces and lead-out: only its lead-in changes, and only
+      // when the new one ends where its first piece starts (a common line's end may lie off
+      // the contour it is named after, in the middle of a kerf gap).
+      if (model::is_multi_piece(e)) {
+        if (geometry::distance(moved_e->point, e.pieces.front().path.vertices.front().p) > tol::kSamePointMm) continue;
+        e.lead_in = std::move(moved_e->lead_in);
+        e.pierce = moved_e->pierce;
+      } else {
+        e = std::move(*moved_e);
       }
     }
+    Evaluated ev = evaluate(nest, alt_seq, s, o);
+    alt.leads_json.push_back({{"lead_in", model::to_string(kind)}, {"frames", ev.frames}, {"t_cut_s", ev.estimate.t_cut_s},
+                              {"objective", ev.objective}});
+    if (ev.objective < alt.best.objective - 1e-9) {
+      alt.best = std::move(ev);
+      seq = std::move(alt_seq);
+      alt.lead_name = model::to_string(kind);
+    }
   }
-  return alt;
 }
 
 }  // namespace
@@ -317,6 +332,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   const model::Nest& nest = loaded.nest;
   auto t_mark = Clock::now();
   nlohmann::json timing;
+  const auto t_begin = t_mark;
   auto lap = [&](const char* phase) {
     const auto now = Clock::now();
     timing[phase] = std::chrono::duration<double>(now - t_mark).count();
@@ -354,12 +370,19 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   if (o.technique == Technique::automatic && !o.rules.any()) wanted = {Technique::standard, Technique::chain, Technique::common};
   else if (o.technique == Technique::automatic) wanted = {Technique::standard};
   else wanted = {o.technique};
+  // One planner (the per-contour geometry of the nest) for every job, the refinement and the leads.
+  const model::EntryPlanner planner(cut_nest, s.entries);
   std::vector<model::CutJob> jobs;
   std::vector<Technique> built;
   std::vector<std::size_t> slot;  // per built job: its place in `alternatives` (the order of `wanted`)
   auto alternatives = nlohmann::json::array();
+  double standard_job_s = 0;  // [s] building the standard job: a measure of this nest's geometric work
   for (Technique t : wanted) {
-    auto job = build_job(cut_nest, s.entries, o, t, built.empty() || built.front() != Technique::standard ? nullptr : &jobs.front());
+    const auto t_job = Clock::now();
+    auto job = build_job(cut_nest, planner, s.entries, o, t, built.empty() || built.front() != Technique::standard ? nullptr : &jobs.front());
+    const double job_s = std::chrono::duration<double>(Clock::now() - t_job).count();
+    timing[to_string(t)]["job"] = job_s;
+    if (t == Technique::standard) standard_job_s = job_s;
     if (!job) {
       if (o.technique != Technique::automatic) return job.error();
       alternatives.push_back({{"name", to_string(t)}, {"available", false}, {"reason", job.error().message}});
@@ -379,29 +402,41 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   for (const auto& d : jobs.front().diagnostics) result.diagnostics.push_back(d);
   lap("entries");
 
-  const model::EntryPlanner planner(cut_nest, s.entries);
+  // --time-limit is the budget of the whole optimisation from here on: the solvers get what the
+  // refinement and evaluation of every alternative (and the lead comparison) leave. Before the
+  // first alternative has been measured, its post-processing is guessed from the time the
+  // standard job took (the same kind of geometric work over the same contours).
+  const auto deadline = t_begin + std::chrono::duration<double>(o.time_limit_s);
+  double post_s = 2.0 * standard_job_s;  // [s] refinement, evaluation and lead comparison of one alternative (estimate)
   std::optional<Alternative> best;
   std::size_t chosen = 0;
-  double solver_used = 0;  // [s]
   for (std::size_t k = 0; k < jobs.size(); ++k) {
-    // The solver budget split evenly; whatever an earlier alternative did not use goes to the later ones.
-    // A solver that overran its share leaves the later ones a tenth of an even share, never 0
-    // (which the solver reads as "no limit"); no limit asked stays no limit.
-    const double n = static_cast<double>(jobs.size());
-    const double budget = o.time_limit_s <= 0 ? 0.0
-                          : std::max((o.time_limit_s - solver_used) / (n - static_cast<double>(k)), 0.1 * o.time_limit_s / n);
+    const double left_alts = static_cast<double>(jobs.size() - k);
+    // No limit asked stays no limit (0). A limit already spent still leaves each solver a tenth of
+    // an even share, never 0 (which the solver reads as "no limit").
+    double budget = 0.0;
+    if (o.time_limit_s > 0) {
+      const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
+      budget = std::max((left - left_alts * post_s) / left_alts, 0.1 * o.time_limit_s / static_cast<double>(jobs.size()));
+    }
     // After Ctrl-C the alternative solved so far is written; the others are not started.
     if (best && stop.stop_requested()) {
       alternatives[slot[k]] = {{"name", to_string(built[k])}, {"available", false}, {"reason", "not solved (interrupted)"}};
       continue;
     }
-    auto alt = solve_alternative(cut_nest, jobs[k], planner, s, o, budget, stop, progress);
+    auto& alt_timing = timing[to_string(built[k])];
+    auto alt = solve_alternative(cut_nest, jobs[k], planner, s, o, budget, stop, progress, alt_timing);
     if (!alt && best) {
       alternatives[slot[k]] = {{"name", to_string(built[k])}, {"available", false}, {"reason", alt.error().message}};
       continue;
     }
     if (!alt) return alt.error();
-    solver_used += alt->solution.stats.seconds;
+    if (o.compare_leads) {
+      const auto t_leads = Clock::now();
+      compare_leads(cut_nest, planner, s, o, *alt);
+      alt_timing["leads"] = std::chrono::duration<double>(Clock::now() - t_leads).count();
+    }
+    post_s = alt_timing.value("refine", 0.0) + alt_timing.value("evaluate", 0.0) + alt_timing.value("leads", 0.0);
     nlohmann::json j;
     j["name"] = to_string(built[k]);
     j["available"] = true;

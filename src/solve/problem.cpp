@@ -1,6 +1,7 @@
 #include <cutroute/solve/problem.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace cutroute::solve {
@@ -10,7 +11,7 @@ Cost Problem::arc_from_function(NodeId from, NodeId to) const {
     const std::uint64_t key = from.index() * n_ + to.index();
     if (std::binary_search(forbidden_keys_.begin(), forbidden_keys_.end(), key)) return kForbiddenCost;
   }
-  const Cost c = (*fn_)(from, to);
+  const Cost c = planar_ ? planar_arc(from, to) : (*fn_)(from, to);
   return c >= kForbiddenCost ? kForbiddenCost : c;
 }
 
@@ -28,11 +29,20 @@ ProblemBuilder& ProblemBuilder::set_name(std::string name) {
 ProblemBuilder& ProblemBuilder::set_cost_matrix(std::vector<Cost> matrix) {
   matrix_ = std::move(matrix);
   fn_.reset();
+  planar_.reset();
   return *this;
 }
 ProblemBuilder& ProblemBuilder::set_cost_function(CostFn fn, bool symmetric) {
   fn_ = std::make_shared<const CostFn>(std::move(fn));
   fn_symmetric_ = symmetric;
+  matrix_.clear();
+  planar_.reset();
+  return *this;
+}
+ProblemBuilder& ProblemBuilder::set_planar_costs(PlanarCosts costs) {
+  planar_ = std::make_shared<const PlanarCosts>(std::move(costs));
+  fn_.reset();
+  fn_symmetric_ = false;
   matrix_.clear();
   return *this;
 }
@@ -75,7 +85,18 @@ Result<Problem> ProblemBuilder::build() {
   if (n_ <= 0) return err("problem has no nodes");
   if (m == 0) return err("problem has no clusters");
   const auto n = static_cast<std::size_t>(n_);
-  if (matrix_.empty() && !fn_) return err("problem has no costs (neither matrix nor cost function)");
+  if (matrix_.empty() && !fn_ && !planar_) return err("problem has no costs (neither matrix nor cost function nor points)");
+  if (planar_) {
+    if (planar_->out.size() != n || planar_->in.size() != n)
+      return err("planar costs give " + str(static_cast<long>(planar_->out.size())) + " out and " +
+                 str(static_cast<long>(planar_->in.size())) + " in points for " + str(n_) + " nodes");
+    if (!(planar_->per_unit >= 0) || !(planar_->base >= 0) || !(planar_->scale > 0) || !std::isfinite(planar_->base) ||
+        !std::isfinite(planar_->per_unit) || !std::isfinite(planar_->scale))
+      return err("planar costs need finite base >= 0, per_unit >= 0 and scale > 0");
+    for (const auto* pts : {&planar_->out, &planar_->in})
+      for (const PlanarPoint& q : *pts)
+        if (!std::isfinite(q.x) || !std::isfinite(q.y)) return err("planar costs have a point that is not finite");
+  }
   if (!matrix_.empty() && matrix_.size() != n * n)
     return err("cost matrix has " + str(static_cast<long>(matrix_.size())) + " entries, expected " +
                str(static_cast<long>(n * n)));
@@ -134,6 +155,7 @@ Result<Problem> ProblemBuilder::build() {
     p.matrix_ = std::move(matrix_);
   } else {
     p.fn_ = fn_;
+    p.planar_ = planar_;
     for (auto [a, b] : forbidden_) {
       if (!a.valid() || !b.valid() || a.value() >= n_ || b.value() >= n_) return err("forbidden arc names a node outside the problem");
       p.forbidden_keys_.push_back(a.index() * n + b.index());

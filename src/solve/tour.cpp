@@ -1,5 +1,7 @@
 #include "tour.hpp"
 
+#include "planar_neighbours.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -24,6 +26,13 @@ constexpr double kMaxFullCoWork = 2.0e5;
 Ops::Ops(const Problem& p, const StopToken* stop) : p_(p), stop_(stop), m_(p.cluster_count()), closed_(p.closed()), prec_(p.has_precedence()) {
   kn_ = static_cast<std::size_t>(std::min(kNeighbours, std::max(0, m_ - 1)));
   if (kn_ == 0) return;
+  const double avg = static_cast<double>(p.node_count()) / m_;
+  // One cluster-optimisation pass costs about m * (n/m)^2 evaluations per start node.
+  expensive_co_ = static_cast<double>(m_) * avg * avg > kMaxFullCoWork;
+  if (p.planar()) {
+    planar_neighbours(p, kn_, pred_, succ_);
+    return;
+  }
   // The lists cost m^2 * samples^2 arc evaluations: fewer samples on very large problems (a nest of
   // 10^4 contours gets one node per cluster, ~2 * 10^8 evaluations).
   const double mm = static_cast<double>(m_) * m_;
@@ -57,9 +66,6 @@ Ops::Ops(const Problem& p, const StopToken* stop) : p_(p), stop_(stop), m_(p.clu
   build(pred_, true);
   if (p.symmetric()) succ_ = pred_;
   else build(succ_, false);
-  // One cluster-optimisation pass costs about m * (n/m)^2 evaluations per start node.
-  const double avg = static_cast<double>(p.node_count()) / m_;
-  expensive_co_ = static_cast<double>(m_) * avg * avg > kMaxFullCoWork;
 }
 
 Cost Ops::full_cost(const std::vector<NodeId>& seq) const {

@@ -186,6 +186,13 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
     for (const auto& [m, on] : run_moves[static_cast<std::size_t>(run)]) {
       if (on == static_cast<int>(k)) path.push_back(probe_segment(*m));
     }
+    // Indexed: spline outlines have thousands of arcs, and every drawn point asks for its distance.
+    std::vector<geometry::Box> path_boxes;
+    path_boxes.reserve(path.size());
+    for (const auto& s : path) path_boxes.push_back(s.bounding_box());
+    const geometry::StaticSpatialIndex path_index(path_boxes);
+    std::vector<std::uint32_t> near;
+    const double reach = off + opt.on_contour_mm + 0.001;
     const auto& drawn = cut[k]->source.contour;
     const bool ccw = geometry::signed_area(drawn) > 0;
     int missed = 0;
@@ -204,8 +211,9 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
         for (auto h : hits) fits = fits && dist_to(static_cast<int>(h), centre, off) > off - 1e-4;
         if (!fits) continue;
         double best = 1e300;
-        for (const auto& s : path) best = std::min(best, geometry::closest_point(s, q).distance);
-        if (best > off + opt.on_contour_mm + 0.001) {
+        path_index.query(geometry::Box{q.x, q.y, q.x, q.y}.inflated(2 * reach), near);
+        for (auto s : near) best = std::min(best, geometry::closest_point(path[s], q).distance);
+        if (best > reach) {
           if (missed++ == 0) first_missed = q;
         }
       }

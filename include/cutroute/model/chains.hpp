@@ -37,8 +37,9 @@ std::vector<ChainLink> chain_links(const Nest& nest, const ChainOptions& options
 // where the contours are closest), in both orders of the run. A run that gets no admissible
 // candidate is shortened (then dropped); a chain that would make the precedence cyclic is
 // dropped. Standard segments for all contours left. `standard`: the standard job of the same nest
-// and entry options when the caller has it already (saves building it again).
+// and entry options when the caller has it already (saves building it again); `planner`: a
+// planner of this nest with these entry options, likewise.
 CutJob make_chain_job(const Nest& nest, const EntryOptions& entries, const ChainOptions& options,
-                      const CutJob* standard = nullptr);
+                      const CutJob* standard = nullptr, const EntryPlanner* planner = nullptr);
 
 }  // namespace cutroute::model

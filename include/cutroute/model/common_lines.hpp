@@ -115,7 +115,10 @@ CommonLinePlan plan_common_lines(const Nest& nest, const CommonLineOptions& opti
 // The cut job of common-line cutting (one basic segment per loop, trail and untouched contour,
 // the plan's precedence, candidates from plan_common_entries()). The common lines are found with
 // the job's kerf (entries.kerf_mm). Error ("not available") when no two parts share a stretch.
-Result<CutJob> make_common_job(const Nest& nest, const EntryOptions& entries, const CommonLineOptions& options);
+// `standard`: the standard job of the same nest and entry options, when the caller has it: its
+// candidates are reused for untouched contours far from every common line (see plan_common_entries).
+Result<CutJob> make_common_job(const Nest& nest, const EntryOptions& entries, const CommonLineOptions& options,
+                               const CutJob* standard = nullptr);
 
 // The pieces a cut of the segment passes, starting at arc length s_mm of its path, along the path
 // (forward) or against it, for length_mm (on a closed segment it may wrap past s: the overcut).
@@ -141,7 +144,12 @@ EnteredContour entered_contour(const Nest& nest, const std::vector<CommonPiece>&
 // end on a loop. The candidates' pieces: contour pieces (own boundary), common_edge pieces (a
 // shared stretch, named after its first contour) and bridges (connectors across a kerf gap);
 // contour, s_mm and clockwise: those of the nest contour the cut enters (entered_contour()).
+// With `standard` (the standard job of this nest and options), an untouched contour whose box,
+// widened by its leads and the clearance, meets no loop or trail keeps its standard candidates:
+// every check behind them (scrap, clearance, crossing) looks only inside that box, where the
+// derived nest is the nest itself.
 std::vector<std::vector<EntryCandidate>> plan_common_entries(const Nest& nest, const CommonLinePlan& plan,
-                                                             const EntryOptions& options, Diagnostics& diagnostics);
+                                                             const EntryOptions& options, Diagnostics& diagnostics,
+                                                             const CutJob* standard = nullptr);
 
 }  // namespace cutroute::model

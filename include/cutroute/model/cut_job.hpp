@@ -134,6 +134,9 @@ CutJob make_cut_job(const Nest& nest, const EntryOptions& options);
 class EntryPlanner {
  public:
   EntryPlanner(const Nest& nest, const EntryOptions& options);
+  // A planner of the same nest with other options (leads, clearance): the per-contour geometry,
+  // the costly part on large nests, is shared, not rebuilt.
+  EntryPlanner(const EntryPlanner& same_nest, const EntryOptions& options);
   ~EntryPlanner();
   EntryPlanner(const EntryPlanner&) = delete;
   EntryPlanner& operator=(const EntryPlanner&) = delete;
@@ -170,5 +173,8 @@ class EntryPlanner {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// make_cut_job() with a planner already built for this nest (reused by the caller afterwards).
+CutJob make_cut_job(const Nest& nest, const EntryPlanner& planner);
 
 }  // namespace cutroute::model

@@ -33,7 +33,7 @@ struct OptimizeOptions {
   std::optional<double> thickness_mm;        // [mm]
   bool interpolate = false;                  // thickness between Table 1 rows
   cost::Objective objective = cost::Objective::time;
-  double time_limit_s = 10.0;                // solver wall-clock budget [s], shared by the techniques compared
+  double time_limit_s = 10.0;                // wall-clock budget of optimize_nest [s] (0: none), see below
   std::uint64_t seed = 1;
   int threads = 0;                           // 0: hardware threads (at most 8)
   solve::SolverKind solver = solve::SolverKind::automatic;
@@ -72,10 +72,12 @@ struct OptimizeResult {
 // Steps (each a function in src/pipeline/):
 //  1. cutting conditions from the machine profile and Table 1 (material, thickness);
 //  2. the cut job of each technique asked for (standard: model::make_cut_job; chain:
-//     model::make_chain_job; common: not available yet): basic segments with entry candidates,
+//     model::make_chain_job; common: model::make_common_job): basic segments with entry candidates,
 //     leads in scrap, precedence. With `automatic`, a chain/common job that joins nothing is not
 //     solved again, and one that cannot be built is reported as not available;
-//  then for each job (the solver's time limit split evenly, unused time passed on):
+//  then for each job (the solver gets what is left of time_limit_s after the work measured or
+//  estimated for the steps that follow it, split evenly over the jobs left; at least a tenth of
+//  an even share):
 //  3. the routing problem in integer time or cost (cost::build_route_problem) and solve::solve();
 //  4. continuous refinement of each one-contour entry along its contour for the fixed order;
 //  5. toolpath -> G-code in the dialect; frames n counted on the written program;

@@ -1,6 +1,8 @@
 // solve::Problem: clusters of nodes, integer arc costs, precedence and forbidden arcs, built once and immutable.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -33,6 +35,19 @@ inline constexpr Cost kForbiddenCost = Cost{1} << 41;
 // Must be pure and thread-safe: the heuristics call it from several threads.
 using CostFn = std::function<Cost(NodeId from, NodeId to)>;
 
+// Arc costs of a route in the plane (cutting): leaving node v at out[v] and entering node w at
+// in[w] costs round((base + per_unit * |in[w] - out[v]|) * scale). Computed inline on demand: no
+// matrix (n^2 memory) and no callback (an indirect call per arc); the solver also builds its
+// neighbour lists from the points with a k-d tree instead of m^2 sampled arcs.
+struct PlanarPoint {
+  double x = 0, y = 0;
+};
+struct PlanarCosts {
+  std::vector<PlanarPoint> out, in;  // per node
+  double base = 0, per_unit = 0;     // per_unit >= 0: the cost grows with the distance
+  double scale = 1;
+};
+
 // closed_tour: the route returns from its last node to its first (the arc is paid);
 // open_path: it ends at its last node (SOP, cutting routes that end anywhere).
 enum class RouteKind { closed_tour, open_path };
@@ -59,6 +74,7 @@ class Problem {
   // Travel cost from -> to; kForbiddenCost for a forbidden arc.
   Cost arc_cost(NodeId from, NodeId to) const {
     if (!matrix_.empty()) return matrix_[from.index() * n_ + to.index()];
+    if (planar_) return forbidden_keys_.empty() ? planar_arc(from, to) : arc_from_function(from, to);
     return arc_from_function(from, to);
   }
   bool forbidden(NodeId from, NodeId to) const { return arc_cost(from, to) >= kForbiddenCost; }
@@ -76,6 +92,8 @@ class Problem {
   // True when arc_cost(a, b) == arc_cost(b, a) for all nodes (checked for matrices, declared for callbacks).
   bool symmetric() const { return symmetric_; }
   bool has_matrix() const { return !matrix_.empty(); }
+  // The points and prices behind the arc costs when they were given that way, else null.
+  const PlanarCosts* planar() const { return planar_.get(); }
 
   // Precedence as given to the builder (before, after), without duplicates.
   const std::vector<std::pair<ClusterId, ClusterId>>& precedence() const { return precedence_; }
@@ -90,6 +108,13 @@ class Problem {
  private:
   friend class ProblemBuilder;
   Cost arc_from_function(NodeId from, NodeId to) const;
+  Cost planar_arc(NodeId from, NodeId to) const {
+    const PlanarPoint a = planar_->out[from.index()], b = planar_->in[to.index()];
+    const double dx = b.x - a.x, dy = b.y - a.y;
+    const double t = (planar_->base + planar_->per_unit * std::sqrt(dx * dx + dy * dy)) * planar_->scale;
+    // + 0.5 and truncation rounds like llround for t >= 0, several times faster (a hot loop).
+    return static_cast<Cost>(std::min(t, static_cast<double>(kMaxCost)) + 0.5);
+  }
   struct Closure {
     std::vector<int> begin;  // size cluster_count + 1
     std::vector<ClusterId> items;
@@ -102,6 +127,7 @@ class Problem {
   std::size_t n_ = 0;
   std::vector<Cost> matrix_;  // row-major n x n travel costs (kForbiddenCost folded in); empty with a callback
   std::shared_ptr<const CostFn> fn_;
+  std::shared_ptr<const PlanarCosts> planar_;  // set instead of fn_ for planar costs
   std::vector<std::uint64_t> forbidden_keys_;  // sorted from*n+to, only used with a callback
   std::vector<Cost> inner_;                    // empty when all zero
   IdVector<NodeId, ClusterId> cluster_of_;
@@ -127,6 +153,8 @@ class ProblemBuilder {
   ProblemBuilder& set_cost_matrix(std::vector<Cost> matrix);
   // On-demand costs (large nests); `symmetric` is the caller's promise that cost(a,b) == cost(b,a).
   ProblemBuilder& set_cost_function(CostFn fn, bool symmetric);
+  // Costs from points (see PlanarCosts): one out and one in point per node.
+  ProblemBuilder& set_planar_costs(PlanarCosts costs);
   ProblemBuilder& set_inner_cost(NodeId v, Cost c);
   ClusterId add_cluster(std::vector<NodeId> nodes);
   ProblemBuilder& add_precedence(ClusterId before, ClusterId after);
@@ -141,6 +169,7 @@ class ProblemBuilder {
   int n_;
   std::vector<Cost> matrix_;
   std::shared_ptr<const CostFn> fn_;
+  std::shared_ptr<const PlanarCosts> planar_;
   bool fn_symmetric_ = false;
   std::vector<Cost> inner_;
   std::vector<std::vector<NodeId>> clusters_;

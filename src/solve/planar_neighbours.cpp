@@ -1,0 +1,108 @@
+#include "planar_neighbours.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <utility>
+
+#include <nanoflann.hpp>
+
+namespace cutroute::solve::detail {
+
+namespace {
+
+// nanoflann's dataset interface over one point table of the problem.
+struct Cloud {
+  const std::vector<PlanarPoint>& pts;
+  std::size_t kdtree_get_point_count() const { return pts.size(); }
+  double kdtree_get_pt(std::size_t i, std::size_t dim) const { return dim == 0 ? pts[i].x : pts[i].y; }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
+};
+using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>, Cloud, 2, std::uint32_t>;
+
+// nanoflann result set keeping the kn nearest distinct clusters other than `self` seen by one query:
+// a plain k-nearest query would return mostly the entries of the query's own contour and of one
+// neighbour, and would need a k of hundreds (nanoflann's sorted result set costs O(k) per point).
+class ClusterResults {
+ public:
+  ClusterResults(const Problem& p, std::size_t kn) : p_(p), kn_(kn) { items_.reserve(kn + 1); }
+  void reset(int self) {
+    self_ = self;
+    items_.clear();
+  }
+  bool addPoint(double d2, std::uint32_t i) {
+    const int b = p_.cluster_of(NodeId(static_cast<int>(i))).value();
+    if (b == self_) return true;
+    for (auto& it : items_)
+      if (it.second == b) {
+        if (d2 < it.first) it.first = d2;
+        settle();
+        return true;
+      }
+    if (items_.size() < kn_) {
+      items_.emplace_back(d2, b);
+    } else if (d2 < items_.back().first) {
+      items_.back() = {d2, b};
+    } else {
+      return true;
+    }
+    settle();
+    return true;
+  }
+  double worstDist() const { return items_.size() < kn_ ? std::numeric_limits<double>::max() : items_.back().first; }
+  bool full() const { return items_.size() == kn_; }
+  const std::vector<std::pair<double, int>>& items() const { return items_; }
+
+ private:
+  void settle() { std::sort(items_.begin(), items_.end()); }  // kn is small (12)
+  const Problem& p_;
+  std::size_t kn_;
+  int self_ = -1;
+  std::vector<std::pair<double, int>> items_;  // (squared distance, cluster), nearest first
+};
+
+// Rows of kn clusters for every cluster a: the clusters owning the points of `targets` nearest to
+// the points of `sources` that belong to a's nodes (each cluster by its nearest point), a excluded.
+void lists(const Problem& p, std::size_t kn, const std::vector<PlanarPoint>& sources, const std::vector<PlanarPoint>& targets,
+           std::vector<ClusterId>& out) {
+  const int m = p.cluster_count();
+  out.assign(static_cast<std::size_t>(m) * kn, ClusterId(0));
+  const Cloud cloud{targets};
+  const Tree tree(2, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  ClusterResults res(p, kn);
+  std::vector<std::pair<double, int>> found;
+  for (int a = 0; a < m; ++a) {
+    found.clear();
+    for (NodeId u : p.nodes_of(ClusterId(a))) {
+      const PlanarPoint q = sources[u.index()];
+      const double qp[2] = {q.x, q.y};
+      res.reset(a);
+      tree.findNeighbors(res, qp, nanoflann::SearchParams());
+      found.insert(found.end(), res.items().begin(), res.items().end());
+    }
+    // One entry per cluster (its nearest point), then by distance, ties by cluster id.
+    std::sort(found.begin(), found.end(), [](const auto& x, const auto& y) {
+      return x.second != y.second ? x.second < y.second : x.first < y.first;
+    });
+    found.erase(std::unique(found.begin(), found.end(), [](const auto& x, const auto& y) { return x.second == y.second; }),
+                found.end());
+    std::sort(found.begin(), found.end());
+    // Each query sees kn clusters when there are (kn < m), so the row is full.
+    for (std::size_t r = 0; r < kn; ++r)
+      out[static_cast<std::size_t>(a) * kn + r] = ClusterId(found[std::min(r, found.size() - 1)].second);
+  }
+}
+
+}  // namespace
+
+void planar_neighbours(const Problem& p, std::size_t kn, std::vector<ClusterId>& pred, std::vector<ClusterId>& succ) {
+  const PlanarCosts& pc = *p.planar();
+  lists(p, kn, pc.out, pc.in, succ);  // a -> b: leave a at out, enter b at in
+  lists(p, kn, pc.in, pc.out, pred);  // b -> a: the out points nearest to a's in points
+}
+
+}  // namespace cutroute::solve::detail

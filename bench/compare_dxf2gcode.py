@@ -41,6 +41,7 @@ def main():
     print("| file | contours | pierces | rapid between (ours) | dxf2gcode | ratio | violations (ours / dxf2gcode) | wall s |")
     print("|---|---:|---:|---:|---:|---:|---|---:|")
     ratios = []
+    ours_sum = theirs_sum = 0.0
     with tempfile.TemporaryDirectory() as tmp:
         for dxf in sorted((SHARED / "data/dxf").glob("*.dxf")):
             prog = pathlib.Path(tmp) / (dxf.stem + ".ngc")
@@ -58,10 +59,14 @@ def main():
                 continue
             ratio = st["Loff_rapid_between_contours"] / b["between"] if b and b["between"] > 0 else float("nan")
             ratios.append(ratio)
+            if b:
+                ours_sum += st["Loff_rapid_between_contours"]
+                theirs_sum += b["between"]
             print(f"| {dxf.name} | {st['contours']} | {st['pierces']} | {st['Loff_rapid_between_contours']:.1f} | "
                   f"{b['between'] if b else ''} | {ratio:.3f} | {st['precedence_violations']} / {b['violations'] if b else ''} | {wall:.2f} |")
     if ratios:
         print(f"\nworst ratio {max(ratios):.3f}, mean ratio {sum(ratios) / len(ratios):.3f} over {len(ratios)} files")
+        print(f"summed: {ours_sum:.1f} mm against {theirs_sum:.1f} mm, ratio {ours_sum / theirs_sum:.3f}")
 
 
 if __name__ == "__main__":

@@ -17,10 +17,16 @@ std::string format(const Diagnostic& d) {
   std::string out;
   if (!d.file.empty()) {
     out += d.file;
-    if (d.line) out += ":" + std::to_string(*d.line);
+    // Appended piecewise: `":" + std::to_string(...)` trips GCC 12's false -Wrestrict at -O3.
+    if (d.line) {
+      out += ':';
+      out += std::to_string(*d.line);
+    }
     out += ": ";
   } else if (d.line) {
-    out += "line " + std::to_string(*d.line) + ": ";
+    out += "line ";
+    out += std::to_string(*d.line);
+    out += ": ";
   }
   out += to_string(d.severity);
   out += ": ";

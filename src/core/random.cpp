@@ -30,14 +30,17 @@ std::uint64_t Rng::next() {
   return result;
 }
 
+// GCC/Clang's 128-bit integer (__extension__: not ISO C++, which -Wpedantic would flag).
+__extension__ using U128 = unsigned __int128;
+
 std::uint64_t Rng::below(std::uint64_t n) {
   // Lemire's nearly divisionless method: unbiased and platform independent.
-  unsigned __int128 m = static_cast<unsigned __int128>(next()) * n;
+  U128 m = static_cast<U128>(next()) * n;
   auto low = static_cast<std::uint64_t>(m);
   if (low < n) {
     const std::uint64_t threshold = (0 - n) % n;
     while (low < threshold) {
-      m = static_cast<unsigned __int128>(next()) * n;
+      m = static_cast<U128>(next()) * n;
       low = static_cast<std::uint64_t>(m);
     }
   }

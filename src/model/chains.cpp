@@ -44,16 +44,21 @@ std::vector<Sample> samples(const Contour& c, double step, const geometry::Box& 
 // coarse enough that a long outline costs at most a few thousand distance queries.
 double sample_step(const Contour& c) { return std::clamp(geometry::length(c) / 2000.0, 0.5, 5.0); }
 
-// Smallest distance from the samples of a (near b) to b, and where on a.
+// Smallest distance from the samples of a (near b) to b, and where on a; only distances up to
+// max_gap are measured (farther: infinity). b's segments indexed: up to 2000 samples against an
+// outline of hundreds of segments each.
 struct Nearest {
   double gap = std::numeric_limits<double>::infinity();
   double s = 0;
 };
-Nearest nearest(const Contour& a, const Contour& b, const geometry::Box& b_box, double max_gap) {
+Nearest nearest(const Contour& a, const geometry::SegmentSet& b, double max_gap) {
   Nearest best;
-  for (const auto& q : samples(a, sample_step(a), b_box.inflated(max_gap))) {
-    const double d = geometry::distance(b, q.p);
-    if (d < best.gap) best = {d, q.s};
+  for (const auto& q : samples(a, sample_step(a), b.box.inflated(max_gap))) {
+    b.index.visit(geometry::Box{q.p.x, q.p.y, q.p.x, q.p.y}.inflated(max_gap), [&](std::uint32_t k) {
+      const double d = geometry::closest_point(b.segments[k], q.p).distance;
+      if (d < best.gap) best = {d, q.s};
+      return true;
+    });
   }
   return best;
 }
@@ -191,6 +196,11 @@ std::vector<ChainLink> chain_links(const Nest& nest, const ChainOptions& options
   const geometry::StaticSpatialIndex index(boxes);
   std::vector<std::uint32_t> hits;
   std::vector<ChainLink> out;
+  std::vector<std::optional<geometry::SegmentSet>> sets(outers.size());  // built when first asked
+  const auto set_of = [&](std::size_t k) -> const geometry::SegmentSet& {
+    if (!sets[k]) sets[k] = geometry::make_segment_set(nest.contours[outers[k]].source.contour);
+    return *sets[k];
+  };
   for (std::size_t i = 0; i < outers.size(); ++i) {
     index.query(boxes[i].inflated(options.max_gap_mm), hits);
     for (auto h : hits) {
@@ -199,8 +209,8 @@ std::vector<ChainLink> chain_links(const Nest& nest, const ChainOptions& options
       const auto& b = nest.contours[outers[h]];
       // One inside the other's hole is no neighbour: a bridge would have to cross the hole.
       if (a.parent != b.parent) continue;
-      const double gap = std::min(nearest(a.source.contour, b.source.contour, b.box, options.max_gap_mm).gap,
-                                  nearest(b.source.contour, a.source.contour, a.box, options.max_gap_mm).gap);
+      const double gap = std::min(nearest(a.source.contour, set_of(h), options.max_gap_mm).gap,
+                                  nearest(b.source.contour, set_of(i), options.max_gap_mm).gap);
       if (gap > 0 && gap <= options.max_gap_mm) out.push_back({outers[i], outers[h], gap});
     }
   }

@@ -37,20 +37,21 @@ class ClusterResults {
   bool addPoint(double d2, std::uint32_t i) {
     const int b = p_.cluster_of(NodeId(static_cast<int>(i))).value();
     if (b == self_) return true;
-    for (auto& it : items_)
-      if (it.second == b) {
-        if (d2 < it.first) it.first = d2;
-        settle();
-        return true;
+    std::size_t at = items_.size();
+    for (std::size_t r = 0; r < items_.size(); ++r)
+      if (items_[r].second == b) {
+        if (!(d2 < items_[r].first)) return true;
+        at = r;
+        break;
       }
-    if (items_.size() < kn_) {
-      items_.emplace_back(d2, b);
-    } else if (d2 < items_.back().first) {
-      items_.back() = {d2, b};
-    } else {
-      return true;
+    if (at == items_.size()) {  // a new cluster: in when there is room, else in place of the worst
+      if (items_.size() < kn_) items_.emplace_back();
+      else if (!(d2 < items_.back().first)) return true;
+      at = items_.size() - 1;
     }
-    settle();
+    items_[at] = {d2, b};
+    // Keep nearest first: the changed entry moves up to its place.
+    for (; at > 0 && items_[at] < items_[at - 1]; --at) std::swap(items_[at], items_[at - 1]);
     return true;
   }
   double worstDist() const { return items_.size() < kn_ ? std::numeric_limits<double>::max() : items_.back().first; }
@@ -58,7 +59,6 @@ class ClusterResults {
   const std::vector<std::pair<double, int>>& items() const { return items_; }
 
  private:
-  void settle() { std::sort(items_.begin(), items_.end()); }  // kn is small (12)
   const Problem& p_;
   std::size_t kn_;
   int self_ = -1;

@@ -22,6 +22,8 @@ struct Cloud {
     return false;
   }
 };
+constexpr std::size_t kQueries = 8;  // per cluster
+
 using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>, Cloud, 2, std::uint32_t>;
 
 // nanoflann result set keeping the kn nearest distinct clusters other than `self` seen by one query:
@@ -77,8 +79,12 @@ void lists(const Problem& p, std::size_t kn, const std::vector<PlanarPoint>& sou
   std::vector<std::pair<double, int>> found;
   for (int a = 0; a < m; ++a) {
     found.clear();
-    for (NodeId u : p.nodes_of(ClusterId(a))) {
-      const PlanarPoint q = sources[u.index()];
+    // Up to kQueries of a's nodes, evenly spread (entries along one contour: the neighbours seen
+    // from a few of them are those seen from all, and each query visits ~kn clusters' points).
+    const auto nodes = p.nodes_of(ClusterId(a));
+    const std::size_t step = std::max<std::size_t>(1, (nodes.size() + kQueries - 1) / kQueries);
+    for (std::size_t r = 0; r < nodes.size(); r += step) {
+      const PlanarPoint q = sources[nodes[r].index()];
       const double qp[2] = {q.x, q.y};
       res.reset(a);
       tree.findNeighbors(res, qp, nanoflann::SearchParams());

@@ -213,6 +213,34 @@ TEST(MultiOptimize, CamKerfPiecesCoverTheOffsetContour) {
   fs::remove_all(dir);
 }
 
+// --objective cost (eq. 3, F = L_off C_off + L_on C_on + N_pt C_pt): the price of a pierce decides.
+// Cheap pierces: the frame in pieces wins; dear ones: it loses. F recomputed from the programs.
+TEST(MultiOptimize, CostObjectiveDecidesByThePiercePrice) {
+  const auto dir = temp_dir("multi-cost");
+  const auto dxf = write_frame(dir);
+  for (const double c_pt : {0.01, 5.0}) {
+    SCOPED_TRACE("C_pt " + format_fixed(c_pt, 2));
+    auto machine = nlohmann::json::parse(read_text(test_data("../../data/machines/bystar3015.json")));
+    machine["speed_table"] = fs::absolute(test_data("../../data/materials/bystar3015.json")).string();
+    machine["costs"] = {{"unit", "EUR"}, {"c_on_per_m", 0.5}, {"c_off_per_m", 0.5}, {"c_pt", c_pt}};
+    const auto profile = dir / "machine.json";
+    std::ofstream(profile) << machine.dump(2);
+    const OptRun run = optimize(dxf, dir, "--multi-segment --objective cost --machine " + profile.string());
+    ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
+    ProgramCheck check;
+    expect_admissible(dxf, run, 0.0, &check);
+    const double f = check.rapid_length / 1000 * 0.5 + check.cut_length / 1000 * 0.5 + check.probe.pierces * c_pt;
+    EXPECT_NEAR(run.report["cost"].get<double>(), f, 1e-9 * f);
+    const auto* multi = alternative(run.report, "multi");
+    ASSERT_NE(multi, nullptr);
+    const double f_multi = (*multi)["rapid_length_mm"].get<double>() / 1000 * 0.5 +
+                           (*multi)["cut_length_mm"].get<double>() / 1000 * 0.5 + (*multi)["pierces"].get<double>() * c_pt;
+    EXPECT_NEAR((*multi)["objective"].get<double>(), f_multi, 1e-9 * f_multi);
+    EXPECT_EQ(run.report["chosen"] == "multi", c_pt < 1) << run.report["alternatives"];
+  }
+  fs::remove_all(dir);
+}
+
 TEST(MultiOptimize, SameSeedSameBytes) {
   const auto dir = temp_dir("multi-det");
   const auto dxf = write_frame(dir);

@@ -27,6 +27,13 @@ std::string write_frame(const fs::path& dir) {
   return dxf;
 }
 
+// `cutroute demo`: the paper-like sheet, 21 contours.
+std::string write_demo(const fs::path& dir) {
+  const auto dxf = (dir / "demo.dxf").string();
+  EXPECT_EQ(run_command(cli_path() + " demo " + dxf).exit_code, 0);
+  return dxf;
+}
+
 // The cut contour index (nest order, sheet left out) of the frame: the longest one.
 std::size_t frame_index(const std::string& dxf) {
   auto loaded = io::load_nest(dxf, io::NestLoadOptions{});
@@ -123,8 +130,7 @@ TEST(MultiOptimize, AutoLeavesMultiOutUnlessAsked) {
 // On the demo sheet the extra pierces cost more than the rapids they save: multi loses.
 TEST(MultiOptimize, DemoSheetKeepsWholeContours) {
   const auto dir = temp_dir("multi-demo");
-  const auto dxf = (dir / "demo.dxf").string();
-  ASSERT_EQ(run_command(cli_path() + " demo " + dxf).exit_code, 0);
+  const auto dxf = write_demo(dir);
   const OptRun run = optimize(dxf, dir, "--multi-segment");
   ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
   const auto* multi = alternative(run.report, "multi");
@@ -141,8 +147,7 @@ TEST(MultiOptimize, DemoSheetKeepsWholeContours) {
 // covered once by its pieces, holes and inner parts before any piece, leads in scrap.
 TEST(MultiOptimize, DemoSheetInPiecesIsAdmissible) {
   const auto dir = temp_dir("multi-demo-forced");
-  const auto dxf = (dir / "demo.dxf").string();
-  ASSERT_EQ(run_command(cli_path() + " demo " + dxf).exit_code, 0);
+  const auto dxf = write_demo(dir);
   const OptRun run = optimize(dxf, dir, "--technique multi");
   ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
   EXPECT_EQ(run.report["chosen"], "multi");

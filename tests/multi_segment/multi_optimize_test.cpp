@@ -2,6 +2,7 @@
 // covered by its pieces, holes first, leads in scrap), the GSCCP choice, options and their errors.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -294,6 +295,40 @@ TEST(MultiOptimize, BadCombinationsAreRefused) {
   EXPECT_FALSE(fs::exists(prog));
   fs::remove_all(dir);
 }
+
+}  // namespace
+}  // namespace cutroute::test
+
+namespace cutroute::test {
+namespace {
+
+// Every drawing of ../shared/data/dxf cut with --technique multi (half a second of solver time):
+// where some contour is long enough the program cuts it in pieces that cover it, holes first,
+// leads in scrap; where none is, the refusal says so (exit 2).
+class CorpusMulti : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(CorpusMulti, ProgramIsAdmissibleOrNotAvailable) {
+  const std::string dxf = shared("data/dxf/" + GetParam() + ".dxf");
+  const auto dir = temp_dir(GetParam() + "-multi");
+  const OptRun run = optimize(dxf, dir, "--allow-crossing --technique multi", sanitized() ? "2" : "0.5");
+  if (run.cmd.exit_code == 2) {
+    EXPECT_NE(run.cmd.err.find("multi-segment cutting not available"), std::string::npos) << run.cmd.err;
+  } else {
+    ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
+    ProgramCheck check;
+    expect_admissible(dxf, run, 0.0, &check);
+    EXPECT_GE(check.split_contours, 1);
+  }
+  fs::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllFiles, CorpusMulti, ::testing::ValuesIn(corpus()),
+                         [](const ::testing::TestParamInfo<std::string>& i) {
+                           std::string n = i.param;
+                           for (char& c : n)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return n;
+                         });
 
 }  // namespace
 }  // namespace cutroute::test

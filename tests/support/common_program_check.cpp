@@ -10,6 +10,7 @@
 #include <cutroute/geometry/segment_set.hpp>
 #include <cutroute/geometry/spatial_index.hpp>
 
+#include "support/move_index.hpp"
 #include "support/nest_facts.hpp"
 
 namespace cutroute::test {
@@ -128,32 +129,17 @@ CommonProgramCheck check_common_program(const model::Nest& nest, const std::stri
     }
   }
 
-  // When is each boundary point first cut? (Index into `cuts`; moves found through their boxes.)
-  std::vector<geometry::Box> move_boxes;
-  for (const auto c : cuts) {
-    const auto& m = moves[c];
-    geometry::Box b;
-    for (int j = 0; j <= 16; ++j) {
-      Vec2 q;
-      probe_point(m, j / 16.0, q.x, q.y);
-      b.add(q);
-    }
-    // Between two of these points an arc (sweep up to 360°) strays by less than 5 % of their
-    // distance along it (the sagitta of 22.5°): the margin.
-    move_boxes.push_back(b.inflated(on_mm + 0.05 * m.length / 16.0));
-  }
-  const geometry::StaticSpatialIndex move_index(move_boxes);
+  // When is each boundary point first cut? (Index into `cuts`.)
+  std::vector<const ProbeMove*> cut_moves;
+  for (const auto c : cuts) cut_moves.push_back(&moves[c]);
+  const MoveIndex move_index(std::move(cut_moves), on_mm);
   std::vector<std::vector<Vec2>> samples(parts.size());
   std::vector<std::vector<std::size_t>> cut_at(parts.size());
   std::vector<std::size_t> done(parts.size(), 0);
   for (std::size_t k = 0; k < parts.size(); ++k) {
     samples[k] = boundary_samples(parts[k]->source.contour, 0.5);
     for (const Vec2 q : samples[k]) {
-      std::size_t first = cuts.size();
-      move_index.visit(geometry::Box{q.x, q.y, q.x, q.y}, [&](std::uint32_t c) {
-        if (c < first && probe_distance(moves[cuts[c]], q.x, q.y) <= on_mm) first = c;
-        return true;
-      });
+      const std::size_t first = move_index.first_within(q, on_mm);
       if (first == cuts.size()) {
         out.failures.push_back("contour " + std::to_string(k + 1) + ": boundary point (" + std::to_string(q.x) + ", " +
                                std::to_string(q.y) + ") is never cut");

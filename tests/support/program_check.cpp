@@ -11,6 +11,7 @@
 #include <cutroute/geometry/segment_set.hpp>
 #include <cutroute/geometry/spatial_index.hpp>
 
+#include "support/move_index.hpp"
 #include "support/nest_facts.hpp"
 
 namespace cutroute::test {
@@ -221,20 +222,15 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
   // Every boundary point of contour k within on_contour_mm of a move of its runs that lies on it
   // (several runs: pieces that must meet without a gap).
   auto check_pieces_cover = [&](std::size_t k, const std::string& name) {
+    std::vector<const ProbeMove*> on_k;
+    for (const int run : runs_of[k])
+      for (const auto& [m, on] : run_moves[static_cast<std::size_t>(run)])
+        if (on == static_cast<int>(k)) on_k.push_back(m);
+    const MoveIndex index_k(std::move(on_k), opt.on_contour_mm);
     int missed = 0;
     Vec2 first_missed;
-    for (const Vec2 q : boundary_samples(cut[k]->source.contour, 0.5)) {
-      bool hit = false;
-      for (const int run : runs_of[k]) {
-        for (const auto& [m, on] : run_moves[static_cast<std::size_t>(run)])
-          if (on == static_cast<int>(k) && probe_distance(*m, q.x, q.y) <= opt.on_contour_mm) {
-            hit = true;
-            break;
-          }
-        if (hit) break;
-      }
-      if (!hit && missed++ == 0) first_missed = q;
-    }
+    for (const Vec2 q : boundary_samples(cut[k]->source.contour, 0.5))
+      if (index_k.first_within(q, opt.on_contour_mm) == index_k.size() && missed++ == 0) first_missed = q;
     if (missed > 0)
       out.failures.push_back(name + ": " + std::to_string(missed) + " boundary points cut by none of its " +
                              std::to_string(runs_of[k].size()) + " runs, e.g. (" + format_fixed(first_missed.x, 4) + ", " +

@@ -66,6 +66,7 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
       ++segs_on[c];
       last_seg[c] = k;
     }
+  std::vector<std::size_t> pieces_drawn(nest.contours.size(), 0);
   geometry::Vec2 at = path.start;
   std::vector<geometry::Vec2> placed;  // label positions so far
   for (std::size_t k = 0; k < path.segments.size(); ++k) {
@@ -79,8 +80,10 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
       const bool shared = piece.role == nc::PieceRole::contour && piece.contour >= 0 &&
                           static_cast<std::size_t>(piece.contour) < segs_on.size() && segs_on[static_cast<std::size_t>(piece.contour)] > 1;
       // Bridges (chain cutting) drawn thicker in violet: a cut through scrap that is easy to miss;
-      // pieces of a contour cut in several segments in orange, each with its own pierce number.
-      const char* colour = lead ? "#1a9c3a" : bridge ? "#8e44ad" : shared ? "#d35400" : "#c0392b";
+      // pieces of a contour cut in several segments in orange and ochre by turns (each with its
+      // own pierce number), so that two pieces meeting at a split point look different.
+      const bool odd = shared && pieces_drawn[static_cast<std::size_t>(piece.contour)]++ % 2 == 1;
+      const char* colour = lead ? "#1a9c3a" : bridge ? "#8e44ad" : shared ? (odd ? "#b7950b" : "#d35400") : "#c0392b";
       const char* width = lead ? "1.5" : bridge ? "2.4" : shared ? "2.0" : "1.6";
       const char* cls = bridge ? "class=\"bridge\" " : shared ? "class=\"piece\" " : "";
       svg.add_contour(piece.path, std::string("fill=\"none\" stroke=\"") + colour + "\" stroke-width=\"" + width + "\" " + cls + kNs);

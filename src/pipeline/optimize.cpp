@@ -355,6 +355,9 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   if (o.rules.any() && o.technique != Technique::automatic && o.technique != Technique::standard)
     return make_error(std::string("the shop rules work with --technique standard only, not ") + to_string(o.technique));
   if (o.rules.any() && o.multi_segment) return make_error("the shop rules work with --technique standard only, not with --multi-segment");
+  if (o.multi_segment && o.technique != Technique::automatic && o.technique != Technique::multi)
+    return make_error(std::string("--multi-segment adds multi-segment cutting to --technique auto; not with --technique ") +
+                      to_string(o.technique) + " (use --technique multi to cut with it alone)");
   if (o.technique == Technique::automatic && !o.rules.any()) wanted = {Technique::standard, Technique::chain, Technique::common};
   else if (o.technique == Technique::automatic) wanted = {Technique::standard};
   else wanted = {o.technique};

@@ -279,6 +279,9 @@ TEST(MultiOptimize, BadCombinationsAreRefused) {
   r = run_command(base + "--multi-segment --part-rigidity");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("not with --multi-segment"), std::string::npos) << r.err;
+  r = run_command(base + "--technique chain --multi-segment");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("not with --technique chain"), std::string::npos) << r.err;
   r = run_command(base + "--technique multi --multi-min-span 2000");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("multi-segment cutting not available"), std::string::npos) << r.err;

@@ -42,6 +42,8 @@ struct Opts {
   bool allow_kerf_overlap = false;
   std::string technique = "auto";
   double chain_gap = 20;
+  bool multi_segment = false;
+  model::MultiSegmentOptions multi;
   InputOptions input;
   pipeline::ShopRules rules;  // shop rules (docs/SHOP-RULES.md)
   std::string sheet_clamp;
@@ -127,8 +129,11 @@ int run(const Opts& o) {
   po.technique = o.technique == "standard" ? pipeline::Technique::standard
                  : o.technique == "chain"  ? pipeline::Technique::chain
                  : o.technique == "common" ? pipeline::Technique::common
+                 : o.technique == "multi"  ? pipeline::Technique::multi
                                            : pipeline::Technique::automatic;
   po.chain.max_gap_mm = o.chain_gap;
+  po.multi_segment = o.multi_segment;
+  po.multi = o.multi;
   po.rules = o.rules;  // shop rules
   if (!o.sheet_clamp.empty()) po.rules.sheet_clamp = pipeline::parse_clamp_side(o.sheet_clamp);
 
@@ -287,11 +292,21 @@ void add_optimize(CLI::App& root, Commands& out) {
                 "With --kerf-mode cam, cut contours closer than the kerf anyway (one cuts into the other; warnings)");
   app->add_option("--technique", o->technique,
                   "Basic segments: standard (one per contour), chain (neighbouring parts joined by bridges), "
-                  "common (shared edges cut once), auto (each available one solved, the fastest kept)")
-      ->check(CLI::IsMember({"standard", "chain", "common", "auto"}))
+                  "common (shared edges cut once), multi (long contours cut in pieces, ECP), auto (each available "
+                  "one solved, the fastest kept; multi only with --multi-segment)")
+      ->check(CLI::IsMember({"standard", "chain", "common", "multi", "auto"}))
       ->capture_default_str();
   app->add_option("--chain-gap", o->chain_gap, "Chain cutting: largest gap between parts bridged [mm]")
       ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str();
+  app->add_flag("--multi-segment", o->multi_segment,
+                "Multi-segment cutting (ECP): --technique auto also compares long contours cut in pieces");
+  app->add_option("--multi-min-span", o->multi.min_span_mm,
+                  "Multi-segment cutting: split a contour only where its split points lie this far apart [mm]")
+      ->check(CLI::Range(0.0, 1e6))
+      ->capture_default_str();
+  app->add_option("--multi-pieces", o->multi.max_pieces, "Multi-segment cutting: pieces per split contour")
+      ->check(CLI::Range(2, 8))
       ->capture_default_str();
   app->add_flag("-q,--quiet", o->quiet, "No progress and no summary");
   add_shop_rule_options(app, o->rules, o->sheet_clamp);

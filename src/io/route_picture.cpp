@@ -55,6 +55,18 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
   }
   svg.end_group();
 
+  // Contours whose cut is shared out over several segments (multi-segment cutting, common lines):
+  // their pieces are drawn apart (class "piece"), so that where one stops and the next starts shows.
+  std::vector<std::size_t> last_seg(nest.contours.size(), 0), segs_on(nest.contours.size(), 0);
+  for (std::size_t k = 0; k < path.segments.size(); ++k)
+    for (const auto& piece : path.segments[k].pieces) {
+      if (piece.role != nc::PieceRole::contour || piece.contour < 0) continue;
+      const auto c = static_cast<std::size_t>(piece.contour);
+      if (c >= segs_on.size() || (segs_on[c] > 0 && last_seg[c] == k)) continue;
+      ++segs_on[c];
+      last_seg[c] = k;
+    }
+  std::vector<std::size_t> pieces_drawn(nest.contours.size(), 0);
   geometry::Vec2 at = path.start;
   std::vector<geometry::Vec2> placed;  // label positions so far
   for (std::size_t k = 0; k < path.segments.size(); ++k) {
@@ -65,11 +77,16 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
     for (const auto& piece : s.pieces) {
       const bool lead = piece.role == nc::PieceRole::lead_in || piece.role == nc::PieceRole::lead_out;
       const bool bridge = piece.role == nc::PieceRole::bridge;
-      // Bridges (chain cutting) drawn thicker in violet: a cut through scrap that is easy to miss.
-      const char* colour = lead ? "#1a9c3a" : bridge ? "#8e44ad" : "#c0392b";
-      const char* width = lead ? "1.5" : bridge ? "2.4" : "1.6";
-      svg.add_contour(piece.path, std::string("fill=\"none\" stroke=\"") + colour + "\" stroke-width=\"" + width +
-                                      "\" " + (bridge ? "class=\"bridge\" " : "") + kNs);
+      const bool shared = piece.role == nc::PieceRole::contour && piece.contour >= 0 &&
+                          static_cast<std::size_t>(piece.contour) < segs_on.size() && segs_on[static_cast<std::size_t>(piece.contour)] > 1;
+      // Bridges (chain cutting) drawn thicker in violet: a cut through scrap that is easy to miss;
+      // pieces of a contour cut in several segments in orange and ochre by turns (each with its
+      // own pierce number), so that two pieces meeting at a split point look different.
+      const bool odd = shared && pieces_drawn[static_cast<std::size_t>(piece.contour)]++ % 2 == 1;
+      const char* colour = lead ? "#1a9c3a" : bridge ? "#8e44ad" : shared ? (odd ? "#b7950b" : "#d35400") : "#c0392b";
+      const char* width = lead ? "1.5" : bridge ? "2.4" : shared ? "2.0" : "1.6";
+      const char* cls = bridge ? "class=\"bridge\" " : shared ? "class=\"piece\" " : "";
+      svg.add_contour(piece.path, std::string("fill=\"none\" stroke=\"") + colour + "\" stroke-width=\"" + width + "\" " + cls + kNs);
     }
     svg.add_circle(s.pierce, mark_mm, "fill=\"#f39c12\" stroke=\"#7a4a00\" stroke-width=\"0.6\" " + std::string(kNs));
     // Numbers of pierces that stand close together are stacked upwards instead of overprinted.

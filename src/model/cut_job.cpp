@@ -34,6 +34,7 @@ const char* to_string(PieceKind k) {
     case PieceKind::contour: return "contour";
     case PieceKind::bridge: return "bridge";
     case PieceKind::common_edge: return "common_edge";
+    case PieceKind::contour_part: return "contour_part";
   }
   return "contour";
 }

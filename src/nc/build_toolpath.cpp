@@ -23,11 +23,20 @@ Toolpath build_toolpath(const model::Nest& nest, const std::vector<const model::
   tp.end = options.end;
   tp.pierce_time_s = options.pierce_time_s;
   tp.segments.reserve(sequence.size());
+  // Contours cut in several pieces (multi-segment cutting): how many, to number them in the labels.
+  std::vector<int> part_count(nest.contours.size(), 0), part_done(nest.contours.size(), 0);
+  const auto is_part = [](const model::EntryCandidate& e) {
+    return e.contour.valid() && !e.pieces.empty() && e.pieces.front().kind == model::PieceKind::contour_part;
+  };
+  for (const auto* e : sequence)
+    if (is_part(*e)) ++part_count[e->contour.index()];
   for (const auto* e : sequence) {
     CutSegment s;
     s.pierce = e->pierce;
     s.feed_mm_min = options.feed_mm_min;
     s.label = contour_label(nest, e->contour);
+    if (is_part(*e))
+      s.label += ", piece " + std::to_string(++part_done[e->contour.index()]) + " of " + std::to_string(part_count[e->contour.index()]);
     for (const auto& piece : e->pieces) {
       if (piece.kind == model::PieceKind::bridge || piece.contour == e->contour) continue;
       const std::string more = contour_label(nest, piece.contour);
@@ -36,7 +45,9 @@ Toolpath build_toolpath(const model::Nest& nest, const std::vector<const model::
     // A common line (common_edge pieces, bridges across kerf gaps) is a centre line: cut without
     // compensation, the kerf takes half from each part (or exactly the gap they were drawn apart).
     const bool centre_line = std::none_of(e->pieces.begin(), e->pieces.end(),
-                                          [](const model::SegmentPiece& p) { return p.kind == model::PieceKind::contour; });
+                                          [](const model::SegmentPiece& p) {
+                                            return p.kind == model::PieceKind::contour || p.kind == model::PieceKind::contour_part;
+                                          });
     if (options.kerf == KerfMode::controller && !centre_line) {
       const auto role = nest.contours[e->contour].role;
       const bool scrap_left = role == model::ContourRole::outer ? e->clockwise : !e->clockwise;

@@ -14,6 +14,7 @@
 #include <cutroute/model/common_lines.hpp>
 #include <cutroute/model/cut_job.hpp>
 #include <cutroute/model/kerf_offset.hpp>
+#include <cutroute/model/multi_segment.hpp>
 #include <cutroute/nc/frames.hpp>
 #include <cutroute/nc/post_dialect.hpp>
 #include <cutroute/solve/solve.hpp>
@@ -29,6 +30,7 @@ const char* to_string(Technique t) {
     case Technique::chain: return "chain";
     case Technique::common: return "common";
     case Technique::automatic: return "auto";
+    case Technique::multi: return "multi";
   }
   return "auto";
 }
@@ -206,6 +208,7 @@ Result<model::CutJob> build_job(const model::Nest& nest, const model::EntryPlann
       if (o.kerf_mode == nc::KerfMode::cam)
         return make_error("common-line cutting runs on the centre line between parts: not with --kerf-mode cam (use controller)");
       return model::make_common_job(nest, entries, model::CommonLineOptions{}, standard);
+    case Technique::multi: return model::make_multi_job(nest, entries, o.multi, standard);
     case Technique::automatic: break;
   }
   return make_error("no cut job for technique 'auto'");
@@ -367,9 +370,14 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   // technique is built (asked for another one explicitly: an error, not a silent change).
   if (o.rules.any() && o.technique != Technique::automatic && o.technique != Technique::standard)
     return make_error(std::string("the shop rules work with --technique standard only, not ") + to_string(o.technique));
+  if (o.rules.any() && o.multi_segment) return make_error("the shop rules work with --technique standard only, not with --multi-segment");
+  if (o.multi_segment && o.technique != Technique::automatic && o.technique != Technique::multi)
+    return make_error(std::string("--multi-segment adds multi-segment cutting to --technique auto; not with --technique ") +
+                      to_string(o.technique) + " (use --technique multi to cut with it alone)");
   if (o.technique == Technique::automatic && !o.rules.any()) wanted = {Technique::standard, Technique::chain, Technique::common};
   else if (o.technique == Technique::automatic) wanted = {Technique::standard};
   else wanted = {o.technique};
+  if (o.technique == Technique::automatic && o.multi_segment) wanted.push_back(Technique::multi);  // ECP only when asked for
   // One planner (the per-contour geometry of the nest) for every job, the refinement and the leads.
   const model::EntryPlanner planner(cut_nest, s.entries);
   std::vector<model::CutJob> jobs;

@@ -78,14 +78,22 @@ inline void expect_admissible(const std::string& dxf, const OptRun& run, double 
   opt.clearance_mm = 1.0;  // kerf 0.15 + 1 mm for the default AMg3M 1 mm job
   opt.kerf_offset_mm = kerf_offset_mm;
   if (kerf_offset_mm > 0) opt.on_contour_mm = on_contour_mm;
+  // Multi-segment cutting: a long contour in up to 8 pieces (--multi-pieces), covering it together.
+  const bool multi = run.report["chosen"] == "multi";
+  if (multi) opt.max_runs_per_contour = 8;
   const auto check = check_program(loaded->nest, run.program, opt);
   for (const auto& f : check.failures) ADD_FAILURE() << dxf << ": " << f;
   std::size_t cut_contours = 0;
   for (const auto& c : loaded->nest.contours) cut_contours += c.role != model::ContourRole::sheet;
   EXPECT_EQ(static_cast<std::size_t>(check.contours_cut), cut_contours);
-  // One pierce per basic segment; a chain of k contours has k - 1 bridges.
+  // One pierce per basic segment; a chain of k contours has k - 1 bridges; a contour cut in k pieces k runs.
   EXPECT_EQ(check.runs, run.report["basic_segments"].get<int>());
-  EXPECT_EQ(static_cast<std::size_t>(check.runs + check.bridges), cut_contours);
+  std::size_t extra_pieces = 0;
+  for (int r : check.runs_per_contour) extra_pieces += multi && r > 1 ? static_cast<std::size_t>(r - 1) : 0;
+  EXPECT_EQ(static_cast<std::size_t>(check.runs + check.bridges), cut_contours + extra_pieces);
+  if (!multi) {
+    EXPECT_EQ(check.split_contours, 0);
+  }
   if (run.report["chosen"] == "standard") {
     EXPECT_EQ(check.bridges, 0);
   }

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <iterator>
 #include <cmath>
-#include <numbers>
 #include <numeric>
 
 #include <cutroute/geometry/contour.hpp>
@@ -11,45 +10,13 @@
 #include <cutroute/geometry/segment_set.hpp>
 #include <cutroute/geometry/spatial_index.hpp>
 
+#include "support/move_index.hpp"
+#include "support/nest_facts.hpp"
+
 namespace cutroute::test {
 namespace {
 
 using geometry::Vec2;
-constexpr double kTwoPi = 2 * std::numbers::pi;
-
-// Exact distance from q to a probed line or arc move.
-double move_distance(const ProbeMove& m, Vec2 q) {
-  const Vec2 a{m.x0, m.y0}, b{m.x1, m.y1};
-  if (m.arc == 0) {
-    const Vec2 d = b - a;
-    const double l2 = geometry::dot(d, d);
-    const double t = l2 > 0 ? std::clamp(geometry::dot(q - a, d) / l2, 0.0, 1.0) : 0.0;
-    return geometry::distance(q, a + d * t);
-  }
-  const Vec2 c{m.cx, m.cy};
-  const double r = geometry::distance(a, c);
-  const auto ang = [&](Vec2 p) { return std::atan2(p.y - c.y, p.x - c.x); };
-  const auto wrap = [](double x) {
-    x = std::fmod(x, kTwoPi);
-    return x < 0 ? x + kTwoPi : x;
-  };
-  double sweep = wrap(m.arc > 0 ? ang(b) - ang(a) : ang(a) - ang(b));
-  if (sweep < 1e-12) sweep = kTwoPi;  // full circle
-  const double at = wrap(m.arc > 0 ? ang(q) - ang(a) : ang(a) - ang(q));
-  if (at <= sweep) return std::abs(geometry::distance(q, c) - r);
-  return std::min(geometry::distance(q, a), geometry::distance(q, b));
-}
-
-// Points every `step` mm along a contour, from its vertices (lines interpolated, arcs by angle).
-std::vector<Vec2> boundary_samples(const geometry::Contour& c, double step) {
-  std::vector<Vec2> out;
-  for (std::size_t i = 0; i < geometry::segment_count(c); ++i) {
-    const auto s = geometry::segment(c, i);
-    const int k = std::max(2, static_cast<int>(s.length() / step));
-    for (int j = 0; j < k; ++j) out.push_back(s.point_at(static_cast<double>(j) / k));
-  }
-  return out;
-}
 
 struct UnionFind {
   std::vector<std::size_t> p;
@@ -162,32 +129,17 @@ CommonProgramCheck check_common_program(const model::Nest& nest, const std::stri
     }
   }
 
-  // When is each boundary point first cut? (Index into `cuts`; moves found through their boxes.)
-  std::vector<geometry::Box> move_boxes;
-  for (const auto c : cuts) {
-    const auto& m = moves[c];
-    geometry::Box b;
-    for (int j = 0; j <= 16; ++j) {
-      Vec2 q;
-      probe_point(m, j / 16.0, q.x, q.y);
-      b.add(q);
-    }
-    // Between two of these points an arc (sweep up to 360°) strays by less than 5 % of their
-    // distance along it (the sagitta of 22.5°): the margin.
-    move_boxes.push_back(b.inflated(on_mm + 0.05 * m.length / 16.0));
-  }
-  const geometry::StaticSpatialIndex move_index(move_boxes);
+  // When is each boundary point first cut? (Index into `cuts`.)
+  std::vector<const ProbeMove*> cut_moves;
+  for (const auto c : cuts) cut_moves.push_back(&moves[c]);
+  const MoveIndex move_index(std::move(cut_moves), on_mm);
   std::vector<std::vector<Vec2>> samples(parts.size());
   std::vector<std::vector<std::size_t>> cut_at(parts.size());
   std::vector<std::size_t> done(parts.size(), 0);
   for (std::size_t k = 0; k < parts.size(); ++k) {
     samples[k] = boundary_samples(parts[k]->source.contour, 0.5);
     for (const Vec2 q : samples[k]) {
-      std::size_t first = cuts.size();
-      move_index.visit(geometry::Box{q.x, q.y, q.x, q.y}, [&](std::uint32_t c) {
-        if (c < first && move_distance(moves[cuts[c]], q) <= on_mm) first = c;
-        return true;
-      });
+      const std::size_t first = move_index.first_within(q, on_mm);
       if (first == cuts.size()) {
         out.failures.push_back("contour " + std::to_string(k + 1) + ": boundary point (" + std::to_string(q.x) + ", " +
                                std::to_string(q.y) + ") is never cut");

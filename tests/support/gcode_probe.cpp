@@ -1,5 +1,6 @@
 #include "support/gcode_probe.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -128,6 +129,26 @@ void probe_point(const ProbeMove& m, double t, double& x, double& y) {
   }
   x = m.cx + r * std::cos(a0 + sweep * t);
   y = m.cy + r * std::sin(a0 + sweep * t);
+}
+
+double probe_distance(const ProbeMove& m, double x, double y) {
+  if (m.arc == 0) {
+    const double dx = m.x1 - m.x0, dy = m.y1 - m.y0, l2 = dx * dx + dy * dy;
+    const double t = l2 > 0 ? std::clamp(((x - m.x0) * dx + (y - m.y0) * dy) / l2, 0.0, 1.0) : 0.0;
+    return std::hypot(x - (m.x0 + dx * t), y - (m.y0 + dy * t));
+  }
+  const double two_pi = 2 * std::acos(-1.0);
+  const double r = std::hypot(m.x0 - m.cx, m.y0 - m.cy);
+  const auto ang = [&](double px, double py) { return std::atan2(py - m.cy, px - m.cx); };
+  const auto wrap = [&](double a) {
+    a = std::fmod(a, two_pi);
+    return a < 0 ? a + two_pi : a;
+  };
+  double sweep = wrap(m.arc > 0 ? ang(m.x1, m.y1) - ang(m.x0, m.y0) : ang(m.x0, m.y0) - ang(m.x1, m.y1));
+  if (sweep < 1e-12) sweep = two_pi;  // full circle
+  const double at = wrap(m.arc > 0 ? ang(x, y) - ang(m.x0, m.y0) : ang(m.x0, m.y0) - ang(x, y));
+  if (at <= sweep) return std::abs(std::hypot(x - m.cx, y - m.cy) - r);
+  return std::min(std::hypot(x - m.x0, y - m.y0), std::hypot(x - m.x1, y - m.y1));
 }
 
 }  // namespace cutroute::test

@@ -36,4 +36,7 @@ ProbeResult probe_gcode(const std::string& program);
 // Point at fraction t in [0,1] of a move (for "which contour does this cut lie on" checks).
 void probe_point(const ProbeMove& m, double t, double& x, double& y);
 
+// Exact distance from (x, y) to a move (a line, or an arc within its sweep, else its nearer end) [mm].
+double probe_distance(const ProbeMove& m, double x, double y);
+
 }  // namespace cutroute::test

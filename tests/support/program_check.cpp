@@ -11,6 +11,9 @@
 #include <cutroute/geometry/segment_set.hpp>
 #include <cutroute/geometry/spatial_index.hpp>
 
+#include "support/move_index.hpp"
+#include "support/nest_facts.hpp"
+
 namespace cutroute::test {
 namespace {
 
@@ -177,15 +180,16 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
 
   // With a kerf offset: the run passes within `off` of every drawn point where the tool fits, and
   // is no longer than the offset curve can be.
-  auto check_offset_cover = [&](std::size_t k, int run, const std::string& name, double cut_len, double len) {
+  auto check_offset_cover = [&](std::size_t k, const std::string& name, double cut_len, double len) {
     const bool hole = cut[k]->role == model::ContourRole::hole;
-    const double most = len + (hole ? -1 : 1) * 2 * std::numbers::pi * off + opt.max_overcut_mm + 1e-3;
+    const auto runs = static_cast<double>(runs_of[k].size());
+    const double most = len + (hole ? -1 : 1) * 2 * std::numbers::pi * off + runs * opt.max_overcut_mm + 1e-3;
     if (cut_len > most) out.failures.push_back(name + " is cut over " + format_fixed(cut_len, 3) + " mm (at most " +
                                                format_fixed(most, 3) + " with the kerf offset): twice?");
     std::vector<geometry::Segment> path;
-    for (const auto& [m, on] : run_moves[static_cast<std::size_t>(run)]) {
-      if (on == static_cast<int>(k)) path.push_back(probe_segment(*m));
-    }
+    for (const int run : runs_of[k])
+      for (const auto& [m, on] : run_moves[static_cast<std::size_t>(run)])
+        if (on == static_cast<int>(k)) path.push_back(probe_segment(*m));
     // Indexed: spline outlines have thousands of arcs, and every drawn point asks for its distance.
     std::vector<geometry::Box> path_boxes;
     path_boxes.reserve(path.size());
@@ -223,8 +227,27 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
                              format_fixed(first_missed.x, 4) + ", " + format_fixed(first_missed.y, 4) + ")");
   };
 
-  // Every contour once, whole, in one run.
-  std::vector<int> run_of(cut.size(), -1);
+  // Every boundary point of contour k within on_contour_mm of a move of its runs that lies on it
+  // (several runs: pieces that must meet without a gap).
+  auto check_pieces_cover = [&](std::size_t k, const std::string& name) {
+    std::vector<const ProbeMove*> on_k;
+    for (const int run : runs_of[k])
+      for (const auto& [m, on] : run_moves[static_cast<std::size_t>(run)])
+        if (on == static_cast<int>(k)) on_k.push_back(m);
+    const MoveIndex index_k(std::move(on_k), opt.on_contour_mm);
+    int missed = 0;
+    Vec2 first_missed;
+    for (const Vec2 q : boundary_samples(cut[k]->source.contour, 0.5))
+      if (index_k.first_within(q, opt.on_contour_mm) == index_k.size() && missed++ == 0) first_missed = q;
+    if (missed > 0)
+      out.failures.push_back(name + ": " + std::to_string(missed) + " boundary points cut by none of its " +
+                             std::to_string(runs_of[k].size()) + " runs, e.g. (" + format_fixed(first_missed.x, 4) + ", " +
+                             format_fixed(first_missed.y, 4) + ")");
+  };
+
+  // Every contour once, whole, in one run (or in several pieces that cover it together).
+  std::vector<int> run_of(cut.size(), -1), last_run_of(cut.size(), -1);
+  out.runs_per_contour.assign(cut.size(), 0);
   for (std::size_t k = 0; k < cut.size(); ++k) {
     const double len = geometry::length(cut[k]->source.contour);
     const std::string name = "contour " + std::to_string(k + 1) + " (" + model::to_string(cut[k]->role) + ", length " +
@@ -237,27 +260,34 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
     const bool tabbed = opt.tabs > 0 && cut[k]->role == model::ContourRole::outer;
     const std::size_t want_runs = tabbed ? static_cast<std::size_t>(opt.tabs) + 1 : 1;
     const double gaps = tabbed ? opt.tabs * opt.tab_width_mm : 0.0;
-    if (runs_of[k].size() != want_runs)
-      out.failures.push_back(name + " is cut in " + std::to_string(runs_of[k].size()) + " runs (want " + std::to_string(want_runs) + ")");
+    const std::size_t runs = runs_of[k].size();
+    const bool pieces = !tabbed && runs > 1 && runs <= static_cast<std::size_t>(std::max(1, opt.max_runs_per_contour));
+    if (runs != want_runs && !pieces)
+      out.failures.push_back(name + " is cut in " + std::to_string(runs) + " runs (want " + std::to_string(want_runs) + ")");
     run_of[k] = *runs_of[k].begin();
+    last_run_of[k] = *runs_of[k].rbegin();
+    out.runs_per_contour[k] = static_cast<int>(runs);
+    out.split_contours += pieces;
+    const double overcuts = pieces ? static_cast<double>(runs) * opt.max_overcut_mm : opt.max_overcut_mm;
     if (off > 0) {
-      check_offset_cover(k, run_of[k], name, covered[k], len);
+      check_offset_cover(k, name, covered[k], len);
     } else {
       // Every vertex is rounded to the dialect's resolution (1 µm), so a contour's cut length may
       // differ from the drawing's by a few µm; a real gap would be a tenth of a kerf or more.
       if (covered[k] < len - gaps - 0.01 - len * 1e-5) out.failures.push_back(name + " is cut only over " + format_fixed(covered[k], 3) + " mm");
-      if (covered[k] > len - gaps + opt.max_overcut_mm + 1e-3) out.failures.push_back(name + " is cut over " + format_fixed(covered[k], 3) + " mm: twice?");
+      if (covered[k] > len - gaps + overcuts + 1e-3) out.failures.push_back(name + " is cut over " + format_fixed(covered[k], 3) + " mm: twice?");
+      if (pieces) check_pieces_cover(k, name);
     }
     ++out.contours_cut;
   }
 
-  // Precedence: everything inside a contour is cut before it.
+  // Precedence: everything inside a contour is cut before it (before any of its runs).
   for (std::size_t k = 0; k < cut.size(); ++k) {
     const auto& parent = cut[k]->parent;
     if (!parent.valid() || run_of[k] < 0) continue;
     const int pk = cut_of[parent.index()];
     if (pk < 0 || run_of[static_cast<std::size_t>(pk)] < 0) continue;
-    if (run_of[k] > run_of[static_cast<std::size_t>(pk)])
+    if (last_run_of[k] > run_of[static_cast<std::size_t>(pk)])
       out.failures.push_back("contour " + std::to_string(k + 1) + " is cut after the contour around it (" +
                              std::to_string(pk + 1) + ")");
   }

@@ -23,6 +23,10 @@ struct ProgramCheckOptions {
   // tab_width_mm in total tabs * tab_width_mm (0: no tabs, each contour in one run, whole).
   int tabs = 0;
   double tab_width_mm = 0.0;      // [mm]
+  // Multi-segment cutting: a contour may be cut in up to this many runs (pieces), which together
+  // cover it: every boundary point (sampled every 0.5 mm) lies on a cut move of one of them, and
+  // their cut is no longer than the contour plus one overcut per run. 1: one run, whole.
+  int max_runs_per_contour = 1;
 };
 
 struct ProgramCheck {
@@ -33,14 +37,17 @@ struct ProgramCheck {
   double rapid_length = 0;             // [mm]
   std::vector<int> arc_moves;          // per cut contour (nest order, sheet left out): G2/G3 moves on it
   int bridges = 0;                     // moves through scrap from one contour of a run to the next
+  int split_contours = 0;              // contours cut in more than one run (multi-segment cutting)
+  std::vector<int> runs_per_contour;   // per cut contour (nest order, sheet left out)
   double bridge_length = 0;            // [mm]
   ProbeResult probe;
 };
 
 // Independently of the route data: every closed cut contour of the nest (the sheet excluded) is
 // covered by cut moves of exactly one beam-on run, over its whole length and not more than once
-// (plus the overcut); a contour's run comes before the run of the contour that contains it
-// (holes before their outer contour, inner parts before the hole around them); moves that lie on
+// (plus the overcut) (with max_runs_per_contour > 1: by up to that many runs together); every run
+// of a contour comes before every run of the contour that contains it (holes before any piece of
+// their outer contour, inner parts before the hole around them); moves that lie on
 // no contour (leads) stand only at the start and end of a run and are short; no lead comes closer
 // than the clearance to any other contour, and none touches its own contour before its end;
 // every pierce point lies in scrap; no feed move is made with the beam off. With a kerf offset,

@@ -46,12 +46,15 @@ const char* to_string(Fallback f);
 
 // What one piece of a basic segment cuts. A basic segment (source paper §2) is the geometry one
 // cutting segment cuts between its lead-in and its lead-out: one whole contour (standard), several
-// whole contours joined by bridges (chain cutting), or open stretches of contours such as an edge
-// shared by two parts (common-line cutting).
+// whole contours joined by bridges (chain cutting), open stretches of contours such as an edge
+// shared by two parts (common-line cutting), or one piece of a contour cut in several (ECP).
 enum class PieceKind {
   contour,      // a stretch of nest contour `contour` (the whole loop plus overcut when whole)
   bridge,       // a straight cut through scrap from the end of one piece to the start of the next
   common_edge,  // a stretch of contour `contour` that is also the boundary of a neighbouring part
+  // One stretch of contour `contour` cut in several basic segments (multi-segment cutting, ECP:
+  // model/multi_segment.hpp); the other segments cut the rest. Compensated like `contour`.
+  contour_part,
 };
 const char* to_string(PieceKind k);
 

@@ -12,6 +12,7 @@
 #include <cutroute/cost/route_problem.hpp>
 #include <cutroute/io/nest_loader.hpp>
 #include <cutroute/model/chains.hpp>
+#include <cutroute/model/multi_segment.hpp>
 #include <cutroute/nc/build_toolpath.hpp>
 #include <cutroute/nc/gcode_writer.hpp>
 #include <cutroute/pipeline/shop_rules.hpp>
@@ -21,8 +22,10 @@ namespace cutroute::pipeline {
 
 // Which alternative sets of basic segments to build (GSCCP, source paper §2): standard = one per
 // contour; chain = neighbouring outer contours joined by bridges; common = edges shared by
-// neighbouring parts cut once; automatic = every one available, solved each, the best kept.
-enum class Technique { standard, chain, common, automatic };
+// neighbouring parts cut once; automatic = every one available, solved each, the best kept;
+// multi = long contours cut in several pieces (ECP, model/multi_segment.hpp): only when asked for,
+// explicitly or with `multi_segment` added to `automatic`.
+enum class Technique { standard, chain, common, automatic, multi };
 const char* to_string(Technique t);
 
 // The options of `cutroute optimize` that are not about reading the nest. Defaults are sensible
@@ -59,6 +62,8 @@ struct OptimizeOptions {
   bool allow_crossing = false;
   Technique technique = Technique::automatic;
   model::ChainOptions chain;                 // chain technique: gap limit, run length
+  bool multi_segment = false;                // automatic also builds and compares the multi technique
+  model::MultiSegmentOptions multi;          // multi technique: which contours are split, in how many pieces
   ShopRules rules;                           // shop rules (pipeline/shop_rules.hpp): all off by default
 };
 
@@ -72,7 +77,8 @@ struct OptimizeResult {
 // Steps (each a function in src/pipeline/):
 //  1. cutting conditions from the machine profile and Table 1 (material, thickness);
 //  2. the cut job of each technique asked for (standard: model::make_cut_job; chain:
-//     model::make_chain_job; common: model::make_common_job): basic segments with entry candidates,
+//     model::make_chain_job; common: model::make_common_job; multi: model::make_multi_job, only when
+//     asked for): basic segments with entry candidates,
 //     leads in scrap, precedence. With `automatic`, a chain/common job that joins nothing is not
 //     solved again, and one that cannot be built is reported as not available;
 //  then for each job (the solver gets what is left of time_limit_s after the work measured or

@@ -1,0 +1,1 @@
+list(APPEND CUTROUTE_MODEL_SOURCES multi_segment.cpp)

@@ -148,7 +148,7 @@ TEST(PlanarCosts, HeuristicFindsTheOptimumOfTinyInstances) {
 // (whose neighbour lists come from sampled arcs), within half a percent.
 TEST(PlanarCosts, LargeInstanceAsGoodAsTheMatrixForm) {
   Rng rng(11);
-  const Planar p = random_planar(300, 8, rng);
+  const Planar p = random_planar(150, 6, rng);
   const Problem planar = build(p, false), matrix = build(p, true);
   // The same short search on both (stagnation, no clock): a fair and repeatable comparison.
   SolveParams hp = SolveParams::fast();

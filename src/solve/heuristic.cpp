@@ -224,7 +224,7 @@ class Worker {
       std::stable_sort(removed_.begin(), removed_.end(), [&](ClusterId a, ClusterId b) {
         return p.all_before(a).size() < p.all_before(b).size();
       });
-    for (ClusterId c : removed_) ops_.insert(t, ops_.best_insertion(t, c, noise, &rng_));
+    for (ClusterId c : removed_) ops_.insert(t, ops_.best_repair_insertion(t, c, noise, rng_));
   }
 
   const Ops& ops_;

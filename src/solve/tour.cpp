@@ -135,30 +135,58 @@ Ops::Insertion Ops::best_insertion(const Tour& t, ClusterId c, double noise, Rng
   return best;
 }
 
+Ops::Insertion Ops::insertion_at(const Tour& t, ClusterId c, int at) const {
+  const int L = static_cast<int>(t.seq.size());
+  const NodeId prev = t.seq[static_cast<std::size_t>(at - 1)];
+  const NodeId next = at < L ? t.seq[static_cast<std::size_t>(at)] : (closed_ ? t.seq[0] : NodeId{});
+  const Cost base = next.valid() ? link(prev, next) : 0;
+  Insertion best{at, NodeId{}, kHuge};
+  for (NodeId v : p_.nodes_of(c)) {
+    const Cost d = link(prev, v) + (next.valid() ? link(v, next) : 0) - base;
+    if (d < best.delta) best.delta = d, best.node = v;
+  }
+  return best;
+}
+
+void Ops::candidate_positions(const Tour& t, ClusterId c, std::vector<int>& out) const {
+  for (ClusterId x : preds(c))
+    if (t.pos[x.index()] >= 0) out.push_back(t.pos[x.index()] + 1);
+  for (ClusterId y : succs(c))
+    if (t.pos[y.index()] > 0) out.push_back(t.pos[y.index()]);
+}
+
 Ops::Insertion Ops::best_local_insertion(const Tour& t, ClusterId c, int old_at) const {
   const int L = static_cast<int>(t.seq.size());
   // With precedence the window is often narrow and the candidates mostly fall outside it: scan it all.
   if (prec_ || static_cast<int>(kn_) * 2 + 1 >= L) return best_insertion(t, c, 0.0, nullptr);
-  const auto [lo, hi] = window(t, c);
-  thread_local std::vector<int> cand_;  // Ops is shared by the search threads
-  cand_.clear();
-  cand_.push_back(old_at);
-  for (ClusterId x : preds(c))
-    if (t.pos[x.index()] >= 0) cand_.push_back(t.pos[x.index()] + 1);
-  for (ClusterId y : succs(c))
-    if (t.pos[y.index()] >= 0) cand_.push_back(t.pos[y.index()]);
-  const auto nodes = p_.nodes_of(c);
+  thread_local std::vector<int> cand;  // Ops is shared by the search threads
+  cand.assign(1, old_at);
+  candidate_positions(t, c, cand);
   Insertion best;
-  Cost best_delta = kHuge;
-  for (int at : cand_) {
-    if (at < lo || at > hi) continue;
-    const NodeId prev = t.seq[static_cast<std::size_t>(at - 1)];
-    const NodeId next = at < L ? t.seq[static_cast<std::size_t>(at)] : (closed_ ? t.seq[0] : NodeId{});
-    const Cost base = next.valid() ? link(prev, next) : 0;
-    for (NodeId v : nodes) {
-      const Cost d = link(prev, v) + (next.valid() ? link(v, next) : 0) - base;
-      if (d < best_delta) best_delta = d, best = {at, v, d};
-    }
+  best.delta = kHuge;
+  for (int at : cand) {
+    const Insertion ins = insertion_at(t, c, at);
+    if (ins.delta < best.delta) best = ins;
+  }
+  return best;
+}
+
+Ops::Insertion Ops::best_repair_insertion(const Tour& t, ClusterId c, double noise, Rng& rng) const {
+  const int L = static_cast<int>(t.seq.size());
+  if (prec_ || static_cast<int>(kn_) * 4 >= L) return best_insertion(t, c, noise, &rng);
+  thread_local std::vector<int> cand;
+  cand.clear();
+  candidate_positions(t, c, cand);
+  // Neighbours of c mostly removed too (large destroys): the whole route.
+  if (cand.size() < kn_ / 2) return best_insertion(t, c, noise, &rng);
+  std::sort(cand.begin(), cand.end());
+  cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+  Insertion best;
+  double best_key = std::numeric_limits<double>::infinity();
+  for (int at : cand) {
+    const Insertion ins = insertion_at(t, c, at);
+    const double key = static_cast<double>(ins.delta) + (noise > 0.0 ? noise * rng.uniform01() : 0.0);
+    if (key < best_key) best_key = key, best = ins;
   }
   return best;
 }
@@ -314,24 +342,29 @@ bool Ops::or_opt_pass(Tour& t) const {
       bool best_rev = false;
       if (!prec_ && static_cast<int>(kn_) * 4 < L) {
         // Only next to the neighbours of the segment's end clusters.
-        auto eval = [&](int tt) {
+        // Forward y -> f ... l -> z pays off next to f's predecessors or l's successors; reversed
+        // y -> l ... f -> z (symmetric arcs: only the boundary arcs change, the same nodes are
+        // entered) next to l's predecessors or f's successors.
+        const bool sym = p_.symmetric();
+        const Cost gain_arcs = sym ? p_.arc_cost(prev, f) + (next.valid() ? p_.arc_cost(l, next) - p_.arc_cost(prev, next) : 0) : 0;
+        auto eval = [&](int tt, bool rev) {
           if (tt < 0 || tt >= L || (tt >= i - 1 && tt <= e)) return;
           const NodeId y = t.seq[static_cast<std::size_t>(tt)];
           const NodeId z = tt > e ? after(t, tt) : t.seq[static_cast<std::size_t>(tt + 1)];
-          const Cost add = link(y, f) + (z.valid() ? link(l, z) - link(y, z) : 0);
-          if (add - gain < best) best = add - gain, best_t = tt, best_rev = false;
-          if (p_.symmetric()) {
-            // Reversed insertion, S a [b c] d e f -> S a d e [c b] f: with symmetric arcs only the
-            // boundary arcs change (inner costs: the same nodes are entered).
-            const Cost gain_arcs = p_.arc_cost(prev, f) + (next.valid() ? p_.arc_cost(l, next) - p_.arc_cost(prev, next) : 0);
+          if (!rev) {
+            const Cost add = link(y, f) + (z.valid() ? link(l, z) - link(y, z) : 0);
+            if (add - gain < best) best = add - gain, best_t = tt, best_rev = false;
+          } else {
             const Cost add_rev = p_.arc_cost(y, l) + (z.valid() ? p_.arc_cost(f, z) - p_.arc_cost(y, z) : 0);
             if (add_rev - gain_arcs < best) best = add_rev - gain_arcs, best_t = tt, best_rev = true;
           }
         };
-        for (ClusterId x : preds(cl(l))) eval(t.pos[x.index()]);
-        for (ClusterId x : succs(cl(f))) eval(t.pos[x.index()] - 1);
-        for (ClusterId x : preds(cl(f))) eval(t.pos[x.index()]);
-        for (ClusterId x : succs(cl(l))) eval(t.pos[x.index()] - 1);
+        for (ClusterId x : preds(cl(f))) eval(t.pos[x.index()], false);
+        for (ClusterId x : succs(cl(l))) eval(t.pos[x.index()] - 1, false);
+        if (sym) {
+          for (ClusterId x : preds(cl(l))) eval(t.pos[x.index()], true);
+          for (ClusterId x : succs(cl(f))) eval(t.pos[x.index()] - 1, true);
+        }
       } else {
       // Forward: insert after seq[tt], tt > e.
       for (int tt = e + 1; tt < L; ++tt) {

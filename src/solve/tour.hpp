@@ -68,6 +68,9 @@ class Ops {
   Insertion best_insertion(const Tour& t, ClusterId c, double noise, Rng* rng) const;
   // Like best_insertion, but only next to c's neighbour clusters and at old_at (the local-search move).
   Insertion best_local_insertion(const Tour& t, ClusterId c, int old_at) const;
+  // The repair step's insertion: like best_insertion, but on long routes without precedence only
+  // next to c's neighbour clusters (O(24 k) instead of O(L k)); the whole route when few are present.
+  Insertion best_repair_insertion(const Tour& t, ClusterId c, double noise, Rng& rng) const;
   void insert(Tour& t, const Insertion& ins) const;
   Cost removal_gain(const Tour& t, int i) const;
   void remove_at(Tour& t, int i) const;
@@ -91,6 +94,10 @@ class Ops {
   void construct(Tour& t, Rng& rng) const;
 
  private:
+  Insertion insertion_at(const Tour& t, ClusterId c, int at) const;  // best node of c at index `at`
+  // Indices next to c's candidate neighbours present in the route (appended to out, may repeat).
+  void candidate_positions(const Tour& t, ClusterId c, std::vector<int>& out) const;
+
   const Problem& p_;
   const StopToken* stop_;
   int m_;

@@ -19,9 +19,20 @@ constexpr std::size_t kSampleNodes = 12;
 // Above this many evaluations for one cluster-optimisation pass, local search only re-optimises
 // windows around the changes (large clusters: 100C10k.0 has 100 nodes per cluster).
 constexpr double kMaxFullCoWork = 2.0e5;
+// Precedence bit matrix up to this many clusters (2 MiB).
+constexpr int kMaxPrecedenceBits = 4096;
 }  // namespace
 
 Ops::Ops(const Problem& p, const StopToken* stop) : p_(p), stop_(stop), m_(p.cluster_count()), closed_(p.closed()), prec_(p.has_precedence()) {
+  if (prec_ && m_ <= kMaxPrecedenceBits) {
+    const auto mm = static_cast<std::size_t>(m_);
+    prec_bits_.assign((mm * mm + 63) / 64, 0);
+    for (int b = 0; b < m_; ++b)
+      for (ClusterId a : p.all_before(ClusterId(b))) {
+        const std::size_t k = static_cast<std::size_t>(b) * mm + a.index();
+        prec_bits_[k >> 6] |= std::uint64_t{1} << (k & 63);
+      }
+  }
   kn_ = static_cast<std::size_t>(std::min(kNeighbours, std::max(0, m_ - 1)));
   if (kn_ == 0) return;
   // The lists cost m^2 * samples^2 arc evaluations: fewer samples on very large problems (a nest of
@@ -386,7 +397,7 @@ bool Ops::or_opt_pass(Tour& t) const {
         const NodeId y = t.seq[static_cast<std::size_t>(tt)];
         if (prec_) {
           bool stop = false;
-          for (int s = i; s <= e && !stop; ++s) stop = p_.must_precede(cl(t.seq[static_cast<std::size_t>(s)]), cl(y));
+          for (int s = i; s <= e && !stop; ++s) stop = precedes(cl(t.seq[static_cast<std::size_t>(s)]), cl(y));
           if (stop) break;
         }
         const NodeId z = after(t, tt);
@@ -398,7 +409,7 @@ bool Ops::or_opt_pass(Tour& t) const {
         const NodeId jumped = t.seq[static_cast<std::size_t>(tt + 1)];
         if (prec_) {
           bool stop = false;
-          for (int s = i; s <= e && !stop; ++s) stop = p_.must_precede(cl(jumped), cl(t.seq[static_cast<std::size_t>(s)]));
+          for (int s = i; s <= e && !stop; ++s) stop = precedes(cl(jumped), cl(t.seq[static_cast<std::size_t>(s)]));
           if (stop) break;
         }
         const NodeId y = t.seq[static_cast<std::size_t>(tt)];
@@ -451,7 +462,7 @@ bool Ops::swap_pass(Tour& t) const {
       const NodeId x = t.seq[static_cast<std::size_t>(i)], y = t.seq[static_cast<std::size_t>(j)];
       if (prec_) {
         // x moves over everything in (i, j]: stop at the first cluster x must precede.
-        if (p_.must_precede(cl(x), cl(y))) break;
+        if (precedes(cl(x), cl(y))) break;
         // y moves over everything in [i, j): skip it if one of them must precede y.
         bool blocked = false;
         for (ClusterId a : p_.all_before(cl(y))) {

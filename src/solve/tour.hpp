@@ -2,6 +2,7 @@
 // operators of solve/heuristic.hpp working on it without reallocating.
 #pragma once
 
+#include <cstdint>
 #include <span>
 #include <utility>
 #include <vector>
@@ -80,6 +81,14 @@ class Ops {
   std::span<const ClusterId> preds(ClusterId c) const { return {pred_.data() + static_cast<std::size_t>(c.value()) * kn_, kn_}; }
   std::span<const ClusterId> succs(ClusterId c) const { return {succ_.data() + static_cast<std::size_t>(c.value()) * kn_, kn_}; }
 
+  // a must come before b (Problem::must_precede), O(1) from a bit matrix on problems of at most
+  // kMaxPrecedenceBits clusters (the Or-opt and swap scans ask it once per step).
+  bool precedes(ClusterId a, ClusterId b) const {
+    if (prec_bits_.empty()) return p_.must_precede(a, b);
+    const std::size_t k = b.index() * static_cast<std::size_t>(m_) + a.index();
+    return (prec_bits_[k >> 6] >> (k & 63)) & 1u;
+  }
+
   bool reinsertion_pass(Tour& t) const;
   bool two_opt_pass(Tour& t) const;
   bool or_opt_pass(Tour& t) const;
@@ -106,6 +115,7 @@ class Ops {
   std::size_t kn_ = 0;
   bool expensive_co_ = false;
   std::vector<ClusterId> pred_, succ_;
+  std::vector<std::uint64_t> prec_bits_;  // row b, bit a: a must precede b
 };
 
 }  // namespace cutroute::solve::detail

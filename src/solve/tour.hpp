@@ -2,6 +2,7 @@
 // operators of solve/heuristic.hpp working on it without reallocating.
 #pragma once
 
+#include <cstdint>
 #include <span>
 #include <utility>
 #include <vector>
@@ -68,6 +69,9 @@ class Ops {
   Insertion best_insertion(const Tour& t, ClusterId c, double noise, Rng* rng) const;
   // Like best_insertion, but only next to c's neighbour clusters and at old_at (the local-search move).
   Insertion best_local_insertion(const Tour& t, ClusterId c, int old_at) const;
+  // The repair step's insertion: like best_insertion, but on long routes without precedence only
+  // next to c's neighbour clusters (O(24 k) instead of O(L k)); the whole route when few are present.
+  Insertion best_repair_insertion(const Tour& t, ClusterId c, double noise, Rng& rng) const;
   void insert(Tour& t, const Insertion& ins) const;
   Cost removal_gain(const Tour& t, int i) const;
   void remove_at(Tour& t, int i) const;
@@ -76,6 +80,14 @@ class Ops {
   // (succs), measured between up to 12 sampled nodes per cluster; moves are only tried next to them.
   std::span<const ClusterId> preds(ClusterId c) const { return {pred_.data() + static_cast<std::size_t>(c.value()) * kn_, kn_}; }
   std::span<const ClusterId> succs(ClusterId c) const { return {succ_.data() + static_cast<std::size_t>(c.value()) * kn_, kn_}; }
+
+  // a must come before b (Problem::must_precede), O(1) from a bit matrix on problems of at most
+  // kMaxPrecedenceBits clusters (the Or-opt and swap scans ask it once per step).
+  bool precedes(ClusterId a, ClusterId b) const {
+    if (prec_bits_.empty()) return p_.must_precede(a, b);
+    const std::size_t k = b.index() * static_cast<std::size_t>(m_) + a.index();
+    return (prec_bits_[k >> 6] >> (k & 63)) & 1u;
+  }
 
   bool reinsertion_pass(Tour& t) const;
   bool two_opt_pass(Tour& t) const;
@@ -91,6 +103,10 @@ class Ops {
   void construct(Tour& t, Rng& rng) const;
 
  private:
+  Insertion insertion_at(const Tour& t, ClusterId c, int at) const;  // best node of c at index `at`
+  // Indices next to c's candidate neighbours present in the route (appended to out, may repeat).
+  void candidate_positions(const Tour& t, ClusterId c, std::vector<int>& out) const;
+
   const Problem& p_;
   const StopToken* stop_;
   int m_;
@@ -99,6 +115,7 @@ class Ops {
   std::size_t kn_ = 0;
   bool expensive_co_ = false;
   std::vector<ClusterId> pred_, succ_;
+  std::vector<std::uint64_t> prec_bits_;  // row b, bit a: a must precede b
 };
 
 }  // namespace cutroute::solve::detail

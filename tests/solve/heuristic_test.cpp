@@ -38,6 +38,35 @@ TEST(Heuristic, SameSeedAndThreadsGiveTheSameRoute) {
   }
 }
 
+// 120 clusters of at most 4 nodes without precedence: the "wide" automatic settings (30 % destroys,
+// repair next to candidate neighbours, docs/SOLVER.md) with two threads sharing the Ops.
+TEST(Heuristic, WideRoutesAreDeterministicAndBeatLocalSearch) {
+  Rng rng(21);
+  test::RandomSpec spec;
+  spec.clusters = 120;
+  spec.max_nodes = 4;
+  spec.symmetric = true;
+  const Problem p = test::random_problem(spec, rng);
+  SolveParams sp;
+  sp.solver = SolverKind::heuristic;
+  sp.seed = 7;
+  sp.threads = 2;
+  sp.time_limit_s = 0;
+  sp.stagnation_rounds = 3;  // short, also under sanitizers
+  sp.min_stagnation_work = 0;
+  const Solution a = solve(p, sp);
+  const Solution b = solve(p, sp);
+  EXPECT_EQ(a.route, b.route);
+  EXPECT_EQ(a.stats.iterations, b.stats.iterations);
+  ASSERT_TRUE(validate(p, a).empty());
+  EXPECT_EQ(a.cost, route_cost(p, a.route));
+  // Destroy/repair rounds improve on a plain construction + local search from the same seed.
+  Rng r2(7);
+  std::vector<NodeId> start = construct_route(p, r2);
+  local_search(p, start);
+  EXPECT_LT(a.cost, route_cost(p, start));
+}
+
 TEST(Heuristic, CancelledTokenStillReturnsAValidRoute) {
   const Problem p = instance(12, true);
   StopToken stop;

@@ -30,7 +30,8 @@ struct SolveParams {
   // restart from the best route (lowest cost, lowest thread index on ties): deterministic.
   int round_iterations = 0;            // 0: automatic, 40 + m/2 (x 8/avg cluster size when above 8, >= 10)
   // Stop after this many rounds in a row without improving the best route. 0: automatic,
-  // 6 below kLargeClusters clusters, 20 from there on (tuned on GTSPLIB for the time targets:
+  // 6 below kLargeClusters clusters, 20 from there on, 10 on "wide" problems (see
+  // max_removal_fraction) from 150 clusters on (tuned on GTSPLIB for the time targets:
   // small instances converge in few rounds, large ones keep improving slowly).
   int stagnation_rounds = 0;
   // ... and only after (iterations without progress, all threads) x (node count) x max(1, average
@@ -39,13 +40,15 @@ struct SolveParams {
   // by stagnation_rounds alone.
   long long min_stagnation_work = 1000000;
   // Largest share of the clusters one destroy step may remove (at least 3 clusters). 0: automatic,
-  // 0.3 below kLargeClusters clusters (and with precedence below 200 clusters), 0.05 otherwise
+  // 0.3 below kLargeClusters clusters, with precedence below 200 clusters, and on "wide" problems
+  // (kLargeClusters to 249 clusters, no precedence, <= 8 nodes per cluster on average); 0.05 otherwise
   // (large routes are improved by small, local repairs; big ones are mostly undone by the local
   // search, except where precedence blocks the small moves).
   double max_removal_fraction = 0.0;
   // Threshold acceptance: a worse route is accepted when it costs at most this many mean steps
   // (route cost / clusters) more than the current one; decays linearly to 0 over each round.
-  // 0: automatic, 2.0 with precedence, else 0.5 below kLargeClusters clusters, 1.0 from there on.
+  // 0: automatic, 2.0 with precedence and on wide problems, else 0.5 below kLargeClusters clusters,
+  // 1.0 from there on.
   double accept_threshold = 0.0;
   static constexpr int kLargeClusters = 96;
 

@@ -21,22 +21,6 @@ using geometry::Vec2;
 
 std::string at(const ProbeMove& m) { return "line " + std::to_string(m.line); }
 
-// A probe move as a geometry segment (bulge = tan(sweep / 4), sweep signed by the arc's turn).
-geometry::Segment probe_segment(const ProbeMove& m) {
-  geometry::Segment s{{m.x0, m.y0}, {m.x1, m.y1}, 0.0};
-  if (m.arc == 0) return s;
-  const double a0 = std::atan2(m.y0 - m.cy, m.x0 - m.cx), a1 = std::atan2(m.y1 - m.cy, m.x1 - m.cx);
-  double sweep = a1 - a0;
-  const double two_pi = 2 * std::numbers::pi;
-  if (m.arc > 0) {
-    while (sweep <= 0) sweep += two_pi;
-  } else {
-    while (sweep >= 0) sweep -= two_pi;
-  }
-  s.bulge = std::tan(sweep / 4);
-  return s;
-}
-
 }  // namespace
 
 ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, const ProgramCheckOptions& opt) {
@@ -178,6 +162,15 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
   // A pierce starts a run even where the probe saw the beam switched on without a move.
   out.runs = static_cast<int>(run_moves.size());
 
+  // The cut moves of contour k's runs that lie on it, in program order.
+  auto moves_on = [&](std::size_t k) {
+    std::vector<const ProbeMove*> on_k;
+    for (const int run : runs_of[k])
+      for (const auto& [m, on] : run_moves[static_cast<std::size_t>(run)])
+        if (on == static_cast<int>(k)) on_k.push_back(m);
+    return on_k;
+  };
+
   // With a kerf offset: the run passes within `off` of every drawn point where the tool fits, and
   // is no longer than the offset curve can be.
   auto check_offset_cover = [&](std::size_t k, const std::string& name, double cut_len, double len) {
@@ -186,17 +179,9 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
     const double most = len + (hole ? -1 : 1) * 2 * std::numbers::pi * off + runs * opt.max_overcut_mm + 1e-3;
     if (cut_len > most) out.failures.push_back(name + " is cut over " + format_fixed(cut_len, 3) + " mm (at most " +
                                                format_fixed(most, 3) + " with the kerf offset): twice?");
-    std::vector<geometry::Segment> path;
-    for (const int run : runs_of[k])
-      for (const auto& [m, on] : run_moves[static_cast<std::size_t>(run)])
-        if (on == static_cast<int>(k)) path.push_back(probe_segment(*m));
     // Indexed: spline outlines have thousands of arcs, and every drawn point asks for its distance.
-    std::vector<geometry::Box> path_boxes;
-    path_boxes.reserve(path.size());
-    for (const auto& s : path) path_boxes.push_back(s.bounding_box());
-    const geometry::StaticSpatialIndex path_index(path_boxes);
-    std::vector<std::uint32_t> near;
     const double reach = off + opt.on_contour_mm + 0.001;
+    const MoveIndex path(moves_on(k), reach);
     const auto& drawn = cut[k]->source.contour;
     const bool ccw = geometry::signed_area(drawn) > 0;
     int missed = 0;
@@ -214,12 +199,7 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
         index.query(geometry::Box{centre.x, centre.y, centre.x, centre.y}.inflated(off), hits);
         for (auto h : hits) fits = fits && dist_to(static_cast<int>(h), centre, off) > off - 1e-4;
         if (!fits) continue;
-        double best = 1e300;
-        path_index.query(geometry::Box{q.x, q.y, q.x, q.y}.inflated(2 * reach), near);
-        for (auto s : near) best = std::min(best, geometry::closest_point(path[s], q).distance);
-        if (best > reach) {
-          if (missed++ == 0) first_missed = q;
-        }
+        if (path.first_within(q, reach) == path.size() && missed++ == 0) first_missed = q;
       }
     }
     if (missed > 0)
@@ -230,11 +210,7 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
   // Every boundary point of contour k within on_contour_mm of a move of its runs that lies on it
   // (several runs: pieces that must meet without a gap).
   auto check_pieces_cover = [&](std::size_t k, const std::string& name) {
-    std::vector<const ProbeMove*> on_k;
-    for (const int run : runs_of[k])
-      for (const auto& [m, on] : run_moves[static_cast<std::size_t>(run)])
-        if (on == static_cast<int>(k)) on_k.push_back(m);
-    const MoveIndex index_k(std::move(on_k), opt.on_contour_mm);
+    const MoveIndex index_k(moves_on(k), opt.on_contour_mm);
     int missed = 0;
     Vec2 first_missed;
     for (const Vec2 q : boundary_samples(cut[k]->source.contour, 0.5))

@@ -195,6 +195,21 @@ nlohmann::json sequence_json(const model::Nest& nest, const std::vector<model::E
 
 using Clock = std::chrono::steady_clock;
 
+// Wall time of consecutive phases into a report object: lap("x") stores the time since the last lap.
+class Laps {
+ public:
+  explicit Laps(nlohmann::json& out) : out_(out) {}
+  void operator()(const char* phase) {
+    const auto now = Clock::now();
+    out_[phase] = std::chrono::duration<double>(now - mark_).count();
+    mark_ = now;
+  }
+
+ private:
+  nlohmann::json& out_;
+  Clock::time_point mark_ = Clock::now();
+};
+
 // The basic segments of one technique (SCCP); an error when the technique cannot be built here.
 // `standard`: the standard job when already built (other techniques start from its candidates).
 Result<model::CutJob> build_job(const model::Nest& nest, const model::EntryPlanner& planner, const model::EntryOptions& entries,
@@ -237,12 +252,7 @@ struct Alternative {
 Result<Alternative> solve_alternative(const model::Nest& nest, const model::CutJob& job, const model::EntryPlanner& planner,
                                       const Setup& s, const OptimizeOptions& o, double time_limit_s,
                                       const StopToken& stop, const ProgressFn& progress, nlohmann::json& timing) {
-  auto t_mark = Clock::now();
-  auto lap = [&](const char* phase) {
-    const auto now = Clock::now();
-    timing[phase] = std::chrono::duration<double>(now - t_mark).count();
-    t_mark = now;
-  };
+  Laps lap(timing);
   // 3. Sequencing.
   cost::RouteProblemOptions rpo;
   rpo.start = s.start;
@@ -284,7 +294,7 @@ Result<Alternative> solve_alternative(const model::Nest& nest, const model::CutJ
   return alt;
 }
 
-// The other lead-in types on the chosen route, each judged by the frame-corrected objective (the
+// The other lead-in types on an alternative's route, each judged by the frame-corrected objective (the
 // lead type changes the program's frame count, hence V_on*(n)); the best one is kept.
 void compare_leads(const model::Nest& nest, const model::EntryPlanner& planner, const Setup& s, const OptimizeOptions& o,
                    Alternative& alt) {
@@ -333,14 +343,9 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     return e;  // never cut a nest whose parts are drawn over each other unless told to
   }
   const model::Nest& nest = loaded.nest;
-  auto t_mark = Clock::now();
+  const auto t_begin = Clock::now();
   nlohmann::json timing;
-  const auto t_begin = t_mark;
-  auto lap = [&](const char* phase) {
-    const auto now = Clock::now();
-    timing[phase] = std::chrono::duration<double>(now - t_mark).count();
-    t_mark = now;
-  };
+  Laps lap(timing);
   if (nest.parts.empty()) return make_error("the nest has no closed contour to cut", loaded.file);
 
   if (const auto bad = check(o.rules); !bad.empty()) return make_error(bad.front());

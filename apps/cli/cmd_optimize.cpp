@@ -237,25 +237,25 @@ int run(const Opts& o) {
 void add_shop_rule_options(CLI::App* app, pipeline::ShopRules& r, std::string& clamp) {
   const char* g = "Shop rules";
   app->add_option("--heat-distance", r.heat_distance_mm, "Heat: consecutive cuts at least this far apart where possible [mm] (0: off)")
-      ->check(CLI::Range(0.0, 1e5))->group(g);
-  app->add_option("--heat-weight", r.heat_weight, "Heat: price of a too-close pair [s]")->check(CLI::Range(0.0, 1e6))->capture_default_str()->group(g);
+      ->check(finite_range(0.0, 1e5))->group(g);
+  app->add_option("--heat-weight", r.heat_weight, "Heat: price of a too-close pair [s]")->check(finite_range(0.0, 1e6))->capture_default_str()->group(g);
   app->add_option("--heat-memory", r.heat_memory, "Heat: segments looked back (each further one counts half)")
       ->check(CLI::Range(1, 16))->capture_default_str()->group(g);
   app->add_flag("--avoid-tip-up", r.avoid_tip_up, "Tip-up: rapids go around parts already cut free")->group(g);
   app->add_option("--tip-up-weight", r.tip_up_weight, "Tip-up: price of a rapid over a freed part while sequencing [s]")
-      ->check(CLI::Range(0.0, 1e6))->capture_default_str()->group(g);
+      ->check(finite_range(0.0, 1e6))->capture_default_str()->group(g);
   app->add_option("--tip-up-margin", r.tip_up_margin_mm, "Tip-up: detour distance from freed parts [mm]")
-      ->check(CLI::Range(0.0, 1e3))->capture_default_str()->group(g);
+      ->check(finite_range(0.0, 1e3))->capture_default_str()->group(g);
   app->add_flag("--part-rigidity", r.part_rigidity, "Part rigidity: outer contours entered at the corner toward the uncut material")->group(g);
   app->add_option("--sheet-clamp", clamp, "Sheet rigidity: clamped side; the order sweeps away from it")
       ->check(CLI::IsMember({"left", "right", "bottom", "top"}))->group(g);
   app->add_option("--sheet-weight", r.sheet_weight_per_mm, "Sheet rigidity: price per mm behind the sweep front [s/mm]")
-      ->check(CLI::Range(0.0, 1e6))->capture_default_str()->group(g);
+      ->check(finite_range(0.0, 1e6))->capture_default_str()->group(g);
   app->add_option("--sheet-band", r.sheet_band_mm, "Sheet rigidity: allowed step back behind the front [mm]")
-      ->check(CLI::Range(0.0, 1e6))->capture_default_str()->group(g);
+      ->check(finite_range(0.0, 1e6))->capture_default_str()->group(g);
   app->add_option("--tabs", r.tabs, "Micro-joints: uncut tabs per outer contour (0: off)")->check(CLI::Range(0, 64))->group(g);
   app->add_option("--tab-width", r.tab_width_mm, "Micro-joints: tab width [mm]")
-      ->check(CLI::Range(0.001, 1e3))->capture_default_str()->group(g);
+      ->check(finite_range(0.001, 1e3))->capture_default_str()->group(g);
 }
 
 }  // namespace
@@ -273,19 +273,19 @@ void add_optimize(CLI::App& root, Commands& out) {
   app->add_option("--machine", o->machine, "Machine profile JSON (default: the built-in ByStar 3015-class laser)");
   app->add_flag("--interpolate", o->interpolate, "Interpolate speeds between Table 1 thicknesses");
   app->add_option("--objective", o->objective, "time (eq. 10) or cost (eq. 3)")->check(CLI::IsMember({"time", "cost"}));
-  app->add_option("--time-limit", o->time_limit, "Time budget of the optimisation [s]: cut jobs, solver, refinement, technique and lead comparison (reading and writing come on top); 0 = stop on stagnation only")->check(CLI::Range(0.0, 86400.0))->capture_default_str();
+  app->add_option("--time-limit", o->time_limit, "Time budget of the optimisation [s]: cut jobs, solver, refinement, technique and lead comparison (reading and writing come on top); 0 = stop on stagnation only")->check(finite_range(0.0, 86400.0))->capture_default_str();
   app->add_option("--seed", o->seed, "Random seed: same seed, input and options give identical outputs")->capture_default_str();
   app->add_option("--threads", o->threads, "Solver threads (0: all cores)")->check(CLI::Range(0, 64));
   app->add_option("--solver", o->solver, "auto, exact or heuristic")->check(CLI::IsMember({"auto", "exact", "heuristic"}));
   app->add_option("--start", o->start, "Machine start and park position X,Y [mm] (default 0,0)");
-  app->add_option("--kerf", o->kerf, "Kerf width [mm] (default from the machine profile)")->check(CLI::Range(0.0, 20.0));
+  app->add_option("--kerf", o->kerf, "Kerf width [mm] (default from the machine profile)")->check(finite_range(0.0, 20.0));
   app->add_option("--kerf-mode", o->kerf_mode,
                   "controller: G41/G42, the machine offsets the drawn contours; cam: the program offsets the "
                   "toolpath by kerf/2 to the scrap side (arcs stay G2/G3, no G41/G42); none: the drawn contours")
       ->check(CLI::IsMember({"controller", "cam", "none"}));
   app->add_option("--dialect", o->dialect, "Post-processor: generic, plasma-thc, or a dialect JSON file");
   app->add_option("--entry-step", o->entry_step, "Spacing of entry candidates along edges [mm] (0: adaptive)")
-      ->check(CLI::Range(0.0, 1e6));
+      ->check(finite_range(0.0, 1e6));
   app->add_flag("--allow-crossing", o->allow_crossing,
                 "Cut a drawing whose contours cross each other (each contour once, with warnings)");
   app->add_flag("--allow-kerf-overlap", o->allow_kerf_overlap,
@@ -297,13 +297,13 @@ void add_optimize(CLI::App& root, Commands& out) {
       ->check(CLI::IsMember({"standard", "chain", "common", "multi", "auto"}))
       ->capture_default_str();
   app->add_option("--chain-gap", o->chain_gap, "Chain cutting: largest gap between parts bridged [mm]")
-      ->check(CLI::Range(0.0, 1000.0))
+      ->check(finite_range(0.0, 1000.0))
       ->capture_default_str();
   app->add_flag("--multi-segment", o->multi_segment,
                 "Multi-segment cutting (ECP): --technique auto also compares long contours cut in pieces");
   app->add_option("--multi-min-span", o->multi.min_span_mm,
                   "Multi-segment cutting: split a contour only where its split points lie this far apart [mm]")
-      ->check(CLI::Range(0.0, 1e6))
+      ->check(finite_range(0.0, 1e6))
       ->capture_default_str();
   app->add_option("--multi-pieces", o->multi.max_pieces, "Multi-segment cutting: pieces per split contour")
       ->check(CLI::Range(2, 8))

@@ -2,12 +2,34 @@
 
 #include <charconv>
 #include <cmath>
+#include <exception>
+#include <string>
+
+#include <cutroute/core/number_format.hpp>
 
 namespace cutroute::cli {
 
+CLI::Validator finite_range(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        double v = 0;
+        try {
+          std::size_t used = 0;
+          v = std::stod(text, &used);
+          if (used != text.size()) return "not a number: " + text;
+        } catch (const std::exception&) {
+          return "not a number: " + text;
+        }
+        if (!std::isfinite(v) || v < lo || v > hi)
+          return "Value " + text + " not in range " + format_fixed(lo, 3) + " to " + format_fixed(hi, 3);
+        return {};
+      },
+      "FLOAT in [" + format_fixed(lo, 3) + " - " + format_fixed(hi, 3) + "]");
+}
+
 void add_input_options(CLI::App* app, InputOptions& o) {
   app->add_option("--snap", o.snap_mm, "End-point snapping distance when chaining entities [mm]")
-      ->check(CLI::Range(0.0, 10.0))
+      ->check(finite_range(0.0, 10.0))
       ->capture_default_str();
   app->add_option("--units", o.units, "Drawing units, overriding the file's header")
       ->check(CLI::IsMember({"mm", "cm", "m", "in", "ft"}));

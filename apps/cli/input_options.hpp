@@ -13,6 +13,10 @@
 
 namespace cutroute::cli {
 
+// A range check for a floating-point option that also refuses NaN and infinity (CLI::Range lets
+// NaN through: every comparison with it is false).
+CLI::Validator finite_range(double lo, double hi);
+
 struct InputOptions {
   double snap_mm = tol::kSnapMm;
   std::string units;

@@ -154,6 +154,12 @@ TEST(OptimizeCli, BadInputsFailCleanlyAndLeaveNothing) {
   EXPECT_EQ(r.exit_code, 2);
   r = run_command(cli_path() + " optimize " + dxf + " -o " + prog + " --start 1 --quiet");
   EXPECT_EQ(r.exit_code, 1);
+  // Not-a-number and infinite values are usage errors, not limits that never bind.
+  for (const char* bad : {"--time-limit nan", "--time-limit inf", "--kerf nan", "--multi-min-span nan", "--kerf 0.2x"}) {
+    r = run_command(cli_path() + " optimize " + dxf + " -o " + prog + " --quiet " + bad);
+    EXPECT_EQ(r.exit_code, 1) << bad;
+    EXPECT_NE(r.err.find(std::string(bad).substr(0, std::string(bad).find(' '))), std::string::npos) << r.err;
+  }
   r = run_command(cli_path() + " optimize /nonexistent.dxf -o " + prog + " --quiet");
   EXPECT_EQ(r.exit_code, 2);
   for (const auto& e : fs::directory_iterator(dir))

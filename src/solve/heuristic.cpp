@@ -115,6 +115,8 @@ class Worker {
     cur_ = t;
     best_ = t;
   }
+  // A new epoch: a fresh random construction; the worker's best restarts from it.
+  void fresh() { start(); }
   const Tour& best() const { return best_; }
   long long iterations() const { return iterations_; }
 
@@ -276,23 +278,34 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
   workers.reserve(static_cast<std::size_t>(threads));
   for (int i = 0; i < threads; ++i) workers.emplace_back(ops, params, master.split());
 
-  Tour global;
-  int stagnant = 0;
+  Tour global, epoch;
+  int stagnant = 0, epoch_stagnant = 0;
   bool done = false;
   bool first = true;
+  bool new_epoch = false;
+  const int epoch_patience = params.epoch_rounds != 0 ? std::max(0, params.epoch_rounds)
+                             : !large && !p.has_precedence() ? 3 : 0;
   // Runs between rounds on one thread: picks the best route (ties: lowest thread index), decides stop.
   auto combine = [&]() noexcept {
     const Tour* best = &workers[0].best();
     for (const Worker& w : workers)
       if (w.best().cost < best->cost) best = &w.best();
-    if (first || best->cost < global.cost) {
-      global = *best;
+    if (first || new_epoch || best->cost < epoch.cost) {
+      epoch = *best;
+      epoch_stagnant = 0;
+    } else {
+      ++epoch_stagnant;
+    }
+    if (first || epoch.cost < global.cost) {
+      global = epoch;
       stagnant = 0;
     } else {
       ++stagnant;
     }
     first = false;
-    for (Worker& w : workers) w.restart_from(global);
+    new_epoch = epoch_patience > 0 && epoch_stagnant >= epoch_patience;
+    if (!new_epoch)
+      for (Worker& w : workers) w.restart_from(epoch);
     // Stagnation: enough rounds without progress, and enough iterations in them (tiny instances have
     // short rounds; a few thousand iterations on them cost milliseconds).
     // An iteration costs about n * max(1, avg/8) (cluster optimisation is quadratic in the cluster
@@ -312,7 +325,8 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
     workers[static_cast<std::size_t>(i)].start();
     sync();
     while (!done) {
-      workers[static_cast<std::size_t>(i)].round(round_iters, stop, stagnant > 0);
+      if (new_epoch) workers[static_cast<std::size_t>(i)].fresh();
+      workers[static_cast<std::size_t>(i)].round(round_iters, stop, epoch_stagnant > 0);
       sync();
     }
   };

@@ -46,6 +46,7 @@ std::vector<std::string> check(const SolveParams& p) {
     out.push_back("accept_threshold must be in [0, 10] (got " + num(p.accept_threshold) + ")");
   if (p.exact_memory_limit_bytes < (std::size_t{1} << 20)) out.push_back("exact_memory_limit_bytes must be >= 1 MiB");
   if (!(p.exact_auto_max_work >= 0.0)) out.push_back("exact_auto_max_work must be >= 0");
+  if (p.epoch_rounds > 1000000) out.push_back("epoch_rounds must be <= 1000000 (got " + std::to_string(p.epoch_rounds) + ")");
   if (p.min_stagnation_work < 0) out.push_back("min_stagnation_work must be >= 0");
   if (p.target_cost && *p.target_cost < 0) out.push_back("target_cost must be >= 0");
   return out;

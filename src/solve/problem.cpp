@@ -161,7 +161,10 @@ Result<Problem> ProblemBuilder::build() {
       p.forbidden_keys_.push_back(a.index() * n + b.index());
     }
     std::sort(p.forbidden_keys_.begin(), p.forbidden_keys_.end());
-    p.symmetric_ = fn_symmetric_ && forbidden_.empty();
+    // Planar costs with the same in and out point per node are symmetric (TSPLIB EUC_2D coordinates).
+    const bool planar_sym = planar_ && std::equal(planar_->out.begin(), planar_->out.end(), planar_->in.begin(),
+                                                  [](PlanarPoint a, PlanarPoint b) { return a.x == b.x && a.y == b.y; });
+    p.symmetric_ = (fn_symmetric_ || planar_sym) && forbidden_.empty();
   }
 
   // Precedence: drop duplicates and pairs starting at the start cluster (always kept), reject

@@ -37,7 +37,13 @@ class Ops {
   bool stopped() const { return stop_ && stop_->stop_requested(); }
 
   const Problem& problem() const { return p_; }
-  Cost link(NodeId a, NodeId b) const { return a == b ? p_.inner_cost(b) : p_.step(a, b); }
+  // Matrix problems without inner costs (GTSPLIB, SOP) read the matrix directly: these two are the
+  // innermost operations of every move evaluation (a third of the run time through Problem's dispatch).
+  Cost arc(NodeId a, NodeId b) const { return mat_ ? mat_[a.index() * n_ + b.index()] : p_.arc_cost(a, b); }
+  Cost link(NodeId a, NodeId b) const {
+    if (plain_mat_) return a == b ? 0 : mat_[a.index() * n_ + b.index()];
+    return a == b ? p_.inner_cost(b) : p_.step(a, b);
+  }
   ClusterId cl(NodeId v) const { return p_.cluster_of(v); }
 
   Cost full_cost(const std::vector<NodeId>& seq) const;
@@ -108,6 +114,9 @@ class Ops {
   void candidate_positions(const Tour& t, ClusterId c, std::vector<int>& out) const;
 
   const Problem& p_;
+  const Cost* mat_;
+  std::size_t n_;
+  bool plain_mat_;  // matrix and no inner costs
   const StopToken* stop_;
   int m_;
   bool closed_;

@@ -1,9 +1,15 @@
 // GTSPLIB reader: weight formats, distance functions, header quirks, and values of shared instances.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <string>
+#include <tuple>
+#include <vector>
+
 #include <cutroute/io/instance.hpp>
 #include <cutroute/solve/exact_dp.hpp>
 #include <cutroute/solve/solution.hpp>
+#include <cutroute/solve/solve.hpp>
 
 #include "support/paths.hpp"
 
@@ -52,6 +58,44 @@ TEST(InstanceGtsp, DistanceFunctionsMatchTsplib) {
   EXPECT_EQ(c(parse_instance(coords("GEO", "10.00 20.00", "11.00 20.00"), "x.gtsp")->problem, 1, 2), 112);
 }
 
+// Above 3000 nodes EUC_2D is computed from the points (PlanarCosts) instead of a matrix: the same
+// nint(distance) as TSPLIB defines it, symmetric, on a generated instance (coordinates with halves so
+// that the rounding is exercised) and on the corpus file 31C3k.0.
+TEST(InstanceGtsp, LargeEuc2dUsesPlanarCostsWithTsplibRounding) {
+  const int n = 3010;
+  std::string text = "NAME: big\nTYPE: GTSP\nDIMENSION: " + std::to_string(n) + "\nGTSP_SETS: 2\nEDGE_WEIGHT_TYPE: EUC_2D\nNODE_COORD_SECTION\n";
+  std::vector<std::pair<double, double>> pts;
+  for (int i = 0; i < n; ++i) {
+    pts.emplace_back((i * 37 % 1001) * 0.5, (i * 91 % 773) * 1.5);
+    text += std::to_string(i + 1) + " " + std::to_string(pts.back().first) + " " + std::to_string(pts.back().second) + "\n";
+  }
+  text += "GTSP_SET_SECTION\n1";
+  // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on " " + std::to_string(i).
+  for (int i = 1; i <= n / 2; ++i) text.append(" ").append(std::to_string(i));
+  text += " -1\n2";
+  for (int i = n / 2 + 1; i <= n; ++i) text.append(" ").append(std::to_string(i));
+  text += " -1\nEOF\n";
+  auto r = parse_instance(text, "big.gtsp");
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  const auto& p = r->problem;
+  ASSERT_NE(p.planar(), nullptr);
+  EXPECT_TRUE(p.symmetric());
+  for (int a = 0; a < n; a += 97)
+    for (int b = 1; b < n; b += 131) {
+      if (a == b) continue;
+      const double dx = pts[static_cast<std::size_t>(a)].first - pts[static_cast<std::size_t>(b)].first;
+      const double dy = pts[static_cast<std::size_t>(a)].second - pts[static_cast<std::size_t>(b)].second;
+      const auto expected = static_cast<solve::Cost>(std::floor(std::sqrt(dx * dx + dy * dy) + 0.5));
+      ASSERT_EQ(p.arc_cost(NodeId(a), NodeId(b)), expected) << a << " " << b;
+    }
+  // 31C3k.0: node 1 (492189 676982) to node 2 (996275 623342): 506931.89 -> 506932.
+  auto corpus = read_instance(test::shared("data/gtsplib/31C3k.0.gtsp"));
+  ASSERT_TRUE(corpus.ok()) << corpus.error().message;
+  EXPECT_NE(corpus->problem.planar(), nullptr);
+  EXPECT_EQ(c(corpus->problem, 1, 2), 506932);
+  EXPECT_EQ(c(corpus->problem, 2, 1), 506932);
+}
+
 TEST(InstanceGtsp, HeaderQuirksOfTheCorpus) {
   // "TYPE  AGTSP" without a colon, "TYPE : GTSP (M.~Hofmeister)", "EDGE_WEIGHT_TYPE:  EXPLICIT".
   for (const char* type : {"TYPE  AGTSP", "TYPE : GTSP (M.~Hofmeister)"}) {
@@ -91,6 +135,25 @@ TEST(InstanceGtsp, SmallGtsplibInstancesSolveToTheirKnownOptimum) {
     EXPECT_EQ(s.status, solve::SolveStatus::optimal) << name;
     EXPECT_EQ(s.cost, opt) << name;
     EXPECT_TRUE(solve::validate(r->problem, s).empty()) << name;
+  }
+}
+
+// The runs that stayed around one local optimum for their whole length before epochs (docs/SOLVER.md):
+// 35ftv170 seed 5 ended at 1247 (+3.5 %), 87gr431 seed 4 at 103272 (+1.3 %), both with 2 threads.
+// With the automatic settings (epochs of 3 rounds) both reach the optimum.
+TEST(InstanceGtsp, HeuristicLeavesTheLocalOptimaItStayedInBeforeEpochs) {
+  const std::tuple<const char*, std::uint64_t, solve::Cost> runs[] = {{"35ftv170", 5, 1205}, {"87gr431", 4, 101946}};
+  for (auto [name, seed, opt] : runs) {
+    auto r = read_instance(test::shared(std::string("data/gtsplib/") + name + ".gtsp"));
+    ASSERT_TRUE(r.ok()) << name << ": " << r.error().message;
+    solve::SolveParams sp;
+    sp.solver = solve::SolverKind::heuristic;
+    sp.seed = seed;
+    sp.threads = 2;
+    sp.time_limit_s = 0;
+    const auto s = solve::solve(r->problem, sp);
+    EXPECT_TRUE(solve::validate(r->problem, s).empty()) << name;
+    EXPECT_EQ(s.cost, opt) << name << " seed " << seed;
   }
 }
 

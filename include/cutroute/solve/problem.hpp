@@ -92,6 +92,10 @@ class Problem {
   // True when arc_cost(a, b) == arc_cost(b, a) for all nodes (checked for matrices, declared for callbacks).
   bool symmetric() const { return symmetric_; }
   bool has_matrix() const { return !matrix_.empty(); }
+  // Row-major node_count x node_count costs (forbidden arcs at kForbiddenCost), or null without a
+  // matrix: the solvers' inner loops read it directly (arc_cost's dispatch is not inlined there).
+  const Cost* matrix_data() const { return matrix_.empty() ? nullptr : matrix_.data(); }
+  bool has_inner_costs() const { return !inner_.empty(); }
   // The points and prices behind the arc costs when they were given that way, else null.
   const PlanarCosts* planar() const { return planar_.get(); }
 

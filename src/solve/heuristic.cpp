@@ -283,8 +283,13 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
   bool done = false;
   bool first = true;
   bool new_epoch = false;
+  // Automatic epochs: short ones on small problems without precedence, long ones on precedence
+  // problems below 200 clusters (SOP: kro124p.3 ended 1.35 % above its best known in 1 seed of 5
+  // without them, 5/5 at it with epochs of 15 rounds); none on the rest (a fresh large route
+  // rarely catches up with the best within a run).
   const int epoch_patience = params.epoch_rounds != 0 ? std::max(0, params.epoch_rounds)
-                             : !large && !p.has_precedence() ? 3 : 0;
+                             : p.has_precedence() ? (p.cluster_count() < 200 ? 15 : 0)
+                             : !large ? 3 : 0;
   // Runs between rounds on one thread: picks the best route (ties: lowest thread index), decides stop.
   auto combine = [&]() noexcept {
     const Tour* best = &workers[0].best();

@@ -39,8 +39,9 @@ class Ops {
   const Problem& problem() const { return p_; }
   // Matrix problems without inner costs (GTSPLIB, SOP) read the matrix directly: these two are the
   // innermost operations of every move evaluation (a third of the run time through Problem's dispatch).
-  Cost arc(NodeId a, NodeId b) const { return mat_ ? mat_[a.index() * n_ + b.index()] : p_.arc_cost(a, b); }
-  Cost link(NodeId a, NodeId b) const {
+  // Always inlined: GCC kept link() out of line in the hot loops (10 % of 212u1060's profile as calls).
+  [[gnu::always_inline]] Cost arc(NodeId a, NodeId b) const { return mat_ ? mat_[a.index() * n_ + b.index()] : p_.arc_cost(a, b); }
+  [[gnu::always_inline]] Cost link(NodeId a, NodeId b) const {
     if (plain_mat_) return a == b ? 0 : mat_[a.index() * n_ + b.index()];
     return a == b ? p_.inner_cost(b) : p_.step(a, b);
   }

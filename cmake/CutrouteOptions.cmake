@@ -32,5 +32,6 @@ function(cutroute_add_test name)
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE cutroute::cutroute cutroute_test_support GTest::gtest GTest::gmock GTest::gtest_main)
   cutroute_set_warnings(${name})
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
+  # CTest names are the GoogleTest names; the label names the executable: `ctest -L solve_test`.
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600 LABELS ${name})
 endfunction()

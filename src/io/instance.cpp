@@ -401,7 +401,7 @@ Result<Instance> Parser::finish() {
   for (auto& s : sets_) b.add_cluster(s);
   if (metric == detail::Metric::euc_2d && n_ > kMaxMatrixNodes) {
     // Planar costs compute nint(distance) inline, as EUC_2D defines it (scale 1, no base): several
-    // times faster than the callback below, and they give the solver k-d tree candidate lists.
+    // times faster than the callback below.
     solve::PlanarCosts pc;
     pc.per_unit = 1.0;
     for (const detail::Coord& q : coords_) pc.out.push_back({q.x, q.y});

@@ -119,8 +119,6 @@ class Worker {
     cur_ = t;
     best_ = t;
   }
-  // A new epoch: a fresh random construction; the worker's best restarts from it.
-  void fresh() { start(); }
   const Tour& best() const { return best_; }
   long long iterations() const { return iterations_; }
 
@@ -346,7 +344,7 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
     workers[static_cast<std::size_t>(i)].start();
     sync();
     while (!done) {
-      if (new_epoch) workers[static_cast<std::size_t>(i)].fresh();
+      if (new_epoch) workers[static_cast<std::size_t>(i)].start();  // the worker's best restarts from a fresh route
       workers[static_cast<std::size_t>(i)].round(round_iters, stop, fresh);
       sync();
     }

@@ -136,27 +136,17 @@ std::pair<int, int> Ops::window(const Tour& t, ClusterId c) const {
 
 Ops::Insertion Ops::best_insertion(const Tour& t, ClusterId c, double noise, Rng* rng) const {
   const auto [lo, hi] = window(t, c);
-  const int L = static_cast<int>(t.seq.size());
-  const auto nodes = p_.nodes_of(c);
   Insertion best;
   double best_key = std::numeric_limits<double>::infinity();
   Cost best_delta = kHuge;
   for (int at = lo; at <= hi; ++at) {
-    const NodeId prev = t.seq[static_cast<std::size_t>(at - 1)];
-    const NodeId next = at < L ? t.seq[static_cast<std::size_t>(at)] : (closed_ ? t.seq[0] : NodeId{});
-    const Cost base = next.valid() ? link(prev, next) : 0;
-    Cost pos_best = kHuge;
-    NodeId pos_node;
-    for (NodeId v : nodes) {
-      const Cost d = link(prev, v) + (next.valid() ? link(v, next) : 0) - base;
-      if (d < pos_best) pos_best = d, pos_node = v;
-    }
+    const Insertion ins = insertion_at(t, c, at);
     if (noise > 0.0 && rng) {
-      const double key = static_cast<double>(pos_best) + noise * rng->uniform01();
-      if (key < best_key) best_key = key, best = {at, pos_node, pos_best};
-    } else if (pos_best < best_delta) {
-      best_delta = pos_best;
-      best = {at, pos_node, pos_best};
+      const double key = static_cast<double>(ins.delta) + noise * rng->uniform01();
+      if (key < best_key) best_key = key, best = ins;
+    } else if (ins.delta < best_delta) {
+      best_delta = ins.delta;
+      best = ins;
     }
   }
   return best;

@@ -101,6 +101,9 @@ class Ops {
   bool or_opt_pass(Tour& t) const;
   bool swap_pass(Tour& t) const;
   bool segment_exchange_pass(Tour& t) const;  // segment_exchange.cpp
+  // Removes (into `removed`) every cluster but position 0 next to an arc of t that route e lacks
+  // (cluster level, either direction when symmetric); returns how many (elite_destroy.cpp).
+  int remove_differences(Tour& t, const std::vector<NodeId>& e, std::vector<ClusterId>& removed) const;
   bool cluster_optimise(Tour& t, double max_work) const;
   // Best nodes for positions [lo, hi] with the nodes around them fixed. O(sum |C_i||C_i+1|) there.
   bool window_optimise(Tour& t, int lo, int hi) const;

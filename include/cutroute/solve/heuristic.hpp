@@ -42,8 +42,16 @@ bool cluster_optimise(const Problem& p, std::vector<NodeId>& route, double max_w
 // All of the above until none improves.
 void local_search(const Problem& p, std::vector<NodeId>& route);
 
+// The metaheuristic's elite-difference destroy on its own: removes from `route` every cluster
+// (except route[0]) at an end of an arc, at cluster level and in either direction on symmetric
+// problems, that `elite` does not have. Returns the removed clusters; `tracked_cost` receives the
+// shortened route's cost as the operator kept it up to date (for tests against a recomputation).
+std::vector<ClusterId> remove_differences(const Problem& p, std::vector<NodeId>& route,
+                                          const std::vector<NodeId>& elite, Cost& tracked_cost);
+
 // The metaheuristic (docs/SOLVER.md): per thread, construction + local search, then rounds of
-// destroy (random / segment / worst / related removal of 1..30 % of the clusters), repair (cheapest
+// destroy (random / segment / worst / related removal of 1..30 % of the clusters, double bridge, and
+// on wide problems the elite-difference removal above), repair (cheapest
 // unified insertion, optionally noisy), local search and threshold acceptance; after every round
 // all threads continue from the best route so far. Stops on time limit, target, stagnation, cancel.
 // Deterministic for a fixed seed and thread count when no time limit or cancel cuts it.

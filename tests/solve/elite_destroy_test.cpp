@@ -8,6 +8,7 @@
 #include <utility>
 
 #include <cutroute/solve/heuristic.hpp>
+#include <cutroute/solve/solution.hpp>
 
 #include "random_instance.hpp"
 
@@ -25,15 +26,6 @@ std::set<std::pair<int, int>> arcs_of(const Problem& p, const std::vector<NodeId
     if (sym) s.insert({b, a});
   }
   return s;
-}
-
-Cost recomputed(const Problem& p, const std::vector<NodeId>& r) {
-  if (r.empty()) return 0;
-  if (r.size() == 1) return p.inner_cost(r[0]);  // a lone node: no arc, its inner cost once
-  Cost c = p.closed() ? 0 : p.inner_cost(r[0]);
-  for (std::size_t i = 0; i + 1 < r.size(); ++i) c += p.step(r[i], r[i + 1]);
-  if (p.closed()) c += p.step(r.back(), r[0]);
-  return c;
 }
 
 TEST(EliteDestroy, RemovesExactlyTheClustersNextToArcsTheEliteLacks) {
@@ -78,7 +70,7 @@ TEST(EliteDestroy, RemovesExactlyTheClustersNextToArcsTheEliteLacks) {
     for (std::size_t i = 0; i < L; ++i)
       if (!expected.count(static_cast<int>(i))) kept.push_back(a[i]);
     EXPECT_EQ(route, kept);
-    EXPECT_EQ(tracked, recomputed(p, route)) << "instance " << k;
+    EXPECT_EQ(tracked, route_cost(p, route)) << "instance " << k;
     nontrivial += !removed.empty();
   }
   EXPECT_GT(nontrivial, 30);  // two random constructions almost always differ

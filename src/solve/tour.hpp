@@ -58,6 +58,8 @@ class Ops {
     t.pass_start = ++t.epoch;
   }
   void reindex(Tour& t, int from, int to) const; // pos for seq[from, to)
+  // Reverses seq[i..j] whose cost change `delta` the caller priced; flags the ends for local search.
+  void reverse_segment(Tour& t, int i, int j, Cost delta) const;
   // The node after index i: the next one, the first one (closed tour), or an invalid id (path end).
   NodeId after(const Tour& t, int i) const {
     const int L = static_cast<int>(t.seq.size());
@@ -98,6 +100,7 @@ class Ops {
 
   bool reinsertion_pass(Tour& t) const;
   bool two_opt_pass(Tour& t) const;
+  bool asym_two_opt_pass(Tour& t) const;  // two_opt_pass on asymmetric costs (asym_two_opt.cpp)
   bool or_opt_pass(Tour& t) const;
   bool swap_pass(Tour& t) const;
   bool segment_exchange_pass(Tour& t) const;  // segment_exchange.cpp
@@ -129,6 +132,13 @@ class Ops {
   bool expensive_co_ = false;
   std::vector<ClusterId> pred_, succ_;
   std::vector<std::uint64_t> prec_bits_;  // row b, bit a: a must precede b
+  // Cluster-blocked copies of a plain matrix (see Ops::Ops): blk_out_[u * n + s] = arc(u, v) and
+  // blk_in_[u * n + s] = arc(v, u), where s = blk_off_[cluster of v] + v's index in nodes_of(cluster).
+  // blk_in_ stays empty on symmetric problems (it would equal blk_out_).
+  std::vector<Cost> blk_out_, blk_in_;
+  bool near_symmetric_ = false;  // asymmetric matrix within 10 % of symmetric (asym_two_opt.cpp)
+  std::vector<std::size_t> blk_off_;
+  const Cost* blk_in() const { return blk_in_.empty() ? blk_out_.data() : blk_in_.data(); }
 };
 
 }  // namespace cutroute::solve::detail

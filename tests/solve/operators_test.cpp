@@ -27,6 +27,8 @@ TEST(Operators, NeverWorsenAndKeepPrecedence) {
     spec.closed = k % 3 != 0;
     spec.precedence_pairs = k % 4 == 0 ? 0 : static_cast<int>(rng.below(static_cast<std::uint64_t>(spec.clusters)));
     spec.inner_costs = k % 5 == 0;
+    spec.scatter_nodes = k % 7 < 3;
+    if (k % 6 == 1) spec.symmetric = true, spec.asym_noise = 20;  // nearly symmetric matrix
     const Problem p = test::random_problem(spec, rng);
     SCOPED_TRACE("instance " + std::to_string(k));
     std::vector<NodeId> r = construct_route(p, rng);
@@ -57,13 +59,14 @@ TEST(Operators, NeverWorsenAndKeepPrecedence) {
 // Cluster optimisation is exact for a fixed order: compare with enumerating every node choice.
 TEST(Operators, ClusterOptimiseFindsBestNodesForFixedOrder) {
   Rng rng(5);
-  for (int k = 0; k < 30; ++k) {
+  for (int k = 0; k < 60; ++k) {
     test::RandomSpec spec;
     spec.clusters = 2 + static_cast<int>(rng.below(4));
     spec.max_nodes = 3;
     spec.symmetric = k % 2 == 0;
     spec.closed = k % 3 != 0;
-    spec.inner_costs = true;
+    spec.inner_costs = k % 3 != 0;  // without: the solver reads its cluster-blocked matrix copies
+    spec.scatter_nodes = k % 4 < 2;  // ... which are then a true permutation of the matrix
     const Problem p = test::random_problem(spec, rng);
     std::vector<NodeId> r = construct_route(p, rng);
     Cost best = route_cost(p, r);

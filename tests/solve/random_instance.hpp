@@ -21,6 +21,12 @@ struct RandomSpec {
   int precedence_pairs = 0;
   int forbidden_arcs = 0;
   bool inner_costs = false;
+  // Adds an independent draw in [0, asym_noise) to every arc of a symmetric spec: a nearly
+  // symmetric asymmetric matrix (like SOP prob.100 or kro124p).
+  int asym_noise = 0;
+  // Node ids dealt to clusters in random order instead of consecutively (like GTSPLIB, whose
+  // clusters are scattered over the node numbering).
+  bool scatter_nodes = false;
 };
 
 inline solve::Problem random_problem(const RandomSpec& s, Rng& rng) {
@@ -32,6 +38,13 @@ inline solve::Problem random_problem(const RandomSpec& s, Rng& rng) {
     clusters.emplace_back();
     for (int j = 0; j < k; ++j) clusters.back().push_back(NodeId(n++));
   }
+  if (s.scatter_nodes) {
+    std::vector<int> perm(static_cast<std::size_t>(n));
+    for (int v = 0; v < n; ++v) perm[static_cast<std::size_t>(v)] = v;
+    rng.shuffle(perm.begin(), perm.end());
+    for (auto& c : clusters)
+      for (NodeId& v : c) v = NodeId(perm[v.index()]);
+  }
   const auto un = static_cast<std::size_t>(n);
   std::vector<Cost> m(un * un, 0);
   if (s.symmetric) {
@@ -39,7 +52,8 @@ inline solve::Problem random_problem(const RandomSpec& s, Rng& rng) {
     for (std::size_t i = 0; i < un; ++i) x[i] = static_cast<double>(rng.below(1000)), y[i] = static_cast<double>(rng.below(1000));
     for (std::size_t i = 0; i < un; ++i)
       for (std::size_t j = 0; j < un; ++j)
-        m[i * un + j] = static_cast<Cost>(std::hypot(x[i] - x[j], y[i] - y[j]) + 0.5);
+        m[i * un + j] = static_cast<Cost>(std::hypot(x[i] - x[j], y[i] - y[j]) + 0.5) +
+                        (s.asym_noise > 0 && i != j ? static_cast<Cost>(rng.below(static_cast<std::uint64_t>(s.asym_noise))) : 0);
   } else {
     for (auto& v : m) v = static_cast<Cost>(rng.below(1000));
   }

@@ -1,0 +1,64 @@
+// 2-opt on nearly symmetric asymmetric matrices: prices reversals exactly and leaves no improving
+// feasible one, checked by reversing every segment and recomputing the cost from scratch.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include <cutroute/solve/heuristic.hpp>
+#include <cutroute/solve/solution.hpp>
+
+#include "random_instance.hpp"
+
+namespace cutroute::solve {
+namespace {
+
+bool valid(const Problem& p, const std::vector<NodeId>& r) {
+  Solution s;
+  s.route = r;
+  s.cost = route_cost(p, r);
+  return validate(p, s).empty();
+}
+
+TEST(AsymTwoOpt, LeavesNoImprovingFeasibleReversal) {
+  Rng rng(17);
+  int improving_runs = 0;
+  for (int k = 0; k < 40; ++k) {
+    test::RandomSpec spec;
+    spec.clusters = 4 + static_cast<int>(rng.below(30));
+    spec.max_nodes = 1 + static_cast<int>(rng.below(3));
+    spec.symmetric = true;
+    spec.asym_noise = 1 + static_cast<int>(rng.below(60));  // a few % of the mean arc: "near symmetric"
+    spec.closed = k % 3 != 0;
+    spec.precedence_pairs = k % 2 == 0 ? 0 : static_cast<int>(rng.below(static_cast<std::uint64_t>(spec.clusters)));
+    spec.inner_costs = k % 4 == 1;
+    spec.scatter_nodes = k % 5 < 2;
+    const Problem p = test::random_problem(spec, rng);
+    ASSERT_FALSE(p.symmetric());
+    SCOPED_TRACE("instance " + std::to_string(k));
+    std::vector<NodeId> r = construct_route(p, rng);
+    ASSERT_TRUE(valid(p, r));
+    int passes = 0;
+    for (bool improved = true; improved && passes < 1000; ++passes) {
+      const Cost before = route_cost(p, r);
+      improved = two_opt_pass(p, r);
+      const Cost after = route_cost(p, r);
+      ASSERT_TRUE(valid(p, r));
+      EXPECT_EQ(improved, after < before);
+      EXPECT_LE(after, before);
+    }
+    improving_runs += passes > 1;
+    const Cost cost = route_cost(p, r);
+    for (std::size_t i = 1; i + 1 < r.size(); ++i)
+      for (std::size_t j = i + 1; j < r.size(); ++j) {
+        std::vector<NodeId> x = r;
+        std::reverse(x.begin() + static_cast<std::ptrdiff_t>(i), x.begin() + static_cast<std::ptrdiff_t>(j) + 1);
+        if (valid(p, x)) {
+          EXPECT_GE(route_cost(p, x), cost) << "reversing [" << i << ", " << j << "] pays";
+        }
+      }
+  }
+  EXPECT_GT(improving_runs, 20);  // most random constructions leave reversals to make (27 of 40)
+}
+
+}  // namespace
+}  // namespace cutroute::solve

@@ -451,6 +451,19 @@ bool Ops::or_opt_pass(Tour& t) const {
           for (ClusterId x : succs(cl(f))) eval(t.pos[x.index()] - 1, true);
         }
       } else {
+      // Nearly symmetric asymmetric matrices (asym_two_opt.cpp): the segment reversed too, its inner
+      // arcs priced in the new direction, when no precedence pair lies inside it.
+      bool rev = near_symmetric_;
+      Cost rev_extra = 0;  // inner arcs reversed minus inner arcs forward
+      for (int s = i; s < e && rev; ++s) {
+        const NodeId u = t.seq[static_cast<std::size_t>(s)], v = t.seq[static_cast<std::size_t>(s + 1)];
+        rev_extra += link(v, u) - link(u, v);
+        for (int q = s + 1; q <= e && rev; ++q) rev = !precedes(cl(u), cl(t.seq[static_cast<std::size_t>(q)]));
+      }
+      auto eval_rev = [&](NodeId y, NodeId z, int tt) {
+        const Cost add = link(y, l) + (z.valid() ? link(f, z) - link(y, z) : 0) + rev_extra;
+        if (add - gain < best) best = add - gain, best_t = tt, best_rev = true;
+      };
       // Forward: insert after seq[tt], tt > e.
       for (int tt = e + 1; tt < L; ++tt) {
         const NodeId y = t.seq[static_cast<std::size_t>(tt)];
@@ -461,7 +474,8 @@ bool Ops::or_opt_pass(Tour& t) const {
         }
         const NodeId z = after(t, tt);
         const Cost add = link(y, f) + (z.valid() ? link(l, z) - link(y, z) : 0);
-        if (add - gain < best) best = add - gain, best_t = tt;
+        if (add - gain < best) best = add - gain, best_t = tt, best_rev = false;
+        if (rev) eval_rev(y, z, tt);
       }
       // Backward: insert after seq[tt], tt < i - 1.
       for (int tt = i - 2; tt >= 0; --tt) {
@@ -474,7 +488,8 @@ bool Ops::or_opt_pass(Tour& t) const {
         const NodeId y = t.seq[static_cast<std::size_t>(tt)];
         const NodeId z = jumped;
         const Cost add = link(y, f) + link(l, z) - link(y, z);
-        if (add - gain < best) best = add - gain, best_t = tt;
+        if (add - gain < best) best = add - gain, best_t = tt, best_rev = false;
+        if (rev) eval_rev(y, z, tt);
       }
       }
       if (best_t < 0) continue;

@@ -50,6 +50,9 @@ bool swap_pass(const Problem& p, std::vector<NodeId>& r) {
 bool segment_exchange_pass(const Problem& p, std::vector<NodeId>& r) {
   return on_route(p, r, [](const Ops& o, Tour& t) { return o.segment_exchange_pass(t); });
 }
+bool reversing_exchange_pass(const Problem& p, std::vector<NodeId>& r) {
+  return on_route(p, r, [](const Ops& o, Tour& t) { return o.reversing_exchange_pass(t); });
+}
 bool cluster_optimise(const Problem& p, std::vector<NodeId>& r, double max_work) {
   return on_route(p, r, [max_work](const Ops& o, Tour& t) { return o.cluster_optimise(t, max_work); });
 }

@@ -751,6 +751,7 @@ void Ops::local_search(Tour& t) const {
         improved = two_opt_pass(t) || improved;
         improved = or_opt_pass(t) || improved;
         improved = segment_exchange_pass(t) || improved;
+        improved = reversing_exchange_pass(t) || improved;
         if (prec_) improved = swap_pass(t) || improved;
         if (!improved) break;
       }
@@ -769,6 +770,7 @@ void Ops::local_search(Tour& t) const {
       improved = two_opt_pass(t) || improved;
       improved = or_opt_pass(t) || improved;
       improved = segment_exchange_pass(t) || improved;
+      improved = reversing_exchange_pass(t) || improved;
       if (prec_) improved = swap_pass(t) || improved;
       if (!improved) break;
     }

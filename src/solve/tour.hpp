@@ -104,6 +104,7 @@ class Ops {
   bool or_opt_pass(Tour& t) const;
   bool swap_pass(Tour& t) const;
   bool segment_exchange_pass(Tour& t) const;  // segment_exchange.cpp
+  bool reversing_exchange_pass(Tour& t) const;  // reversing_exchange.cpp (nearly symmetric matrices)
   // Removes (into `removed`) every cluster but position 0 next to an arc of t that route e lacks
   // (cluster level, either direction when symmetric); returns how many (elite_destroy.cpp).
   int remove_differences(Tour& t, const std::vector<NodeId>& e, std::vector<ClusterId>& removed) const;

@@ -1,5 +1,5 @@
-// 2-opt on nearly symmetric asymmetric matrices: prices reversals exactly and leaves no improving
-// feasible one, checked by reversing every segment and recomputing the cost from scratch.
+// Reversing moves on nearly symmetric asymmetric matrices (2-opt, reversing segment exchange): priced
+// exactly, and none that pays is left, checked by making every such move and recomputing the cost.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -58,6 +58,52 @@ TEST(AsymTwoOpt, LeavesNoImprovingFeasibleReversal) {
       }
   }
   EXPECT_GT(improving_runs, 20);  // most random constructions leave reversals to make (27 of 40)
+}
+
+// a [b..c] [d..e] f -> a [d..e] [c..b] f and -> a [e..d] [b..c] f, every i < j < h.
+TEST(ReversingExchange, LeavesNoImprovingFeasibleMove) {
+  Rng rng(23);
+  int improving_runs = 0;
+  for (int k = 0; k < 40; ++k) {
+    test::RandomSpec spec;
+    spec.clusters = 4 + static_cast<int>(rng.below(20));
+    spec.max_nodes = 1 + static_cast<int>(rng.below(3));
+    spec.symmetric = true;
+    spec.asym_noise = 1 + static_cast<int>(rng.below(60));
+    spec.closed = k % 3 != 0;
+    spec.precedence_pairs = k % 2 == 0 ? 0 : static_cast<int>(rng.below(static_cast<std::uint64_t>(spec.clusters)));
+    spec.inner_costs = k % 4 == 1;
+    spec.scatter_nodes = k % 5 < 2;
+    const Problem p = test::random_problem(spec, rng);
+    SCOPED_TRACE("instance " + std::to_string(k));
+    std::vector<NodeId> r = construct_route(p, rng);
+    int passes = 0;
+    for (bool improved = true; improved && passes < 1000; ++passes) {
+      const Cost before = route_cost(p, r);
+      improved = reversing_exchange_pass(p, r);
+      ASSERT_TRUE(valid(p, r));
+      EXPECT_EQ(improved, route_cost(p, r) < before);
+    }
+    improving_runs += passes > 1;
+    const Cost cost = route_cost(p, r);
+    const std::size_t L = r.size();
+    for (std::size_t i = 0; i + 2 < L; ++i)
+      for (std::size_t j = i + 1; j + 1 < L; ++j)
+        for (std::size_t h = j + 1; h < L; ++h)
+          for (int variant = 0; variant < 2; ++variant) {
+            std::vector<NodeId> x(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+            std::vector<NodeId> left(r.begin() + static_cast<std::ptrdiff_t>(i) + 1, r.begin() + static_cast<std::ptrdiff_t>(j) + 1);
+            std::vector<NodeId> right(r.begin() + static_cast<std::ptrdiff_t>(j) + 1, r.begin() + static_cast<std::ptrdiff_t>(h) + 1);
+            (variant == 0 ? left : right).assign((variant == 0 ? left : right).rbegin(), (variant == 0 ? left : right).rend());
+            x.insert(x.end(), right.begin(), right.end());
+            x.insert(x.end(), left.begin(), left.end());
+            x.insert(x.end(), r.begin() + static_cast<std::ptrdiff_t>(h) + 1, r.end());
+            if (valid(p, x)) {
+              EXPECT_GE(route_cost(p, x), cost) << "variant " << variant << " at " << i << ", " << j << ", " << h << " pays";
+            }
+          }
+  }
+  EXPECT_GT(improving_runs, 20);
 }
 
 }  // namespace

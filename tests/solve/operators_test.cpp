@@ -39,6 +39,7 @@ TEST(Operators, NeverWorsenAndKeepPrecedence) {
                                               {"or_opt", or_opt_pass},
                                               {"swap", swap_pass},
                                               {"segment_exchange", segment_exchange_pass},
+                                              {"reversing_exchange", reversing_exchange_pass},
                                               {"cluster_optimise", [](const Problem& q, std::vector<NodeId>& x) { return cluster_optimise(q, x); }}};
     for (int round = 0; round < 3; ++round)
       for (auto [name, op] : ops) {

@@ -24,12 +24,16 @@ std::vector<NodeId> construct_route(const Problem& p, Rng& rng);
 // Each returns true when it made the route strictly cheaper; none ever makes it more expensive,
 // moves route[0] out of position 0, or breaks a precedence.
 //   reinsertion: remove one cluster, put it back at its best position with its best node. O(m * n) a pass.
-//   two_opt: reverse a segment (symmetric problems only; no precedence pair inside it). O(m^2) a pass.
+//   two_opt: reverse a segment (no precedence pair inside it). O(m^2) a pass.
 //   or_opt: move a segment of 2 or 3 clusters elsewhere, same direction. O(m^2) a pass.
 //   swap: exchange two clusters (used on problems with precedence). O(m^2) a pass.
 //   segment_exchange: swap two adjacent segments, both kept in direction (SOP-3-exchange, the
 //     orientation-preserving 3-opt move), feasibility checked lexicographically. O(m^2) per examined
 //     position with precedence (routes <= 160 clusters), O(k^2) with candidate lists without.
+//   reversing_exchange: swap two adjacent segments and reverse one of them (asymmetric matrices
+//     within 10 % of symmetric only, routes <= 160 clusters; no precedence pair inside the reversed
+//     one). O(L^2) per examined position.
+//   two_opt on such matrices prices every arc of the reversed segment (prefix sums, O(1) a move).
 //   cluster_optimise: for the fixed cluster order, the best node of every cluster (shortest path
 //     through the layered graph, all nodes of the smallest cluster tried as the cyclic start when
 //     the work fits `max_work`, else only its current node). O(k_min * sum |C_i||C_i+1|).
@@ -38,6 +42,7 @@ bool two_opt_pass(const Problem& p, std::vector<NodeId>& route);
 bool or_opt_pass(const Problem& p, std::vector<NodeId>& route);
 bool swap_pass(const Problem& p, std::vector<NodeId>& route);
 bool segment_exchange_pass(const Problem& p, std::vector<NodeId>& route);
+bool reversing_exchange_pass(const Problem& p, std::vector<NodeId>& route);
 bool cluster_optimise(const Problem& p, std::vector<NodeId>& route, double max_work = 2.0e6);
 // All of the above until none improves.
 void local_search(const Problem& p, std::vector<NodeId>& route);

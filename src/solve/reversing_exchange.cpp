@@ -1,0 +1,102 @@
+// Reversing segment exchange: the two 3-opt moves that swap adjacent segments and reverse one of
+// them, for nearly symmetric asymmetric matrices (SOP prob.100, kro124p, ry48p).
+#include <algorithm>
+#include <vector>
+
+#include "tour.hpp"
+
+namespace cutroute::solve::detail {
+
+namespace {
+// O(L^2) per examined position, as the orientation-preserving exchange with precedence.
+constexpr int kMaxLength = 160;
+}  // namespace
+
+// With left = seq[i+1..j] = [b..c], right = seq[j+1..h] = [d..e], a = seq[i], f = after h:
+//   A: a [b..c] [d..e] f  ->  a [d..e] [c..b] f      (left moved behind right, reversed)
+//   B: a [b..c] [d..e] f  ->  a [e..d] [b..c] f      (right moved before left, reversed)
+// Segment exchange (segment_exchange.cpp) keeps both directions and Or-opt reverses only 2-3
+// clusters; these are the longer reversing moves a nearly symmetric matrix makes worthwhile. The
+// reversed segment is priced from prefix sums of forward (F) and backward (B) link costs; every node
+// is still entered once, so inner costs cancel. Feasible iff no cluster of left must precede one of
+// right and no precedence pair lies inside the reversed segment: for a fixed i, growing j marks the
+// successors of left's clusters and growing h stops at the first marked one (as segment exchange);
+// first_after[q] (the first later position that seq[q] must precede) tells whether a segment holds a
+// pair: [x..y] does iff min(first_after[x..y]) <= y.
+bool Ops::reversing_exchange_pass(Tour& t) const {
+  const int L = static_cast<int>(t.seq.size());
+  if (!near_symmetric_ || L < 4 || L > kMaxLength) return false;
+  thread_local std::vector<Cost> F, B;
+  thread_local std::vector<int> first_after;
+  thread_local std::vector<char> mark;
+  auto at = [&](int q) { return t.seq[static_cast<std::size_t>(q)]; };
+  auto fa = [&](int q) { return first_after[static_cast<std::size_t>(q)]; };
+  auto refresh = [&] {
+    F.assign(static_cast<std::size_t>(L), 0);
+    B.assign(static_cast<std::size_t>(L), 0);
+    for (int k = 1; k < L; ++k) {
+      F[static_cast<std::size_t>(k)] = F[static_cast<std::size_t>(k - 1)] + link(at(k - 1), at(k));
+      B[static_cast<std::size_t>(k)] = B[static_cast<std::size_t>(k - 1)] + link(at(k), at(k - 1));
+    }
+    first_after.assign(static_cast<std::size_t>(L), L);
+    if (prec_)
+      for (int q = 0; q < L; ++q)
+        for (ClusterId y : p_.all_after(cl(at(q)))) {
+          const int py = t.pos[y.index()];
+          if (py > q) first_after[static_cast<std::size_t>(q)] = std::min(fa(q), py);
+        }
+  };
+  // Cost of the path seq[x..y] forwards and backwards (x <= y).
+  auto fwd = [&](int x, int y) { return F[static_cast<std::size_t>(y)] - F[static_cast<std::size_t>(x)]; };
+  auto bwd = [&](int x, int y) { return B[static_cast<std::size_t>(y)] - B[static_cast<std::size_t>(x)]; };
+  refresh();
+  bool improved = false;
+  for (int i = 0; i + 2 < L; ++i) {
+    if (!touched(t, cl(at(i)).index()) && !touched(t, cl(at(i + 1)).index())) continue;
+    mark.assign(static_cast<std::size_t>(m_), 0);
+    const NodeId a = at(i), b = at(i + 1);
+    Cost best = 0;
+    int bj = -1, bh = -1;
+    bool b_variant = false;
+    int left_low = L;  // min(first_after[i+1..j])
+    for (int j = i + 1; j + 1 < L; ++j) {
+      if (prec_)
+        for (ClusterId y : p_.all_after(cl(at(j)))) mark[y.index()] = 1;
+      left_low = std::min(left_low, fa(j));
+      const bool left_rev = left_low > j;
+      const NodeId c = at(j), d = at(j + 1);
+      const Cost old_left = link(a, b) + fwd(i + 1, j) + link(c, d);
+      int right_low = L;
+      for (int h = j + 1; h < L; ++h) {
+        if (prec_ && mark[cl(at(h)).index()]) break;
+        right_low = std::min(right_low, fa(h));
+        const NodeId e = at(h), f = after(t, h);
+        const Cost old = old_left + fwd(j + 1, h) + (f.valid() ? link(e, f) : 0);
+        if (left_rev) {
+          const Cost dl = link(a, d) + fwd(j + 1, h) + link(e, c) + bwd(i + 1, j) + (f.valid() ? link(b, f) : 0) - old;
+          if (dl < best) best = dl, bj = j, bh = h, b_variant = false;
+        }
+        if (right_low > h) {
+          const Cost dl = link(a, e) + bwd(j + 1, h) + link(d, b) + fwd(i + 1, j) + (f.valid() ? link(c, f) : 0) - old;
+          if (dl < best) best = dl, bj = j, bh = h, b_variant = true;
+        }
+      }
+    }
+    if (bj < 0) continue;
+    std::rotate(t.seq.begin() + i + 1, t.seq.begin() + bj + 1, t.seq.begin() + bh + 1);
+    const int split = i + bh - bj;  // right now at [i+1, split], left at [split+1, bh]
+    if (b_variant) std::reverse(t.seq.begin() + i + 1, t.seq.begin() + split + 1);
+    else std::reverse(t.seq.begin() + split + 1, t.seq.begin() + bh + 1);
+    reindex(t, i + 1, bh + 1);
+    t.cost += best;
+    improved = true;
+    mark_around(t, i + 1);
+    mark_around(t, split);
+    mark_around(t, split + 1);
+    mark_around(t, bh);
+    refresh();
+  }
+  return improved;
+}
+
+}  // namespace cutroute::solve::detail

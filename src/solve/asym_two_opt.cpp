@@ -6,6 +6,25 @@
 
 namespace cutroute::solve::detail {
 
+// One O(L) pass for F and B, plus O(sum of successor lists) for first_after with precedence.
+void Ops::reversal_table(const Tour& t, ReversalTable& r) const {
+  const int L = static_cast<int>(t.seq.size());
+  auto at = [&](int k) { return t.seq[static_cast<std::size_t>(k)]; };
+  r.F.assign(static_cast<std::size_t>(L), 0);
+  r.B.assign(static_cast<std::size_t>(L), 0);
+  for (int k = 1; k < L; ++k) {
+    r.F[static_cast<std::size_t>(k)] = r.F[static_cast<std::size_t>(k - 1)] + link(at(k - 1), at(k));
+    r.B[static_cast<std::size_t>(k)] = r.B[static_cast<std::size_t>(k - 1)] + link(at(k), at(k - 1));
+  }
+  r.first_after.assign(static_cast<std::size_t>(L), L);
+  if (!prec_) return;
+  for (int q = 0; q < L; ++q)
+    for (ClusterId y : p_.all_after(cl(at(q)))) {
+      const int py = t.pos[y.index()];
+      if (py > q) r.first_after[static_cast<std::size_t>(q)] = std::min(r.after_of(q), py);
+    }
+}
+
 // Reversing seq[i..j] on an asymmetric matrix changes every arc inside the segment, not only the two
 // boundary arcs. Prefix sums of the route's link costs forwards (F) and backwards (B) price it in O(1):
 //   old = link(a, b) + F[j] - F[i] + link(c, d),  new = link(a, c) + B[j] - B[i] + link(b, d)
@@ -17,42 +36,20 @@ namespace cutroute::solve::detail {
 bool Ops::asym_two_opt_pass(Tour& t) const {
   const int L = static_cast<int>(t.seq.size());
   if (L < 4) return false;
-  thread_local std::vector<Cost> F, B;
-  thread_local std::vector<int> hot, first_after;
+  thread_local ReversalTable r;
+  thread_local std::vector<int> hot;
   auto at = [&](int k) { return t.seq[static_cast<std::size_t>(k)]; };
-  // first_after[q]: the first position after q holding a cluster that must follow seq[q]'s (L if none).
-  // seq[i..j] may be reversed iff min(first_after[i..j]) > j.
-  auto prefix = [&] {
-    if (prec_) {
-      first_after.assign(static_cast<std::size_t>(L), L);
-      for (int q = 0; q < L; ++q)
-        for (ClusterId y : p_.all_after(cl(at(q)))) {
-          const int py = t.pos[y.index()];
-          if (py > q) first_after[static_cast<std::size_t>(q)] = std::min(first_after[static_cast<std::size_t>(q)], py);
-        }
-    }
-    F.assign(static_cast<std::size_t>(L), 0);
-    B.assign(static_cast<std::size_t>(L), 0);
-    for (int k = 1; k < L; ++k) {
-      F[static_cast<std::size_t>(k)] = F[static_cast<std::size_t>(k - 1)] + link(at(k - 1), at(k));
-      B[static_cast<std::size_t>(k)] = B[static_cast<std::size_t>(k - 1)] + link(at(k), at(k - 1));
-    }
-  };
   // Boundary k lies between positions k-1 and k (k = L: the closing arc, or the open end).
   auto boundary_touched = [&](int k) {
     return touched(t, cl(at(k - 1)).index()) || (k < L && touched(t, cl(at(k)).index()));
   };
-  prefix();
+  reversal_table(t, r);
   bool improved = false;
   for (int i = 1; i + 1 < L; ++i) {
-    int max_j = L - 1;
-    if (prec_) {
-      int low = first_after[static_cast<std::size_t>(i)];
-      max_j = i;
-      while (max_j + 1 < L && std::min(low, first_after[static_cast<std::size_t>(max_j + 1)]) > max_j + 1)
-        low = std::min(low, first_after[static_cast<std::size_t>(++max_j)]);
-      if (max_j == i) continue;
-    }
+    // The longest reversible seq[i..max_j].
+    int low = r.after_of(i), max_j = i;
+    while (max_j + 1 < L && std::min(low, r.after_of(max_j + 1)) > max_j + 1) low = std::min(low, r.after_of(++max_j));
+    if (max_j == i) continue;
     const bool all_j = boundary_touched(i);
     hot.clear();
     if (!all_j)
@@ -60,18 +57,17 @@ bool Ops::asym_two_opt_pass(Tour& t) const {
         if (boundary_touched(k)) hot.push_back(k - 1);
     if (!all_j && hot.empty()) continue;
     const int count = all_j ? L - i - 1 : static_cast<int>(hot.size());
-    for (int r = 0; r < count; ++r) {
-      const int j = all_j ? i + 1 + r : hot[static_cast<std::size_t>(r)];
-      const NodeId a = at(i - 1), b = at(i), c = at(j);
+    for (int k = 0; k < count; ++k) {
+      const int j = all_j ? i + 1 + k : hot[static_cast<std::size_t>(k)];
       if (j > max_j) break;  // a precedence pair inside the segment (and inside every longer one)
+      const NodeId a = at(i - 1), b = at(i), c = at(j);
       const NodeId d = after(t, j);
-      Cost delta = link(a, c) - link(a, b) + (B[static_cast<std::size_t>(j)] - B[static_cast<std::size_t>(i)]) -
-                   (F[static_cast<std::size_t>(j)] - F[static_cast<std::size_t>(i)]);
+      Cost delta = link(a, c) - link(a, b) + r.bwd(i, j) - r.fwd(i, j);
       if (d.valid()) delta += link(b, d) - link(c, d);
       if (delta < 0) {
         reverse_segment(t, i, j, delta);
         improved = true;
-        prefix();
+        reversal_table(t, r);
         break;  // seq[i] changed: the next i-loop step continues from the new route
       }
     }

@@ -26,34 +26,14 @@ constexpr int kMaxLength = 160;
 bool Ops::reversing_exchange_pass(Tour& t) const {
   const int L = static_cast<int>(t.seq.size());
   if (!near_symmetric_ || L < 4 || L > kMaxLength) return false;
-  thread_local std::vector<Cost> F, B;
-  thread_local std::vector<int> first_after;
+  thread_local ReversalTable r;
   thread_local std::vector<char> mark;
   auto at = [&](int q) { return t.seq[static_cast<std::size_t>(q)]; };
-  auto fa = [&](int q) { return first_after[static_cast<std::size_t>(q)]; };
-  auto refresh = [&] {
-    F.assign(static_cast<std::size_t>(L), 0);
-    B.assign(static_cast<std::size_t>(L), 0);
-    for (int k = 1; k < L; ++k) {
-      F[static_cast<std::size_t>(k)] = F[static_cast<std::size_t>(k - 1)] + link(at(k - 1), at(k));
-      B[static_cast<std::size_t>(k)] = B[static_cast<std::size_t>(k - 1)] + link(at(k), at(k - 1));
-    }
-    first_after.assign(static_cast<std::size_t>(L), L);
-    if (prec_)
-      for (int q = 0; q < L; ++q)
-        for (ClusterId y : p_.all_after(cl(at(q)))) {
-          const int py = t.pos[y.index()];
-          if (py > q) first_after[static_cast<std::size_t>(q)] = std::min(fa(q), py);
-        }
-  };
-  // Cost of the path seq[x..y] forwards and backwards (x <= y).
-  auto fwd = [&](int x, int y) { return F[static_cast<std::size_t>(y)] - F[static_cast<std::size_t>(x)]; };
-  auto bwd = [&](int x, int y) { return B[static_cast<std::size_t>(y)] - B[static_cast<std::size_t>(x)]; };
-  refresh();
+  reversal_table(t, r);
   bool improved = false;
   for (int i = 0; i + 2 < L; ++i) {
     if (!touched(t, cl(at(i)).index()) && !touched(t, cl(at(i + 1)).index())) continue;
-    mark.assign(static_cast<std::size_t>(m_), 0);
+    if (prec_) mark.assign(static_cast<std::size_t>(m_), 0);
     const NodeId a = at(i), b = at(i + 1);
     Cost best = 0;
     int bj = -1, bh = -1;
@@ -62,22 +42,23 @@ bool Ops::reversing_exchange_pass(Tour& t) const {
     for (int j = i + 1; j + 1 < L; ++j) {
       if (prec_)
         for (ClusterId y : p_.all_after(cl(at(j)))) mark[y.index()] = 1;
-      left_low = std::min(left_low, fa(j));
+      left_low = std::min(left_low, r.after_of(j));
       const bool left_rev = left_low > j;
       const NodeId c = at(j), d = at(j + 1);
-      const Cost old_left = link(a, b) + fwd(i + 1, j) + link(c, d);
+      const Cost old_left = link(a, b) + r.fwd(i + 1, j) + link(c, d);
       int right_low = L;
       for (int h = j + 1; h < L; ++h) {
         if (prec_ && mark[cl(at(h)).index()]) break;
-        right_low = std::min(right_low, fa(h));
+        right_low = std::min(right_low, r.after_of(h));
+        if (!left_rev && right_low <= h) break;  // neither variant for this or any longer right
         const NodeId e = at(h), f = after(t, h);
-        const Cost old = old_left + fwd(j + 1, h) + (f.valid() ? link(e, f) : 0);
+        const Cost old = old_left + r.fwd(j + 1, h) + (f.valid() ? link(e, f) : 0);
         if (left_rev) {
-          const Cost dl = link(a, d) + fwd(j + 1, h) + link(e, c) + bwd(i + 1, j) + (f.valid() ? link(b, f) : 0) - old;
+          const Cost dl = link(a, d) + r.fwd(j + 1, h) + link(e, c) + r.bwd(i + 1, j) + (f.valid() ? link(b, f) : 0) - old;
           if (dl < best) best = dl, bj = j, bh = h, b_variant = false;
         }
         if (right_low > h) {
-          const Cost dl = link(a, e) + bwd(j + 1, h) + link(d, b) + fwd(i + 1, j) + (f.valid() ? link(c, f) : 0) - old;
+          const Cost dl = link(a, e) + r.bwd(j + 1, h) + link(d, b) + r.fwd(i + 1, j) + (f.valid() ? link(c, f) : 0) - old;
           if (dl < best) best = dl, bj = j, bh = h, b_variant = true;
         }
       }
@@ -94,7 +75,7 @@ bool Ops::reversing_exchange_pass(Tour& t) const {
     mark_around(t, split);
     mark_around(t, split + 1);
     mark_around(t, bh);
-    refresh();
+    reversal_table(t, r);
   }
   return improved;
 }

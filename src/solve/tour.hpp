@@ -30,6 +30,17 @@ struct Tour {
   Cost cost = 0;
 };
 
+// Reversal prices on asymmetric costs for one route (Ops::reversal_table): prefix sums of its link
+// costs forwards (F) and backwards (B), and where precedence ends a reversible stretch.
+struct ReversalTable {
+  std::vector<Cost> F, B;
+  std::vector<int> first_after;  // first later position seq[q] must precede (L if none; with precedence)
+  // Cost of the path seq[x..y] (x <= y) as it runs, and run backwards from seq[y] to seq[x].
+  Cost fwd(int x, int y) const { return F[static_cast<std::size_t>(y)] - F[static_cast<std::size_t>(x)]; }
+  Cost bwd(int x, int y) const { return B[static_cast<std::size_t>(y)] - B[static_cast<std::size_t>(x)]; }
+  int after_of(int q) const { return first_after[static_cast<std::size_t>(q)]; }
+};
+
 class Ops {
  public:
   // `stop` (optional) ends local search early: on huge routes one descent can take seconds.
@@ -101,6 +112,9 @@ class Ops {
   bool reinsertion_pass(Tour& t) const;
   bool two_opt_pass(Tour& t) const;
   bool asym_two_opt_pass(Tour& t) const;  // two_opt_pass on asymmetric costs (asym_two_opt.cpp)
+  // Fills r for t (asym_two_opt.cpp). A stretch seq[x..y] holds no precedence pair (may be
+  // reversed) iff min(r.after_of(x..y)) > y.
+  void reversal_table(const Tour& t, ReversalTable& r) const;
   bool or_opt_pass(Tour& t) const;
   bool swap_pass(Tour& t) const;
   bool segment_exchange_pass(Tour& t) const;  // segment_exchange.cpp
@@ -137,9 +151,9 @@ class Ops {
   // blk_in_[u * n + s] = arc(v, u), where s = blk_off_[cluster of v] + v's index in nodes_of(cluster).
   // blk_in_ stays empty on symmetric problems (it would equal blk_out_).
   std::vector<Cost> blk_out_, blk_in_;
-  bool near_symmetric_ = false;  // asymmetric matrix within 10 % of symmetric (asym_two_opt.cpp)
   std::vector<std::size_t> blk_off_;
   const Cost* blk_in() const { return blk_in_.empty() ? blk_out_.data() : blk_in_.data(); }
+  bool near_symmetric_ = false;  // asymmetric matrix within 10 % of symmetric (asym_two_opt.cpp)
 };
 
 }  // namespace cutroute::solve::detail

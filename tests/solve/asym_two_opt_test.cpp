@@ -19,20 +19,26 @@ bool valid(const Problem& p, const std::vector<NodeId>& r) {
   return validate(p, s).empty();
 }
 
+// Instance k of a series: 4 to 3 + max_more clusters, a symmetric matrix plus independent noise of a
+// few % of the mean arc on every arc; open or closed, with or without precedence and inner costs.
+Problem nearly_symmetric_problem(int k, int max_more, Rng& rng) {
+  test::RandomSpec spec;
+  spec.clusters = 4 + static_cast<int>(rng.below(static_cast<std::uint64_t>(max_more)));
+  spec.max_nodes = 1 + static_cast<int>(rng.below(3));
+  spec.symmetric = true;
+  spec.asym_noise = 1 + static_cast<int>(rng.below(60));
+  spec.closed = k % 3 != 0;
+  spec.precedence_pairs = k % 2 == 0 ? 0 : static_cast<int>(rng.below(static_cast<std::uint64_t>(spec.clusters)));
+  spec.inner_costs = k % 4 == 1;
+  spec.scatter_nodes = k % 5 < 2;
+  return test::random_problem(spec, rng);
+}
+
 TEST(AsymTwoOpt, LeavesNoImprovingFeasibleReversal) {
   Rng rng(17);
   int improving_runs = 0;
   for (int k = 0; k < 40; ++k) {
-    test::RandomSpec spec;
-    spec.clusters = 4 + static_cast<int>(rng.below(30));
-    spec.max_nodes = 1 + static_cast<int>(rng.below(3));
-    spec.symmetric = true;
-    spec.asym_noise = 1 + static_cast<int>(rng.below(60));  // a few % of the mean arc: "near symmetric"
-    spec.closed = k % 3 != 0;
-    spec.precedence_pairs = k % 2 == 0 ? 0 : static_cast<int>(rng.below(static_cast<std::uint64_t>(spec.clusters)));
-    spec.inner_costs = k % 4 == 1;
-    spec.scatter_nodes = k % 5 < 2;
-    const Problem p = test::random_problem(spec, rng);
+    const Problem p = nearly_symmetric_problem(k, 30, rng);
     ASSERT_FALSE(p.symmetric());
     SCOPED_TRACE("instance " + std::to_string(k));
     std::vector<NodeId> r = construct_route(p, rng);
@@ -65,16 +71,7 @@ TEST(ReversingExchange, LeavesNoImprovingFeasibleMove) {
   Rng rng(23);
   int improving_runs = 0;
   for (int k = 0; k < 40; ++k) {
-    test::RandomSpec spec;
-    spec.clusters = 4 + static_cast<int>(rng.below(20));
-    spec.max_nodes = 1 + static_cast<int>(rng.below(3));
-    spec.symmetric = true;
-    spec.asym_noise = 1 + static_cast<int>(rng.below(60));
-    spec.closed = k % 3 != 0;
-    spec.precedence_pairs = k % 2 == 0 ? 0 : static_cast<int>(rng.below(static_cast<std::uint64_t>(spec.clusters)));
-    spec.inner_costs = k % 4 == 1;
-    spec.scatter_nodes = k % 5 < 2;
-    const Problem p = test::random_problem(spec, rng);
+    const Problem p = nearly_symmetric_problem(k, 20, rng);
     SCOPED_TRACE("instance " + std::to_string(k));
     std::vector<NodeId> r = construct_route(p, rng);
     int passes = 0;

@@ -53,6 +53,9 @@ bool segment_exchange_pass(const Problem& p, std::vector<NodeId>& r) {
 bool reversing_exchange_pass(const Problem& p, std::vector<NodeId>& r) {
   return on_route(p, r, [](const Ops& o, Tour& t) { return o.reversing_exchange_pass(t); });
 }
+bool lk_pass(const Problem& p, std::vector<NodeId>& r) {
+  return on_route(p, r, [](const Ops& o, Tour& t) { return o.lk_pass(t); });
+}
 bool cluster_optimise(const Problem& p, std::vector<NodeId>& r, double max_work) {
   return on_route(p, r, [max_work](const Ops& o, Tour& t) { return o.cluster_optimise(t, max_work); });
 }

@@ -1,1 +1,1 @@
-set(CUTROUTE_SOLVE_SOURCES problem.cpp solution.cpp params.cpp exact_dp.cpp tour.cpp planar_neighbours.cpp segment_exchange.cpp elite_destroy.cpp asym_two_opt.cpp reversing_exchange.cpp heuristic.cpp solve.cpp)
+set(CUTROUTE_SOLVE_SOURCES problem.cpp solution.cpp params.cpp exact_dp.cpp tour.cpp planar_neighbours.cpp segment_exchange.cpp elite_destroy.cpp asym_two_opt.cpp reversing_exchange.cpp lin_kernighan.cpp heuristic.cpp solve.cpp)

@@ -82,6 +82,10 @@ Ops::Ops(const Problem& p, const StopToken* stop)
     near_symmetric_ = diff <= 0.1 * sum;
   }
   kn_ = static_cast<std::size_t>(std::min(kNeighbours, std::max(0, m_ - 1)));
+  // Nearly symmetric plain matrices (SOP prob.100, kro124p, ry48p; lin_kernighan.cpp). Not on
+  // symmetric GTSPLIB 99-217 (seeds 1-12: mean gap 0.168 % against 0.166 % without, 109 against
+  // 108 runs at the best known) nor yet on cutting routes (inner costs), which were not measured.
+  lk_ = kn_ > 0 && near_symmetric_ && plain_mat_;
   if (kn_ == 0) return;
   const double avg = static_cast<double>(p.node_count()) / m_;
   // One cluster-optimisation pass costs about m * (n/m)^2 evaluations per start node.
@@ -749,6 +753,7 @@ void Ops::local_search(Tour& t) const {
         bool improved = reinsertion_pass(t);
         begin_round(t);
         improved = two_opt_pass(t) || improved;
+        improved = lk_pass(t) || improved;
         improved = or_opt_pass(t) || improved;
         improved = segment_exchange_pass(t) || improved;
         improved = reversing_exchange_pass(t) || improved;
@@ -768,6 +773,7 @@ void Ops::local_search(Tour& t) const {
       bool improved = reinsertion_pass(t);
       begin_round(t);
       improved = two_opt_pass(t) || improved;
+      improved = lk_pass(t) || improved;
       improved = or_opt_pass(t) || improved;
       improved = segment_exchange_pass(t) || improved;
       improved = reversing_exchange_pass(t) || improved;

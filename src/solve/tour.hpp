@@ -119,6 +119,7 @@ class Ops {
   bool swap_pass(Tour& t) const;
   bool segment_exchange_pass(Tour& t) const;  // segment_exchange.cpp
   bool reversing_exchange_pass(Tour& t) const;  // reversing_exchange.cpp (nearly symmetric matrices)
+  bool lk_pass(Tour& t) const;  // lin_kernighan.cpp (symmetric closed tours without precedence)
   // Removes (into `removed`) every cluster but position 0 next to an arc of t that route e lacks
   // (cluster level, either direction when symmetric); returns how many (elite_destroy.cpp).
   int remove_differences(Tour& t, const std::vector<NodeId>& e, std::vector<ClusterId>& removed) const;
@@ -154,6 +155,7 @@ class Ops {
   std::vector<std::size_t> blk_off_;
   const Cost* blk_in() const { return blk_in_.empty() ? blk_out_.data() : blk_in_.data(); }
   bool near_symmetric_ = false;  // asymmetric matrix within 10 % of symmetric (asym_two_opt.cpp)
+  bool lk_ = false;              // Lin-Kernighan chains apply (lin_kernighan.cpp)
 };
 
 }  // namespace cutroute::solve::detail

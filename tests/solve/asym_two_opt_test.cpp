@@ -1,5 +1,6 @@
-// Reversing moves on nearly symmetric asymmetric matrices (2-opt, reversing segment exchange): priced
-// exactly, and none that pays is left, checked by making every such move and recomputing the cost.
+// Reversing moves on nearly symmetric asymmetric matrices (2-opt, reversing segment exchange, LK
+// chains): priced exactly, and none that pays is left, checked by making every such move and
+// recomputing the cost; LK chains keep routes valid and go beyond the short moves' local optima.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -101,6 +102,71 @@ TEST(ReversingExchange, LeavesNoImprovingFeasibleMove) {
           }
   }
   EXPECT_GT(improving_runs, 20);
+}
+
+// Every LK pass leaves a valid route whose cost only drops, and reports exactly when it dropped;
+// without a plain matrix (inner costs) it leaves the route alone.
+TEST(LinKernighan, KeepsRoutesValidAndCheaper) {
+  Rng rng(29);
+  int improving_runs = 0;
+  for (int k = 0; k < 60; ++k) {
+    const Problem p = nearly_symmetric_problem(k, 40, rng);
+    SCOPED_TRACE("instance " + std::to_string(k));
+    std::vector<NodeId> r = construct_route(p, rng);
+    const std::vector<NodeId> start = r;
+    int passes = 0;
+    for (bool improved = true; improved && passes < 1000; ++passes) {
+      const Cost before = route_cost(p, r);
+      improved = lk_pass(p, r);
+      ASSERT_TRUE(valid(p, r));
+      EXPECT_EQ(improved, route_cost(p, r) < before);
+    }
+    if (p.has_inner_costs()) {
+      EXPECT_EQ(r, start);
+    }
+    improving_runs += passes > 1;
+  }
+  EXPECT_GT(improving_runs, 30);
+}
+
+// Routes at a local optimum of every shorter move (2-opt, Or-opt, swap, both segment exchanges)
+// still hold LK improvements, with and without precedence: its chains reach deeper changes, through
+// routes that break precedence on the way.
+TEST(LinKernighan, ImprovesOnShortMoveLocalOptima) {
+  Rng rng(31);
+  int improved_plain = 0, improved_prec = 0, total_plain = 0, total_prec = 0;
+  for (int k = 0; k < 120; ++k) {
+    test::RandomSpec spec;
+    spec.clusters = 30 + static_cast<int>(rng.below(40));
+    spec.max_nodes = 1;
+    spec.symmetric = true;
+    spec.asym_noise = 1 + static_cast<int>(rng.below(20));
+    spec.closed = k % 2 == 0;
+    spec.precedence_pairs = k % 4 < 2 ? 0 : spec.clusters / 3;
+    const Problem p = test::random_problem(spec, rng);
+    if (p.symmetric()) continue;
+    std::vector<NodeId> r = construct_route(p, rng);
+    for (int guard = 0; guard < 1000; ++guard) {
+      bool any = two_opt_pass(p, r);
+      any = or_opt_pass(p, r) || any;
+      any = swap_pass(p, r) || any;
+      any = segment_exchange_pass(p, r) || any;
+      any = reversing_exchange_pass(p, r) || any;
+      if (!any) break;
+    }
+    const Cost local = route_cost(p, r);
+    const bool better = lk_pass(p, r);
+    ASSERT_TRUE(valid(p, r));
+    EXPECT_EQ(better, route_cost(p, r) < local);
+    (p.has_precedence() ? total_prec : total_plain) += 1;
+    (p.has_precedence() ? improved_prec : improved_plain) += better;
+  }
+  EXPECT_GT(total_plain, 40);
+  EXPECT_GT(total_prec, 40);
+  EXPECT_GT(improved_plain, total_plain / 3) << improved_plain << " of " << total_plain;
+  // Measured: 24 of 55 without precedence; precedence (a third of the clusters in pairs) blocks
+  // more chains, 9 of 59.
+  EXPECT_GT(improved_prec, total_prec / 10) << improved_prec << " of " << total_prec;
 }
 
 }  // namespace

@@ -1,0 +1,160 @@
+// Lin–Kernighan chains of 2-opt moves on nearly symmetric matrices, with or without precedence.
+#include <algorithm>
+#include <vector>
+
+#include "tour.hpp"
+
+namespace cutroute::solve::detail {
+
+namespace {
+constexpr int kMaxDepth = 10;     // 2-opt moves in one chain (6: prob.100 worse; 20: no better)
+constexpr int kFirstBreadth = 5;  // alternatives for the first added arc; deeper levels are greedy
+}  // namespace
+
+// Lin & Kernighan (1973) in the 2-opt-move form of Johnson & McGeoch's implementation: from t1 and a
+// route neighbour t2, each step adds (t2, t3) with t3 next to t2's candidate clusters and removes
+// (t3, t4), t4 the neighbour of t3 that keeps one cycle; the route is then t1 ... t4 closed by
+// (t4, t1), and the chain goes on from t2 := t4 while the partial gain (removed minus added, before
+// closing) stays positive. The best closed route along the chain is kept, the rest undone.
+// 2-opt, Or-opt and the exchanges stop at three changed arcs; a chain reaches up to kMaxDepth + 1,
+// the deeper moves that separate 2-opt/3-opt local optima from LK's on Euclidean tours (Johnson &
+// McGeoch 1997: about 5 % against 2 % above the Held–Karp bound). Only the chosen nodes' arcs are
+// priced: cluster optimisation re-picks the nodes afterwards. Arcs added by the chain are not removed
+// again in it, removed ones not added back (LK's rule), so a chain ends.
+bool Ops::lk_pass(Tour& t) const {
+  const int L = static_cast<int>(t.seq.size());
+  if (!lk_ || L < 8) return false;
+  auto P = [&](NodeId v) { return t.pos[cl(v).index()]; };
+  auto at = [&](int i) { return t.seq[static_cast<std::size_t>(i < 0 ? i + L : i >= L ? i - L : i)]; };
+  auto succ = [&](NodeId v) { return at(P(v) + 1); };
+  auto pred = [&](NodeId v) { return at(P(v) - 1); };
+  // Each route of the chain is priced from scratch (a reversal changes every inner arc's direction)
+  // and checked against the precedence pairs, O(L) next to the O(L) flip; the gain criterion only
+  // guides the chain, with the arcs priced in one direction. Intermediate routes may break
+  // precedence: only feasible ones are kept (LKH-3 likewise lets a move pass through infeasible
+  // routes), which is what lets a chain get past the pairs that block 2-opt.
+  const auto& pairs = p_.precedence();
+  auto feasible = [&]() {
+    for (auto [a, b] : pairs)
+      if (t.pos[a.index()] > t.pos[b.index()]) return false;
+    return true;
+  };
+  // On an open path the cycle closes through a dummy arc last -> first, which no move may remove.
+  auto dummy = [&](NodeId x, NodeId y) {
+    if (closed_) return false;
+    const int px = P(x), py = P(y);
+    return (px == L - 1 && py == 0) || (py == L - 1 && px == 0);
+  };
+  // Reverses the cyclic run seq[i..j] (forward from i to j), or its complement when the run holds
+  // index 0 (the start cluster stays first); the cycle is the same either way, its direction not.
+  struct Flip {
+    int lo, hi;
+  };
+  std::vector<Flip> flips;
+  auto raw = [&](int lo, int hi) {
+    std::reverse(t.seq.begin() + lo, t.seq.begin() + hi + 1);
+    reindex(t, lo, hi + 1);
+  };
+  auto flip_run = [&](int i, int j) {
+    int lo = i, hi = j;
+    if (i > j || i == 0) lo = j + 1, hi = i - 1 + (i == 0 ? L : 0);
+    if (lo < hi) raw(lo, hi);
+    flips.push_back({lo, hi});
+  };
+  auto undo_to = [&](std::size_t keep) {
+    while (flips.size() > keep) {
+      const Flip f = flips.back();
+      flips.pop_back();
+      if (f.lo < f.hi) raw(f.lo, f.hi);
+    }
+  };
+  // The 2-opt move that removes (t1, t2), (t4, t3) and adds (t2, t3), (t4, t1), where t4 is t3's
+  // neighbour on the side that keeps one cycle.
+  auto partner = [&](NodeId t1, NodeId t2, NodeId t3) { return succ(t1) == t2 ? pred(t3) : succ(t3); };
+  auto apply = [&](NodeId t1, NodeId t2, NodeId t4) {
+    if (succ(t1) == t2) flip_run(P(t2), P(t4));
+    else flip_run(P(t4), P(t2));
+  };
+  struct Arc {
+    NodeId a, b;
+    bool is(NodeId x, NodeId y) const { return (a == x && b == y) || (a == y && b == x); }
+  };
+  std::vector<Arc> added, removed;
+  auto in = [](const std::vector<Arc>& v, NodeId x, NodeId y) {
+    return std::any_of(v.begin(), v.end(), [&](const Arc& e) { return e.is(x, y); });
+  };
+  struct Choice {
+    Cost rank;
+    NodeId t3, t4;
+  };
+  std::vector<Choice> choices;
+  // Candidates for the next step from t2 with partial gain g, best first by g - c(t2,t3) + c(t3,t4).
+  auto candidates = [&](NodeId t1, NodeId t2, Cost g) {
+    choices.clear();
+    for (ClusterId x : succs(cl(t2))) {
+      const int q = t.pos[x.index()];
+      if (q < 0) continue;
+      const NodeId t3 = t.seq[static_cast<std::size_t>(q)];
+      if (t3 == t1 || t3 == t2) continue;
+      const Cost g1 = g - arc(t2, t3);
+      if (g1 <= 0) continue;
+      const NodeId t4 = partner(t1, t2, t3);
+      if (t4 == t2 || t4 == t1 || dummy(t3, t4) || in(added, t3, t4) || in(removed, t2, t3)) continue;
+      choices.push_back({g1 + arc(t3, t4), t3, t4});
+    }
+    std::sort(choices.begin(), choices.end(), [](const Choice& a, const Choice& b) { return a.rank > b.rank; });
+  };
+
+  bool improved = false;
+  std::vector<NodeId> ends;
+  std::vector<Choice> first;
+  for (int base = 0; base < L; ++base) {
+    const NodeId t1 = t.seq[static_cast<std::size_t>(base)];
+    if (!touched(t, cl(t1).index())) continue;
+    for (int side = 0; side < 2; ++side) {
+      const NodeId t2_0 = side == 0 ? succ(t1) : pred(t1);
+      if (dummy(t1, t2_0)) continue;
+      added.clear();
+      removed.assign(1, {t1, t2_0});
+      candidates(t1, t2_0, arc(t1, t2_0));
+      first.assign(choices.begin(), choices.begin() + std::min<std::ptrdiff_t>(kFirstBreadth, std::ssize(choices)));
+      bool done = false;
+      for (const Choice& c0 : first) {
+        flips.clear();
+        added.clear();
+        removed.assign(1, {t1, t2_0});
+        ends.assign({t1, t2_0});
+        Cost best_gain = 0;
+        std::size_t best_len = 0, best_ends = 0;
+        NodeId t2 = t2_0;
+        Cost g = arc(t1, t2_0);
+        Choice c = c0;
+        for (int depth = 0;; ++depth) {
+          g = c.rank;  // g - c(t2, t3) + c(t3, t4)
+          apply(t1, t2, c.t4);
+          added.push_back({t2, c.t3});
+          removed.push_back({c.t3, c.t4});
+          ends.push_back(c.t3), ends.push_back(c.t4);
+          const Cost closing = feasible() ? t.cost - full_cost(t.seq) : 0;
+          if (closing > best_gain) best_gain = closing, best_len = flips.size(), best_ends = ends.size();
+          t2 = c.t4;
+          if (depth + 1 >= kMaxDepth) break;
+          candidates(t1, t2, g);
+          if (choices.empty()) break;
+          c = choices.front();
+        }
+        undo_to(best_len);
+        if (best_gain > 0) {
+          t.cost -= best_gain;
+          for (std::size_t e = 0; e < best_ends; ++e) mark_around(t, P(ends[e]));
+          improved = done = true;
+          break;
+        }
+      }
+      if (done) break;
+    }
+  }
+  return improved;
+}
+
+}  // namespace cutroute::solve::detail

@@ -35,6 +35,22 @@ Problem nearly_symmetric_problem(int k, int max_more, Rng& rng) {
   return test::random_problem(spec, rng);
 }
 
+// Applies `pass` until it stops improving, checking after each call that the route is valid and that
+// the pass reported exactly whether the cost dropped; returns the number of calls.
+template <class Pass>
+int descend(const Problem& p, std::vector<NodeId>& r, Pass pass) {
+  int passes = 0;
+  for (bool improved = true; improved && passes < 1000; ++passes) {
+    const Cost before = route_cost(p, r);
+    improved = pass(p, r);
+    const Cost after = route_cost(p, r);
+    EXPECT_TRUE(valid(p, r));
+    EXPECT_EQ(improved, after < before);
+    EXPECT_LE(after, before);
+  }
+  return passes;
+}
+
 TEST(AsymTwoOpt, LeavesNoImprovingFeasibleReversal) {
   Rng rng(17);
   int improving_runs = 0;
@@ -44,15 +60,7 @@ TEST(AsymTwoOpt, LeavesNoImprovingFeasibleReversal) {
     SCOPED_TRACE("instance " + std::to_string(k));
     std::vector<NodeId> r = construct_route(p, rng);
     ASSERT_TRUE(valid(p, r));
-    int passes = 0;
-    for (bool improved = true; improved && passes < 1000; ++passes) {
-      const Cost before = route_cost(p, r);
-      improved = two_opt_pass(p, r);
-      const Cost after = route_cost(p, r);
-      ASSERT_TRUE(valid(p, r));
-      EXPECT_EQ(improved, after < before);
-      EXPECT_LE(after, before);
-    }
+    const int passes = descend(p, r, two_opt_pass);
     improving_runs += passes > 1;
     const Cost cost = route_cost(p, r);
     for (std::size_t i = 1; i + 1 < r.size(); ++i)
@@ -75,13 +83,7 @@ TEST(ReversingExchange, LeavesNoImprovingFeasibleMove) {
     const Problem p = nearly_symmetric_problem(k, 20, rng);
     SCOPED_TRACE("instance " + std::to_string(k));
     std::vector<NodeId> r = construct_route(p, rng);
-    int passes = 0;
-    for (bool improved = true; improved && passes < 1000; ++passes) {
-      const Cost before = route_cost(p, r);
-      improved = reversing_exchange_pass(p, r);
-      ASSERT_TRUE(valid(p, r));
-      EXPECT_EQ(improved, route_cost(p, r) < before);
-    }
+    const int passes = descend(p, r, reversing_exchange_pass);
     improving_runs += passes > 1;
     const Cost cost = route_cost(p, r);
     const std::size_t L = r.size();
@@ -114,13 +116,7 @@ TEST(LinKernighan, KeepsRoutesValidAndCheaper) {
     SCOPED_TRACE("instance " + std::to_string(k));
     std::vector<NodeId> r = construct_route(p, rng);
     const std::vector<NodeId> start = r;
-    int passes = 0;
-    for (bool improved = true; improved && passes < 1000; ++passes) {
-      const Cost before = route_cost(p, r);
-      improved = lk_pass(p, r);
-      ASSERT_TRUE(valid(p, r));
-      EXPECT_EQ(improved, route_cost(p, r) < before);
-    }
+    const int passes = descend(p, r, lk_pass);
     if (p.has_inner_costs()) {
       EXPECT_EQ(r, start);
     }

@@ -114,39 +114,39 @@ bool Ops::lk_pass(Tour& t) const {
     for (int side = 0; side < 2; ++side) {
       const NodeId t2_0 = side == 0 ? succ(t1) : pred(t1);
       if (dummy(t1, t2_0)) continue;
-      added.clear();
-      removed.assign(1, {t1, t2_0});
+      auto reset = [&] {
+        flips.clear();
+        added.clear();
+        removed.assign(1, {t1, t2_0});
+        ends.assign({t1, t2_0});  // then t3, t4 of each step: 2 + 2 * (steps kept) ends changed
+      };
+      reset();
       candidates(t1, t2_0, arc(t1, t2_0));
       first.assign(choices.begin(), choices.begin() + std::min<std::ptrdiff_t>(kFirstBreadth, std::ssize(choices)));
       bool done = false;
       for (const Choice& c0 : first) {
-        flips.clear();
-        added.clear();
-        removed.assign(1, {t1, t2_0});
-        ends.assign({t1, t2_0});
+        reset();
         Cost best_gain = 0;
-        std::size_t best_len = 0, best_ends = 0;
+        std::size_t best_len = 0;
         NodeId t2 = t2_0;
-        Cost g = arc(t1, t2_0);
         Choice c = c0;
         for (int depth = 0;; ++depth) {
-          g = c.rank;  // g - c(t2, t3) + c(t3, t4)
           apply(t1, t2, c.t4);
           added.push_back({t2, c.t3});
           removed.push_back({c.t3, c.t4});
           ends.push_back(c.t3), ends.push_back(c.t4);
           const Cost closing = feasible() ? t.cost - full_cost(t.seq) : 0;
-          if (closing > best_gain) best_gain = closing, best_len = flips.size(), best_ends = ends.size();
+          if (closing > best_gain) best_gain = closing, best_len = flips.size();
           t2 = c.t4;
           if (depth + 1 >= kMaxDepth) break;
-          candidates(t1, t2, g);
+          candidates(t1, t2, c.rank);  // partial gain so far: g - c(t2, t3) + c(t3, t4)
           if (choices.empty()) break;
           c = choices.front();
         }
         undo_to(best_len);
         if (best_gain > 0) {
           t.cost -= best_gain;
-          for (std::size_t e = 0; e < best_ends; ++e) mark_around(t, P(ends[e]));
+          for (std::size_t e = 0; e < 2 + 2 * best_len; ++e) mark_around(t, P(ends[e]));
           improved = done = true;
           break;
         }

@@ -66,6 +66,21 @@ Ops::Ops(const Problem& p, const StopToken* stop)
         if (!blk_in_.empty()) blk_in_[u * n_ + slot[v]] = mat_[v * n_ + u];
       }
   }
+  if (p.plain_planar()) {
+    const PlanarCosts& pc = *p.planar();
+    blk_off_.assign(static_cast<std::size_t>(m_) + 1, 0);
+    pox_.reserve(n_), poy_.reserve(n_), pix_.reserve(n_), piy_.reserve(n_);
+    if (p.has_inner_costs()) pinner_.reserve(n_);
+    for (int c = 0; c < m_; ++c) {
+      const auto nodes = p.nodes_of(ClusterId(c));
+      blk_off_[static_cast<std::size_t>(c) + 1] = blk_off_[static_cast<std::size_t>(c)] + nodes.size();
+      for (NodeId v : nodes) {
+        pox_.push_back(pc.out[v.index()].x), poy_.push_back(pc.out[v.index()].y);
+        pix_.push_back(pc.in[v.index()].x), piy_.push_back(pc.in[v.index()].y);
+        if (p.has_inner_costs()) pinner_.push_back(p.inner_cost(v));
+      }
+    }
+  }
   // Asymmetric matrices that are symmetric but for small perturbations or the arcs precedence
   // forbids (SOP prob.100, kro124p, ry48p) get segment reversals priced exactly; on strongly
   // asymmetric ones (rbg, ft, p43: |c(a,b) - c(b,a)| 40-170 % of the mean) a reversed segment
@@ -216,6 +231,17 @@ Ops::Insertion Ops::insertion_at(const Tour& t, ClusterId c, int at) const {
     const Cost* out = next.valid() ? blk_in() + next.index() * n_ + off : nullptr;
     for (std::size_t j = 0; j < nodes.size(); ++j) {
       const Cost d = in[j] + (out ? out[j] : 0) - base;
+      if (d < best.delta) best.delta = d, best.node = nodes[j];
+    }
+    return best;
+  }
+  if (planar_rows()) {  // same values, same order as the loop below
+    thread_local std::vector<Cost> in, out;
+    in.resize(nodes.size()), out.resize(nodes.size());
+    planar_from(prev, c, in.data());
+    if (next.valid()) planar_into(next, c, out.data());
+    for (std::size_t j = 0; j < nodes.size(); ++j) {
+      const Cost d = in[j] + (next.valid() ? out[j] : 0) - base;
       if (d < best.delta) best.delta = d, best.node = nodes[j];
     }
     return best;
@@ -599,6 +625,7 @@ bool Ops::cluster_optimise(Tour& t, double max_work) const {
   Cost best = t.cost;
   std::vector<NodeId> best_seq;
   std::vector<int> chain(static_cast<std::size_t>(L));
+  std::vector<Cost> row;
   auto run = [&](std::span<const NodeId> sources) {
     const auto s0 = p_.nodes_of(layer_cluster(0));
     for (std::size_t a = 0; a < s0.size(); ++a) {
@@ -616,6 +643,11 @@ bool Ops::cluster_optimise(Tour& t, double max_work) const {
         int arg = -1;
         // A and B are different clusters, so link() is the plain arc: read from the blocked copy.
         const Cost* into_b = blk_out_.empty() ? nullptr : blk_in() + B[b].index() * n_ + blk_a;
+        if (planar_rows()) {
+          row.resize(A.size());
+          planar_into(B[b], layer_cluster(l - 1), row.data());
+          into_b = row.data();
+        }
         for (std::size_t a = 0; a < A.size(); ++a) {
           const Cost da = D[static_cast<std::size_t>(oa) + a];
           if (da >= kHuge) continue;
@@ -688,11 +720,25 @@ bool Ops::window_optimise(Tour& t, int lo, int hi) const {
     const auto B = p_.nodes_of(cl(t.seq[static_cast<std::size_t>(i)]));
     const std::size_t ob = static_cast<std::size_t>(off[static_cast<std::size_t>(i - lo)]);
     if (i == lo) {
-      for (std::size_t b = 0; b < B.size(); ++b) D[ob + b] = link(first, B[b]);
+      if (planar_rows()) planar_from(first, cl(B[0]), D.data() + ob);
+      else
+        for (std::size_t b = 0; b < B.size(); ++b) D[ob + b] = link(first, B[b]);
       continue;
     }
     const auto A = p_.nodes_of(cl(t.seq[static_cast<std::size_t>(i - 1)]));
     const std::size_t oa = static_cast<std::size_t>(off[static_cast<std::size_t>(i - 1 - lo)]);
+    if (planar_rows()) {  // same values, same order as the loop below
+      thread_local std::vector<Cost> row;
+      row.resize(A.size());
+      for (std::size_t b = 0; b < B.size(); ++b) {
+        planar_into(B[b], cl(A[0]), row.data());
+        for (std::size_t a = 0; a < A.size(); ++a) {
+          const Cost v = D[oa + a] + row[a];
+          if (v < D[ob + b]) D[ob + b] = v, pred[ob + b] = static_cast<int>(oa + a);
+        }
+      }
+      continue;
+    }
     for (std::size_t b = 0; b < B.size(); ++b)
       for (std::size_t a = 0; a < A.size(); ++a) {
         const Cost v = D[oa + a] + link(A[a], B[b]);

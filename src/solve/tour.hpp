@@ -154,6 +154,16 @@ class Ops {
   std::vector<Cost> blk_out_, blk_in_;
   std::vector<std::size_t> blk_off_;
   const Cost* blk_in() const { return blk_in_.empty() ? blk_out_.data() : blk_in_.data(); }
+  // Plain planar problems (Problem::plain_planar): out and in points and inner costs per node in
+  // the blocked order above (slot blk_off_[c] + index in nodes_of(c)), so the arcs between one node
+  // and every node of a cluster are one loop the compiler vectorises (planar_rows.cpp).
+  std::vector<double> pox_, poy_, pix_, piy_;
+  std::vector<Cost> pinner_;
+  bool planar_rows() const { return !pox_.empty(); }
+  // out[j] = link(nodes_of(a)[j], b) for a cluster a other than b's (planar_rows() only).
+  void planar_into(NodeId b, ClusterId a, Cost* out) const;
+  // out[j] = link(u, nodes_of(c)[j]) for a cluster c other than u's (planar_rows() only).
+  void planar_from(NodeId u, ClusterId c, Cost* out) const;
   bool near_symmetric_ = false;  // asymmetric matrix within 10 % of symmetric (asym_two_opt.cpp)
   bool lk_ = false;              // Lin-Kernighan chains apply (lin_kernighan.cpp)
 };

@@ -3,10 +3,12 @@
 // force and against the same problem given as a matrix.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include <cutroute/core/random.hpp>
+#include <cutroute/solve/heuristic.hpp>
 #include <cutroute/solve/solve.hpp>
 
 #include "random_instance.hpp"
@@ -160,6 +162,64 @@ TEST(PlanarCosts, LargeInstanceAsGoodAsTheMatrixForm) {
   ASSERT_EQ(b.status, SolveStatus::feasible);
   EXPECT_TRUE(validate(planar, a).empty());
   EXPECT_LE(static_cast<double>(a.cost), 1.005 * static_cast<double>(b.cost));
+}
+
+// The solver prices a node against a whole cluster in one vectorised batch on plain planar costs
+// (planar_rows.cpp) and arc by arc through Problem::arc_cost otherwise, e.g. once one arc is
+// forbidden. Forbidding an arc inside a cluster, which no route uses, changes nothing else (same
+// points, same neighbour lists): construction, cluster optimisation and whole searches must give
+// the same routes to the tick, with clusters larger than the batch's chunk of 64 and inner costs.
+TEST(PlanarCosts, BatchedPricesGiveTheSameRoutesAsSingleArcs) {
+  Rng rng(12);
+  for (int k = 0; k < 6; ++k) {
+    SCOPED_TRACE("instance " + std::to_string(k));
+    Planar p = random_planar(8 + 4 * k, k < 3 ? 6 : 150, rng);
+    const int n = static_cast<int>(p.costs.in.size());
+    // Half the instances as GTSPLIB's EUC_2D (integer points, cost = rounded distance): small
+    // integer costs with many ties, where a price one tick off changes the routes.
+    if (k % 2 == 0) {
+      for (auto* pts : {&p.costs.in, &p.costs.out})
+        for (auto& q : *pts) q.x = std::round(q.x / 20), q.y = std::round(q.y / 20);
+      p.costs.base = 0, p.costs.per_unit = 1, p.costs.scale = 1;
+    }
+    auto make = [&](bool forbid) {
+      ProblemBuilder b(n);
+      b.set_planar_costs(p.costs);
+      for (const auto& c : p.clusters) b.add_cluster(c);
+      if (k % 2 == 1)
+        for (int v = 0; v < n; ++v) b.set_inner_cost(NodeId(v), 1000 * (v % 7));
+      if (forbid) {
+        const auto& big = *std::max_element(p.clusters.begin(), p.clusters.end(),
+                                            [](const auto& x, const auto& y) { return x.size() < y.size(); });
+        b.forbid_arc(big.front(), big.back());
+      }
+      b.set_kind(k % 3 == 2 ? RouteKind::open_path : RouteKind::closed_tour);
+      auto r = b.build();
+      EXPECT_TRUE(r.ok()) << r.error().message;
+      return std::move(r).value();
+    };
+    const Problem batched = make(false), single = make(true);
+    ASSERT_TRUE(batched.plain_planar());
+    ASSERT_FALSE(single.plain_planar());
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+      Rng r1(seed), r2(seed);
+      std::vector<NodeId> a = construct_route(batched, r1), b = construct_route(single, r2);
+      ASSERT_EQ(a, b);
+      cluster_optimise(batched, a, 1e9);
+      cluster_optimise(single, b, 1e9);
+      ASSERT_EQ(a, b);
+      EXPECT_EQ(route_cost(batched, a), route_cost(single, b));
+    }
+    SolveParams hp = SolveParams::fast();
+    hp.solver = SolverKind::heuristic;
+    hp.threads = 1;
+    hp.time_limit_s = 0;
+    const Solution sa = solve(batched, hp), sb = solve(single, hp);
+    EXPECT_EQ(sa.route, sb.route);
+    EXPECT_EQ(sa.cost, sb.cost);
+    EXPECT_EQ(sa.stats.iterations, sb.stats.iterations);
+    EXPECT_TRUE(validate(batched, sa).empty());
+  }
 }
 
 }  // namespace

@@ -98,6 +98,9 @@ class Problem {
   bool has_inner_costs() const { return !inner_.empty(); }
   // The points and prices behind the arc costs when they were given that way, else null.
   const PlanarCosts* planar() const { return planar_.get(); }
+  // arc_cost() is exactly the planar formula (planar costs and no forbidden arc), so a solver may
+  // evaluate many arcs at once from the points.
+  bool plain_planar() const { return planar_ && forbidden_keys_.empty(); }
 
   // Precedence as given to the builder (before, after), without duplicates.
   const std::vector<std::pair<ClusterId, ClusterId>>& precedence() const { return precedence_; }

@@ -36,6 +36,7 @@ Ops::Ops(const Problem& p, const StopToken* stop)
       mat_(p.matrix_data()),
       n_(static_cast<std::size_t>(p.node_count())),
       plain_mat_(mat_ != nullptr && !p.has_inner_costs()),
+      plain_planar_(p.plain_planar()),
       stop_(stop), m_(p.cluster_count()), closed_(p.closed()), prec_(p.has_precedence()) {
   if (prec_ && m_ <= kMaxPrecedenceBits) {
     const auto mm = static_cast<std::size_t>(m_);

@@ -101,6 +101,14 @@ class Problem {
   // arc_cost() is exactly the planar formula (planar costs and no forbidden arc), so a solver may
   // evaluate many arcs at once from the points.
   bool plain_planar() const { return planar_ && forbidden_keys_.empty(); }
+  // The arc's planar price (planar() only; arc_cost() without the forbidden-arc look-up).
+  Cost planar_arc(NodeId from, NodeId to) const {
+    const PlanarPoint a = planar_->out[from.index()], b = planar_->in[to.index()];
+    const double dx = b.x - a.x, dy = b.y - a.y;
+    const double t = (planar_->base + planar_->per_unit * std::sqrt(dx * dx + dy * dy)) * planar_->scale;
+    // + 0.5 and truncation rounds like llround for t >= 0, several times faster (a hot loop).
+    return static_cast<Cost>(std::min(t, static_cast<double>(kMaxCost)) + 0.5);
+  }
 
   // Precedence as given to the builder (before, after), without duplicates.
   const std::vector<std::pair<ClusterId, ClusterId>>& precedence() const { return precedence_; }
@@ -115,13 +123,6 @@ class Problem {
  private:
   friend class ProblemBuilder;
   Cost arc_from_function(NodeId from, NodeId to) const;
-  Cost planar_arc(NodeId from, NodeId to) const {
-    const PlanarPoint a = planar_->out[from.index()], b = planar_->in[to.index()];
-    const double dx = b.x - a.x, dy = b.y - a.y;
-    const double t = (planar_->base + planar_->per_unit * std::sqrt(dx * dx + dy * dy)) * planar_->scale;
-    // + 0.5 and truncation rounds like llround for t >= 0, several times faster (a hot loop).
-    return static_cast<Cost>(std::min(t, static_cast<double>(kMaxCost)) + 0.5);
-  }
   struct Closure {
     std::vector<int> begin;  // size cluster_count + 1
     std::vector<ClusterId> items;

@@ -86,5 +86,9 @@ void BM_Heuristic_Gtsplib(benchmark::State& state, const char* name) {
 BENCHMARK_CAPTURE(BM_Heuristic_Gtsplib, 40d198, "40d198")->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_Heuristic_Gtsplib, 89pcb442, "89pcb442")->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_Heuristic_Gtsplib, 132d657, "132d657")->Unit(benchmark::kMillisecond)->Iterations(1);
+// Planar costs (EUC_2D above 3 000 nodes) with 100-node clusters: the batched prices of
+// planar_rows.cpp (session 8: 31C3k.0 about 0.5 -> 0.2 s, 100C10k.0 about 2.0 -> 1.15 s of wall).
+BENCHMARK_CAPTURE(BM_Heuristic_Gtsplib, 31C3k_0, "31C3k.0")->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_Heuristic_Gtsplib, 100C10k_0, "100C10k.0")->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace

@@ -211,7 +211,7 @@ TEST(GcodeWriter, LinuxCncInterpreterAcceptsOurPrograms) {
     const auto w = write_gcode(tp, *d, GcodeWriteOptions{"rs274 check"});
     const auto path = std::filesystem::temp_directory_path() / (std::string("cutroute-rs274-") + name + ".ngc");
     std::ofstream(path) << w.text;
-    const auto r = test::run_command("rs274 -g " + path.string() + " < /dev/null");
+    const auto r = test::run_rs274(path.string());
     EXPECT_EQ(r.exit_code, 0) << name << "\n" << r.out << r.err << "\n" << w.text;
   }
 }

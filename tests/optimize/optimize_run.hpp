@@ -119,7 +119,7 @@ inline std::string fine_dialect(const std::filesystem::path& dir) {
 // LinuxCNC's interpreter (package linuxcnc-uspace) accepts the program; nothing to check without it.
 inline void expect_rs274_accepts(const std::filesystem::path& program) {
   if (std::system("command -v rs274 >/dev/null 2>&1") != 0) return;
-  const auto rs = run_command("rs274 -g " + program.string() + " < /dev/null");
+  const auto rs = run_rs274(program.string());
   EXPECT_EQ(rs.exit_code, 0) << program << ": " << rs.out;
 }
 

@@ -32,4 +32,16 @@ CommandOutput run_command(const std::string& command) {
   return result;
 }
 
+CommandOutput run_rs274(const std::string& program) {
+  // rs274 truncates and maps $HOME/.tool.mmap: two at once with the same HOME (ctest -j) truncate
+  // the file under each other's mapping and die of SIGBUS (exit 135). Each call gets its own HOME.
+  static int counter = 0;
+  const auto home = std::filesystem::temp_directory_path() /
+                    ("cutroute-rs274-home-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  std::filesystem::create_directories(home);
+  CommandOutput r = run_command("HOME=" + home.string() + " rs274 -g " + program + " < /dev/null");
+  std::filesystem::remove_all(home);
+  return r;
+}
+
 }  // namespace cutroute::test

@@ -19,5 +19,7 @@ struct CommandOutput {
   std::string err;
 };
 CommandOutput run_command(const std::string& command);
+// LinuxCNC's interpreter on a program file (`rs274 -g`), with a HOME of its own: safe to run in parallel.
+CommandOutput run_rs274(const std::string& program);
 
 }  // namespace cutroute::test

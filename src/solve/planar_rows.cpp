@@ -4,8 +4,8 @@
 // 31C3k.0) pricing one node against a whole cluster. Through Problem::step each arc is a dispatch,
 // a scalar sqrt with its errno branch and a rounding; here the points sit in cluster-blocked arrays
 // and the distances are computed in one loop that GCC vectorises (this file is built with
-// -fno-math-errno -fno-trapping-math, see sources.cmake), then rounded exactly as Problem's planar formula does, so
-// the costs, and therefore the routes, are the same to the last tick.
+// -fno-math-errno -fno-trapping-math, see sources.cmake), then rounded exactly as
+// Problem::planar_arc does, so the costs, and therefore the routes, are the same to the last tick.
 #include <algorithm>
 #include <cmath>
 

@@ -51,9 +51,13 @@ Ops::Ops(const Problem& p, const StopToken* stop)
   // arcs between one node and every node of one cluster. GTSPLIB numbers a cluster's nodes far apart,
   // so in the row-major matrix (megabytes, beyond L2) each of those k reads is a cache miss; in the
   // copies below they are k neighbouring entries (200E1k.0: 1000 nodes, 8 MB matrix).
-  if (plain_mat_ && static_cast<int>(n_) <= kMaxBlockedNodes) {
+  // Planar problems keep their points in the same blocked order (below).
+  const bool blocked_matrix = plain_mat_ && static_cast<int>(n_) <= kMaxBlockedNodes;
+  if (blocked_matrix || plain_planar_) {
     blk_off_.assign(static_cast<std::size_t>(m_) + 1, 0);
     for (int c = 0; c < m_; ++c) blk_off_[static_cast<std::size_t>(c) + 1] = blk_off_[static_cast<std::size_t>(c)] + static_cast<std::size_t>(p.cluster_size(ClusterId(c)));
+  }
+  if (blocked_matrix) {
     std::vector<std::size_t> slot(n_);
     for (int c = 0; c < m_; ++c) {
       const auto nodes = p.nodes_of(ClusterId(c));
@@ -67,20 +71,16 @@ Ops::Ops(const Problem& p, const StopToken* stop)
         if (!blk_in_.empty()) blk_in_[u * n_ + slot[v]] = mat_[v * n_ + u];
       }
   }
-  if (p.plain_planar()) {
+  if (plain_planar_) {
     const PlanarCosts& pc = *p.planar();
-    blk_off_.assign(static_cast<std::size_t>(m_) + 1, 0);
     pox_.reserve(n_), poy_.reserve(n_), pix_.reserve(n_), piy_.reserve(n_);
     if (p.has_inner_costs()) pinner_.reserve(n_);
-    for (int c = 0; c < m_; ++c) {
-      const auto nodes = p.nodes_of(ClusterId(c));
-      blk_off_[static_cast<std::size_t>(c) + 1] = blk_off_[static_cast<std::size_t>(c)] + nodes.size();
-      for (NodeId v : nodes) {
+    for (int c = 0; c < m_; ++c)
+      for (NodeId v : p.nodes_of(ClusterId(c))) {
         pox_.push_back(pc.out[v.index()].x), poy_.push_back(pc.out[v.index()].y);
         pix_.push_back(pc.in[v.index()].x), piy_.push_back(pc.in[v.index()].y);
         if (p.has_inner_costs()) pinner_.push_back(p.inner_cost(v));
       }
-    }
   }
   // Asymmetric matrices that are symmetric but for small perturbations or the arcs precedence
   // forbids (SOP prob.100, kro124p, ry48p) get segment reversals priced exactly; on strongly
@@ -236,7 +236,7 @@ Ops::Insertion Ops::insertion_at(const Tour& t, ClusterId c, int at) const {
     }
     return best;
   }
-  if (planar_rows()) {  // same values, same order as the loop below
+  if (plain_planar_) {  // same values, same order as the loop below
     thread_local std::vector<Cost> in, out;
     in.resize(nodes.size()), out.resize(nodes.size());
     planar_from(prev, c, in.data());
@@ -644,7 +644,7 @@ bool Ops::cluster_optimise(Tour& t, double max_work) const {
         int arg = -1;
         // A and B are different clusters, so link() is the plain arc: read from the blocked copy.
         const Cost* into_b = blk_out_.empty() ? nullptr : blk_in() + B[b].index() * n_ + blk_a;
-        if (planar_rows()) {
+        if (plain_planar_) {
           row.resize(A.size());
           planar_into(B[b], layer_cluster(l - 1), row.data());
           into_b = row.data();
@@ -721,14 +721,14 @@ bool Ops::window_optimise(Tour& t, int lo, int hi) const {
     const auto B = p_.nodes_of(cl(t.seq[static_cast<std::size_t>(i)]));
     const std::size_t ob = static_cast<std::size_t>(off[static_cast<std::size_t>(i - lo)]);
     if (i == lo) {
-      if (planar_rows()) planar_from(first, cl(B[0]), D.data() + ob);
+      if (plain_planar_) planar_from(first, cl(B[0]), D.data() + ob);
       else
         for (std::size_t b = 0; b < B.size(); ++b) D[ob + b] = link(first, B[b]);
       continue;
     }
     const auto A = p_.nodes_of(cl(t.seq[static_cast<std::size_t>(i - 1)]));
     const std::size_t oa = static_cast<std::size_t>(off[static_cast<std::size_t>(i - 1 - lo)]);
-    if (planar_rows()) {  // same values, same order as the loop below
+    if (plain_planar_) {  // same values, same order as the loop below
       thread_local std::vector<Cost> row;
       row.resize(A.size());
       for (std::size_t b = 0; b < B.size(); ++b) {

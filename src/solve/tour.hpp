@@ -143,7 +143,7 @@ class Ops {
   const Cost* mat_;
   std::size_t n_;
   bool plain_mat_;  // matrix and no inner costs
-  bool plain_planar_;  // Problem::plain_planar()
+  bool plain_planar_;  // Problem::plain_planar(): single arcs inline, cluster rows batched (planar_rows.cpp)
   const StopToken* stop_;
   int m_;
   bool closed_;
@@ -163,10 +163,9 @@ class Ops {
   // and every node of a cluster are one loop the compiler vectorises (planar_rows.cpp).
   std::vector<double> pox_, poy_, pix_, piy_;
   std::vector<Cost> pinner_;
-  bool planar_rows() const { return !pox_.empty(); }
-  // out[j] = link(nodes_of(a)[j], b) for a cluster a other than b's (planar_rows() only).
+  // out[j] = link(nodes_of(a)[j], b) for a cluster a other than b's (plain_planar_ only).
   void planar_into(NodeId b, ClusterId a, Cost* out) const;
-  // out[j] = link(u, nodes_of(c)[j]) for a cluster c other than u's (planar_rows() only).
+  // out[j] = link(u, nodes_of(c)[j]) for a cluster c other than u's (plain_planar_ only).
   void planar_from(NodeId u, ClusterId c, Cost* out) const;
   bool near_symmetric_ = false;  // asymmetric matrix within 10 % of symmetric (asym_two_opt.cpp)
   bool lk_ = false;              // Lin-Kernighan chains apply (lin_kernighan.cpp)

@@ -27,6 +27,7 @@ SolveParams SolveParams::thorough() {
   SolveParams p;
   p.stagnation_rounds = 60;
   p.min_stagnation_work = 10000000;
+  p.work_budget = -1.0;
   p.time_limit_s = 600.0;
   p.exact_auto_max_work = 4.0e9;
   return p;
@@ -47,6 +48,7 @@ std::vector<std::string> check(const SolveParams& p) {
   if (p.exact_memory_limit_bytes < (std::size_t{1} << 20)) out.push_back("exact_memory_limit_bytes must be >= 1 MiB");
   if (!(p.exact_auto_max_work >= 0.0)) out.push_back("exact_auto_max_work must be >= 0");
   if (p.epoch_rounds > 1000000) out.push_back("epoch_rounds must be <= 1000000 (got " + std::to_string(p.epoch_rounds) + ")");
+  if (!(p.work_budget == p.work_budget)) out.push_back("work_budget is not a number");
   if (p.min_stagnation_work < 0) out.push_back("min_stagnation_work must be >= 0");
   if (p.target_cost && *p.target_cost < 0) out.push_back("target_cost must be >= 0");
   return out;

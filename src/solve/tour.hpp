@@ -133,6 +133,12 @@ class Ops {
   bool windows_optimise(Tour& t, int since_epoch) const;
   void local_search(Tour& t) const;
   void construct(Tour& t, Rng& rng) const;
+  // 2-opt with neighbour optimisation (neighbour_opt.cpp) applies: symmetric plain matrix, no
+  // precedence, small clusters.
+  bool neighbour_opt() const { return no_; }
+  // seq[i..j] reversed with the best nodes at its four ends; applied (true) only when that is
+  // cheaper. Needs neighbour_opt(), 2 <= i, i + 2 <= j, j + 1 < L.
+  bool two_opt_no(Tour& t, int i, int j) const;
 
  private:
   Insertion insertion_at(const Tour& t, ClusterId c, int at) const;  // best node of c at index `at`
@@ -167,6 +173,9 @@ class Ops {
   void planar_into(NodeId b, ClusterId a, Cost* out) const;
   // out[j] = link(u, nodes_of(c)[j]) for a cluster c other than u's (plain_planar_ only).
   void planar_from(NodeId u, ClusterId c, Cost* out) const;
+  void build_neighbour_bounds();
+  bool no_ = false;
+  std::vector<Cost> nmin_, cmin_;  // cheapest arc node -> cluster, cluster -> cluster (neighbour_opt.cpp)
   bool near_symmetric_ = false;  // asymmetric matrix within 10 % of symmetric (asym_two_opt.cpp)
   bool lk_ = false;              // Lin-Kernighan chains apply (lin_kernighan.cpp)
 };

@@ -24,7 +24,9 @@ std::vector<NodeId> construct_route(const Problem& p, Rng& rng);
 // Each returns true when it made the route strictly cheaper; none ever makes it more expensive,
 // moves route[0] out of position 0, or breaks a precedence.
 //   reinsertion: remove one cluster, put it back at its best position with its best node. O(m * n) a pass.
-//   two_opt: reverse a segment (no precedence pair inside it). O(m^2) a pass.
+//   two_opt: reverse a segment (no precedence pair inside it). O(m^2) a pass; with candidate lists
+//     on symmetric matrices without inner costs or precedence also the neighbour-optimised move
+//     below when the plain one does not pay.
 //   or_opt: move a segment of 2 or 3 clusters elsewhere, same direction. O(m^2) a pass.
 //   swap: exchange two clusters (used on problems with precedence). O(m^2) a pass.
 //   segment_exchange: swap two adjacent segments, both kept in direction (SOP-3-exchange, the
@@ -50,6 +52,15 @@ bool lk_pass(const Problem& p, std::vector<NodeId>& route);
 bool cluster_optimise(const Problem& p, std::vector<NodeId>& route, double max_work = 2.0e6);
 // All of the above until none improves.
 void local_search(const Problem& p, std::vector<NodeId>& route);
+
+// One move of 2-opt with neighbour optimisation, which two_opt runs next to candidate neighbours on
+// symmetric matrices without inner costs or precedence: reverses route[i..j] and gives the four
+// clusters at its ends (route[i-1], route[i], route[j], route[j+1]) their best nodes for the new
+// order, when that is cheaper. Needs 2 <= i, i + 2 <= j, j + 1 < route.size(); returns false
+// (route untouched) when the move does not pay or the problem is not of that kind. `tracked_cost`
+// receives the route's cost as the move kept it up to date (for tests against a recomputation).
+// O(|A||C| + |B||D|) for the four end clusters, most candidates refused in O(1) by bounds.
+bool two_opt_neighbour_move(const Problem& p, std::vector<NodeId>& route, int i, int j, Cost& tracked_cost);
 
 // The metaheuristic's elite-difference destroy on its own: removes from `route` every cluster
 // (except route[0]) at an end of an arc, at cluster level and in either direction on symmetric

@@ -30,10 +30,16 @@ struct SolveParams {
   // restart from the best route (lowest cost, lowest thread index on ties): deterministic.
   int round_iterations = 0;            // 0: automatic, 40 + m/2 (x 8/avg cluster size when above 8, >= 10)
   // Stop after this many rounds in a row without improving the best route. 0: automatic,
-  // 6 below kLargeClusters clusters, 20 from there on, 10 on "wide" problems (see
-  // max_removal_fraction) from 150 clusters on (tuned on GTSPLIB for the time targets:
-  // small instances converge in few rounds, large ones keep improving slowly).
+  // 6 below kLargeClusters clusters, 20 from there on, 40 on "wide" problems (see
+  // max_removal_fraction), which work_budget bounds instead (tuned on GTSPLIB for the time
+  // targets: small instances converge in few rounds, large ones keep improving slowly).
   int stagnation_rounds = 0;
+  // Stop once the search has done this much work: iterations of all threads x node count x
+  // (1 + size of the smallest cluster) / 2 (each iteration's cluster optimisation tries every node of
+  // the smallest cluster as its start). Deterministic, unlike a time limit, and roughly
+  // proportional to CPU time. 0: automatic, 9e6 on wide problems (about 1.5-2 s on 2 cores for
+  // GTSPLIB's 200-cluster instances), none otherwise; < 0: none.
+  double work_budget = 0.0;
   // Epochs: after this many rounds without improving the current epoch's best route, every thread
   // starts afresh from its own random construction (the overall best is kept and returned), instead
   // of searching on around a local optimum the destroy/repair steps no longer leave. 0: automatic,

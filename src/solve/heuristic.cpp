@@ -60,8 +60,6 @@ bool cluster_optimise(const Problem& p, std::vector<NodeId>& r, double max_work)
   return on_route(p, r, [max_work](const Ops& o, Tour& t) { return o.cluster_optimise(t, max_work); });
 }
 bool two_opt_neighbour_move(const Problem& p, std::vector<NodeId>& route, int i, int j, Cost& tracked_cost) {
-  const int L = static_cast<int>(route.size());
-  if (i < 2 || j < i + 2 || j + 1 >= L) return false;
   return on_route(p, route, [&](const Ops& o, Tour& t) {
     const bool moved = o.neighbour_opt() && o.two_opt_no(t, i, j);
     tracked_cost = t.cost;

@@ -35,6 +35,8 @@ void Ops::build_neighbour_bounds() {
 // "2-opt with neighbours optimisation"). Bounds from nmin_ / cmin_ skip most candidate moves in
 // O(1); an evaluation costs |A||C| + |B||D| arcs.
 bool Ops::two_opt_no(Tour& t, int i, int j) const {
+  // Position 0 keeps its node; j + 1 is the last cluster whose node may change.
+  if (i < 2 || j < i + 2 || j + 1 >= static_cast<int>(t.seq.size())) return false;
   auto at = [&](int k) { return t.seq[static_cast<std::size_t>(k)]; };
   const NodeId a = at(i - 1), b = at(i), b2 = at(i + 1), c2 = at(j - 1), c = at(j), d = at(j + 1);
   const NodeId pp = at(i - 2);
@@ -43,15 +45,18 @@ bool Ops::two_opt_no(Tour& t, int i, int j) const {
   const std::size_t ca = cl(a).index(), cb = cl(b).index(), cc = cl(c).index(), cd = cl(d).index();
   Cost old = arc(pp, a) + arc(a, b) + arc(b, b2) + arc(c2, c) + arc(c, d);
   if (q.valid()) old += arc(d, q);
-  const Cost lb1 = nmin_[pp.index() * m + ca] + cmin_[ca * m + cc] + nmin_[c2.index() * m + cc];
-  const Cost lb2 = nmin_[b2.index() * m + cb] + cmin_[cb * m + cd] + (q.valid() ? nmin_[q.index() * m + cd] : 0);
+  // Lower bounds of x -> C -> c2 (any x in A) and of b2 -> B -> w (any w in D).
+  const Cost tail1 = cmin_[ca * m + cc] + nmin_[c2.index() * m + cc];
+  const Cost head2 = cmin_[cb * m + cd] + nmin_[b2.index() * m + cb];
+  const Cost lb1 = nmin_[pp.index() * m + ca] + tail1;
+  const Cost lb2 = head2 + (q.valid() ? nmin_[q.index() * m + cd] : 0);
   if (lb1 + lb2 >= old) return false;
   // Best p-x-y-c2 (x in A, y in C), then the best b2-u-w-q (u in B, w in D) that still pays.
   Cost best1 = old - lb2;
   NodeId bx, by;
   for (NodeId x : p_.nodes_of(cl(a))) {
     const Cost px = arc(pp, x);
-    if (px + cmin_[ca * m + cc] + nmin_[c2.index() * m + cc] >= best1) continue;
+    if (px + tail1 >= best1) continue;
     for (NodeId y : p_.nodes_of(cl(c))) {
       const Cost v = px + arc(x, y) + arc(y, c2);
       if (v < best1) best1 = v, bx = x, by = y;
@@ -62,7 +67,7 @@ bool Ops::two_opt_no(Tour& t, int i, int j) const {
   NodeId bu, bw;
   for (NodeId w : p_.nodes_of(cl(d))) {
     const Cost wq = q.valid() ? arc(w, q) : 0;
-    if (wq + cmin_[cb * m + cd] + nmin_[b2.index() * m + cb] >= best2) continue;
+    if (wq + head2 >= best2) continue;
     for (NodeId u : p_.nodes_of(cl(b))) {
       const Cost v = wq + arc(u, w) + arc(b2, u);
       if (v < best2) best2 = v, bu = u, bw = w;

@@ -391,8 +391,8 @@ bool Ops::two_opt_pass(Tour& t) const {
         improved = true;
         return;
       }
-      // With precedence the candidate branch does not run; position 0 keeps its node.
-      if (no_ && i >= 2 && j >= i + 2 && j + 1 < L && two_opt_no(t, i, j)) improved = true;
+      // With precedence the candidate branch does not run.
+      if (no_ && two_opt_no(t, i, j)) improved = true;
     };
     for (int i = 1; i + 1 < L; ++i) {
       const std::size_t ca = cl(t.seq[static_cast<std::size_t>(i - 1)]).index(), cb = cl(t.seq[static_cast<std::size_t>(i)]).index();

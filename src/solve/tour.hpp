@@ -137,7 +137,7 @@ class Ops {
   // precedence, small clusters.
   bool neighbour_opt() const { return no_; }
   // seq[i..j] reversed with the best nodes at its four ends; applied (true) only when that is
-  // cheaper. Needs neighbour_opt(), 2 <= i, i + 2 <= j, j + 1 < L.
+  // cheaper. Needs neighbour_opt(); false unless 2 <= i, i + 2 <= j, j + 1 < L.
   bool two_opt_no(Tour& t, int i, int j) const;
 
  private:

@@ -74,12 +74,6 @@ TEST(Operators, TwoOptNeighbourMoveMatchesEnumeration) {
     spec.scatter_nodes = k % 2 == 0;
     const Problem p = test::random_problem(spec, rng);
     SCOPED_TRACE("instance " + std::to_string(k));
-    auto cost_of = [&](const std::vector<NodeId>& r) {
-      Cost c = 0;
-      for (std::size_t q = 0; q + 1 < r.size(); ++q) c += p.arc_cost(r[q], r[q + 1]);
-      if (p.closed()) c += p.arc_cost(r.back(), r.front());
-      return c;
-    };
     // A random route (random order, random nodes), so that many reversals pay.
     std::vector<NodeId> r = construct_route(p, rng);
     rng.shuffle(r.begin() + 1, r.end());
@@ -103,16 +97,16 @@ TEST(Operators, TwoOptNeighbourMoveMatchesEnumeration) {
               std::vector<NodeId> cand = rev;
               cand[static_cast<std::size_t>(i - 1)] = x, cand[static_cast<std::size_t>(i)] = y;
               cand[static_cast<std::size_t>(j)] = u, cand[static_cast<std::size_t>(j + 1)] = w;
-              best = std::min(best, cost_of(cand));
+              best = std::min(best, route_cost(p, cand));
             }
-      const Cost before = cost_of(r);
+      const Cost before = route_cost(p, r);
       std::vector<NodeId> out = r;
       Cost tracked = -1;
       const bool did = two_opt_neighbour_move(p, out, i, j, tracked);
       ASSERT_EQ(did, best < before) << "i " << i << " j " << j;
       if (did) {
         ++moved;
-        EXPECT_EQ(cost_of(out), best);
+        EXPECT_EQ(route_cost(p, out), best);
         EXPECT_EQ(tracked, best);
         expect_valid(p, out, "two_opt_neighbour_move");
         r = out;

@@ -49,6 +49,7 @@ std::vector<std::string> check(const SolveParams& p) {
   if (!(p.exact_auto_max_work >= 0.0)) out.push_back("exact_auto_max_work must be >= 0");
   if (p.epoch_rounds > 1000000) out.push_back("epoch_rounds must be <= 1000000 (got " + std::to_string(p.epoch_rounds) + ")");
   if (!(p.work_budget == p.work_budget)) out.push_back("work_budget is not a number");
+  if (p.population_size > 10000) out.push_back("population_size must be <= 10000 (got " + std::to_string(p.population_size) + ")");
   if (p.min_stagnation_work < 0) out.push_back("min_stagnation_work must be >= 0");
   if (p.target_cost && *p.target_cost < 0) out.push_back("target_cost must be >= 0");
   return out;

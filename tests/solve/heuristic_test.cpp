@@ -20,15 +20,33 @@ Problem instance(std::uint64_t seed, bool precedence) {
   return test::random_problem(spec, rng);
 }
 
+// Heuristic on two threads, stopped by stagnation only (no clock), short also under sanitizers.
+SolveParams short_run(std::uint64_t seed) {
+  SolveParams sp;
+  sp.solver = SolverKind::heuristic;
+  sp.seed = seed;
+  sp.threads = 2;
+  sp.time_limit_s = 0;
+  sp.min_stagnation_work = 10000;
+  return sp;
+}
+
+// Solves twice and checks that both runs agree (route, iterations) and that the route is valid
+// and priced right; returns the first.
+Solution solve_deterministic(const Problem& p, const SolveParams& sp) {
+  const Solution a = solve(p, sp);
+  const Solution b = solve(p, sp);
+  EXPECT_EQ(a.route, b.route);
+  EXPECT_EQ(a.stats.iterations, b.stats.iterations);
+  EXPECT_TRUE(validate(p, a).empty());
+  EXPECT_EQ(a.cost, route_cost(p, a.route));
+  return a;
+}
+
 TEST(Heuristic, SameSeedAndThreadsGiveTheSameRoute) {
   for (bool prec : {false, true}) {
     const Problem p = instance(11, prec);
-    SolveParams sp;
-    sp.solver = SolverKind::heuristic;
-    sp.seed = 42;
-    sp.threads = 2;
-    sp.time_limit_s = 0;
-    sp.min_stagnation_work = 10000;  // keep the test short (also under sanitizers)
+    const SolveParams sp = short_run(42);
     const Solution a = solve(p, sp);
     const Solution b = solve(p, sp);
     EXPECT_EQ(a.route, b.route);
@@ -54,17 +72,34 @@ TEST(Heuristic, WideRoutesAreDeterministicAndBeatLocalSearch) {
   sp.time_limit_s = 0;
   sp.stagnation_rounds = 3;  // short, also under sanitizers
   sp.min_stagnation_work = 0;
-  const Solution a = solve(p, sp);
-  const Solution b = solve(p, sp);
-  EXPECT_EQ(a.route, b.route);
-  EXPECT_EQ(a.stats.iterations, b.stats.iterations);
-  ASSERT_TRUE(validate(p, a).empty());
-  EXPECT_EQ(a.cost, route_cost(p, a.route));
+  const Solution a = solve_deterministic(p, sp);
   // Destroy/repair rounds improve on a plain construction + local search from the same seed.
   Rng r2(7);
   std::vector<NodeId> start = construct_route(p, r2);
   local_search(p, start);
   EXPECT_LT(a.cost, route_cost(p, start));
+  // That was the population mode (automatic on such problems); the single-trajectory search gives
+  // another route, deterministic as well.
+  sp.population_size = -1;
+  const Solution c = solve_deterministic(p, sp);
+  EXPECT_NE(a.route, c.route);
+}
+
+// An explicit population size applies to any problem without precedence and is ignored with
+// precedence (the crossover would break it): the route is then the single-trajectory one.
+TEST(Heuristic, PopulationSizeAppliesWithoutPrecedenceOnly) {
+  for (bool prec : {false, true}) {
+    const Problem p = instance(14, prec);
+    SolveParams sp = short_run(3);
+    sp.population_size = -1;
+    const Solution off = solve(p, sp);
+    sp.population_size = 8;
+    const Solution on = solve_deterministic(p, sp);
+    if (prec)
+      EXPECT_EQ(on.route, off.route);
+    else
+      EXPECT_NE(on.stats.iterations, off.stats.iterations);
+  }
 }
 
 TEST(Heuristic, CancelledTokenStillReturnsAValidRoute) {

@@ -152,8 +152,11 @@ TEST(PlanarCosts, LargeInstanceAsGoodAsTheMatrixForm) {
   Rng rng(11);
   const Planar p = random_planar(150, 6, rng);
   const Problem planar = build(p, false), matrix = build(p, true);
-  // The same short search on both (stagnation, no clock): a fair and repeatable comparison.
+  // The same search on both (stagnation, no clock): a fair and repeatable comparison. Six rounds, not
+  // the fast preset's two: the population mode (automatic here) is still spreading its routes after
+  // two, and where a run that short stops is a draw (85.50 against 84.61 million, either way round).
   SolveParams hp = SolveParams::fast();
+  hp.stagnation_rounds = 6;
   hp.solver = SolverKind::heuristic;
   hp.threads = 1;
   hp.seed = 3;

@@ -69,11 +69,22 @@ bool two_opt_neighbour_move(const Problem& p, std::vector<NodeId>& route, int i,
 std::vector<ClusterId> remove_differences(const Problem& p, std::vector<NodeId>& route,
                                           const std::vector<NodeId>& elite, Cost& tracked_cost);
 
+// The population mode's ordered crossover on its own: a[i..j] in place (1 <= i <= j < size), the
+// other clusters in b's order from after a[j]'s cluster in b, with b's nodes; a and b complete routes.
+std::vector<NodeId> order_crossover(const Problem& p, const std::vector<NodeId>& a, const std::vector<NodeId>& b, int i,
+                                    int j);
+// The population's survivor selection on its own: adds the complete `routes` in order to a
+// population of `mu` survivors and generations of `lambda`; returns the routes it holds at the end.
+std::vector<std::vector<NodeId>> population_survivors(const Problem& p, const std::vector<std::vector<NodeId>>& routes,
+                                                      int mu, int lambda);
+
 // The metaheuristic (docs/SOLVER.md): per thread, construction + local search, then rounds of
 // destroy (random / segment / worst / related removal of 1..30 % of the clusters, double bridge, and
 // on wide problems the elite-difference removal above), repair (cheapest
 // unified insertion, optionally noisy), local search and threshold acceptance; after every round
-// all threads continue from the best route so far. Stops on time limit, target, stagnation, cancel.
+// all threads continue from the best route so far. On large problems without precedence the threads
+// breed children from a population instead (SolveParams::population_size). Stops on time limit,
+// target, stagnation, work budget, cancel.
 // Deterministic for a fixed seed and thread count when no time limit or cancel cuts it.
 Solution solve_heuristic(const Problem& p, const SolveParams& params, const StopToken& stop,
                          const ProgressFn& progress = {});

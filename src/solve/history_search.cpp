@@ -132,11 +132,12 @@ std::vector<NodeId> order_by_priority(const Problem& p, std::span<const NodeId> 
   };
   if (m == 0) return out;
   out.push_back(route[0]);  // the start stays first
-  release(p.cluster_of(route[0]));
   for (std::size_t i = 1; i < m; ++i) {
     const ClusterId c = p.cluster_of(route[i]);
     if (waiting[c.index()] == 0) ready.emplace(priority[c.index()], static_cast<int>(i));
   }
+  // After the scan: releasing the start first queued its successors twice (SOP: node 1 precedes all).
+  release(p.cluster_of(route[0]));
   while (!ready.empty()) {
     const auto [prio, at] = ready.top();
     ready.pop();

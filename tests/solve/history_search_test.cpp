@@ -159,5 +159,22 @@ TEST(OrderByPriority, SortsWherePrecedenceAllows) {
   }
 }
 
+// Pairs out of the start cluster (a SOP file makes node 1 precede every other node) release their
+// clusters once the start is placed: every cluster comes out exactly once, in priority order.
+TEST(OrderByPriority, StartClusterWithSuccessors) {
+  ProblemBuilder b(5);
+  for (int c = 0; c < 5; ++c) b.add_cluster({NodeId(c)});
+  b.set_cost_matrix(std::vector<Cost>(25, 1));
+  b.set_kind(RouteKind::open_path);
+  b.set_start_cluster(ClusterId(0));
+  for (int c = 1; c < 5; ++c) b.add_precedence(ClusterId(0), ClusterId(c));
+  b.add_precedence(ClusterId(3), ClusterId(1));
+  const Problem p = std::move(b.build()).value();
+  const std::vector<NodeId> route{NodeId(0), NodeId(2), NodeId(3), NodeId(4), NodeId(1)};
+  const std::vector<double> prio{0, 0, 3, 1, 2};  // wanted: 0 1 3 4 2, but 3 must precede 1
+  const auto r = order_by_priority(p, route, prio);
+  EXPECT_EQ(r, (std::vector<NodeId>{NodeId(0), NodeId(3), NodeId(1), NodeId(4), NodeId(2)}));
+}
+
 }  // namespace
 }  // namespace cutroute::solve

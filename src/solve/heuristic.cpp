@@ -175,9 +175,10 @@ class Worker {
     }
   }
 
-  // Population mode: `count` fresh constructions with local search, kept as children.
-  void seed_population(int count) {
-    for (int i = 0; i < count; ++i) {
+  // Population mode: `count` fresh constructions with local search, kept as children (fewer when
+  // `stop` fires: on a long route each costs a full descent).
+  void seed_population(int count, const StopToken& stop) {
+    for (int i = 0; i < count && !stop.stop_requested(); ++i) {
       ops_.construct(trial_, rng_);
       ops_.local_search(trial_);
       ++iterations_;
@@ -422,15 +423,21 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
   // without them, 5/5 at it with epochs of 15 rounds); none on the rest (a fresh large route
   // rarely catches up with the best within a run) nor on large clusters (a fresh start costs a
   // full cluster optimisation: 31C3k.0, 100-node clusters, 3-10 % more CPU with epochs, always at
-  // its optimum without).
+  // its optimum without). In the population mode on wide problems an epoch of 10 rounds replaces
+  // the whole population with fresh routes (the best is kept): a population sometimes converged
+  // on one basin within a few thousand iterations and then spent the run there (134gr666 at
+  // +0.45 % or +0.82 % in 4 of 15 seeds; with epochs 1 of 15). GTSPLIB 99-217 without 100C10k.0,
+  // seeds 1-5 / 6-15: mean gap 0.029 / 0.020 % -> 0.021 / 0.013 %. Not on 100C10k.0 (0.02 % ->
+  // 0.07 %: a fresh population of 100-node clusters takes too long to catch up).
   const int epoch_patience = params.epoch_rounds != 0 ? std::max(0, params.epoch_rounds)
                              : p.has_precedence() ? (p.cluster_count() < 200 ? 15 : 0)
+                             : pop_mu > 0 ? (wide ? 10 : 0)
                              : !large && avg_k <= 8.0 ? 3 : 0;
   // Small problems without precedence (those with epochs) take the fresh-start decision for all
   // threads at once: a thread that alone rebuilds its route from scratch made the other wait at the
   // barrier (45ts225: each of 2 threads waited 25-30 % of the run; 45ts225 and 40d198 ran 0.60 and
   // 0.34 s on 2 threads, 0.48 s on one).
-  const bool fresh_together = epoch_patience > 0 && !p.has_precedence();
+  const bool fresh_together = epoch_patience > 0 && !p.has_precedence() && pop_mu == 0;
   Rng fresh_rng = master.split();
   Worker::Fresh fresh = Worker::Fresh::none;
   // Runs between rounds on one thread: picks the best route (ties: lowest thread index), decides stop.
@@ -469,6 +476,7 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
     }
     first = false;
     new_epoch = epoch_patience > 0 && epoch_stagnant >= epoch_patience;
+    if (new_epoch && pop_mu > 0) pop.clear();
     if (!fresh_together) fresh = epoch_stagnant > 0 ? Worker::Fresh::maybe : Worker::Fresh::none;
     else if (epoch_stagnant == 0 || new_epoch) fresh = Worker::Fresh::none;
     else fresh = fresh_rng.chance(std::min(0.5, 16.0 / p.cluster_count())) ? Worker::Fresh::all : Worker::Fresh::none;
@@ -497,11 +505,12 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
     w.start();
     // Twice the population size in fresh routes (as many as threads can share evenly) and each
     // thread's start route.
-    if (pop_mu > 0) w.seed_population((2 * pop_mu + threads - 1) / threads), w.children().push_back(w.best());
+    if (pop_mu > 0) w.seed_population((2 * pop_mu + threads - 1) / threads, stop), w.children().push_back(w.best());
     sync();
     while (!done) {
       if (pop_mu > 0) {
-        w.breed(round_iters, stop, pop);
+        if (new_epoch) w.seed_population((2 * pop_mu + threads - 1) / threads, stop);  // combine() emptied it
+        else w.breed(round_iters, stop, pop);
         sync();
         continue;
       }

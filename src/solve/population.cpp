@@ -8,12 +8,19 @@
 namespace cutroute::solve::detail {
 
 double Population::compute_distance(const Member& a, const Member& b) const {
+  // Branch-free so that GCC vectorises it: every child is compared with the whole population in
+  // the serial step between rounds (7.5 % of the run on 200E1k.0 with the branches).
+  const std::size_t m = a.succ.size();
+  const int* as = a.succ.data();
+  const int* bs = b.succ.data();
+  const int* bp = b.pred.data();
+  const int sym = sym_ ? 1 : 0;
   int arcs = 0, broken = 0;
-  for (std::size_t c = 0; c < a.succ.size(); ++c) {
-    const int s = a.succ[c];
-    if (s < 0) continue;
-    ++arcs;
-    if (b.succ[c] != s && !(sym_ && b.pred[c] == s)) ++broken;
+  for (std::size_t c = 0; c < m; ++c) {
+    const int s = as[c];
+    const int has = static_cast<int>(s >= 0);
+    arcs += has;
+    broken += has & static_cast<int>(bs[c] != s) & (1 - (sym & static_cast<int>(bp[c] == s)));
   }
   return arcs == 0 ? 0.0 : static_cast<double>(broken) / arcs;
 }

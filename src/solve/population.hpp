@@ -23,6 +23,7 @@ class Population {
   // the last add and before select().
   void add(const Ops& ops, const Tour& t);
   void refresh();
+  void clear() { members_.clear(); dist_.clear(); }
   int size() const { return static_cast<int>(members_.size()); }
   const Tour& at(int i) const { return members_[static_cast<std::size_t>(i)].tour; }
   double fitness(int i) const { return members_[static_cast<std::size_t>(i)].fitness; }

@@ -55,8 +55,12 @@ bool segment_exchange_pass(const Problem& p, std::vector<NodeId>& r) {
 bool reversing_exchange_pass(const Problem& p, std::vector<NodeId>& r) {
   return on_route(p, r, [](const Ops& o, Tour& t) { return o.reversing_exchange_pass(t); });
 }
-bool lk_pass(const Problem& p, std::vector<NodeId>& r) {
-  return on_route(p, r, [](const Ops& o, Tour& t) { return o.lk_pass(t); });
+bool lk_pass(const Problem& p, std::vector<NodeId>& r, Cost* tracked_cost) {
+  return on_route(p, r, [tracked_cost](const Ops& o, Tour& t) {
+    const bool improved = o.lk_pass(t);
+    if (tracked_cost) *tracked_cost = t.cost;
+    return improved;
+  });
 }
 bool cluster_optimise(const Problem& p, std::vector<NodeId>& r, double max_work) {
   return on_route(p, r, [max_work](const Ops& o, Tour& t) { return o.cluster_optimise(t, max_work); });
@@ -410,7 +414,7 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
   const bool pop_auto = large && !p.has_precedence() && p.cluster_count() < 250;
   const int pop_mu = p.has_precedence() || p.cluster_count() < 5 ? 0
                      : params.population_size > 0 ? params.population_size
-                     : params.population_size == 0 && pop_auto ? 25 : 0;
+                     : params.population_size == 0 && pop_auto ? 40 : 0;
   Population pop(pop_mu, kGeneration);
 
   Tour global, epoch;

@@ -33,6 +33,10 @@ bool Ops::lk_pass(Tour& t) const {
   // guides the chain, with the arcs priced in one direction. Intermediate routes may break
   // precedence: only feasible ones are kept (LKH-3 likewise lets a move pass through infeasible
   // routes), which is what lets a chain get past the pairs that block 2-opt.
+  // On symmetric closed tours without precedence a chain's route costs the old cost minus the
+  // partial gain plus the closing arc: O(1) instead of an O(L) pricing (LK was 18 % of a 200E1k.0
+  // run priced from scratch, 14 % of it in full_cost).
+  const bool sym_gain = p_.symmetric() && closed_ && !prec_;
   const auto& pairs = p_.precedence();
   auto feasible = [&]() {
     for (auto [a, b] : pairs)
@@ -135,7 +139,7 @@ bool Ops::lk_pass(Tour& t) const {
           added.push_back({t2, c.t3});
           removed.push_back({c.t3, c.t4});
           ends.push_back(c.t3), ends.push_back(c.t4);
-          const Cost closing = feasible() ? t.cost - full_cost(t.seq) : 0;
+          const Cost closing = sym_gain ? c.rank - arc(c.t4, t1) : feasible() ? t.cost - full_cost(t.seq) : 0;
           if (closing > best_gain) best_gain = closing, best_len = flips.size();
           t2 = c.t4;
           if (depth + 1 >= kMaxDepth) break;

@@ -2,6 +2,8 @@
 
 #include "planar_neighbours.hpp"
 
+#include <cutroute/solve/params.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -100,10 +102,15 @@ Ops::Ops(const Problem& p, const StopToken* stop)
     near_symmetric_ = diff <= 0.1 * sum;
   }
   kn_ = static_cast<std::size_t>(std::min(kNeighbours, std::max(0, m_ - 1)));
-  // Nearly symmetric plain matrices (SOP prob.100, kro124p, ry48p; lin_kernighan.cpp). Not on
-  // symmetric GTSPLIB 99-217 (seeds 1-12: mean gap 0.168 % against 0.166 % without, 109 against
-  // 108 runs at the best known) nor yet on cutting routes (inner costs), which were not measured.
-  lk_ = kn_ > 0 && near_symmetric_ && plain_mat_;
+  // Nearly symmetric plain matrices (SOP prob.100, kro124p, ry48p; lin_kernighan.cpp), and
+  // symmetric ones of at least 96 clusters without precedence (GTSPLIB 99-217, where the population
+  // mode runs): the population's children need the deeper moves (GTSPLIB 99-217, 25 seeds: mean gap
+  // 0.017 % -> 0.008 %, runs above 0.3 % 4 -> 1 of 500, at the same wall time since chains there
+  // are priced in O(1)), while in single-route rounds they did not pay (seeds 1-12: 0.168 % against
+  // 0.166 %), nor below 96 clusters (GTSPLIB <= 89: 419 against 420 of 425 runs at the best known,
+  // 23 % more time). Not yet on cutting routes (inner costs), which were not measured.
+  const bool large_sym = p.symmetric() && !prec_ && m_ >= SolveParams::kLargeClusters;
+  lk_ = kn_ > 0 && (near_symmetric_ || large_sym) && plain_mat_;
   if (kn_ == 0) return;
   const double avg = static_cast<double>(p.node_count()) / m_;
   // One cluster-optimisation pass costs about m * (n/m)^2 evaluations per start node.

@@ -1,6 +1,7 @@
 // Reversing moves on nearly symmetric asymmetric matrices (2-opt, reversing segment exchange, LK
 // chains): priced exactly, and none that pays is left, checked by making every such move and
-// recomputing the cost; LK chains keep routes valid and go beyond the short moves' local optima.
+// recomputing the cost; LK chains keep routes valid and go beyond the short moves' local optima, also
+// on large symmetric routes, where they track their cost incrementally.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -116,7 +117,7 @@ TEST(LinKernighan, KeepsRoutesValidAndCheaper) {
     SCOPED_TRACE("instance " + std::to_string(k));
     std::vector<NodeId> r = construct_route(p, rng);
     const std::vector<NodeId> start = r;
-    const int passes = descend(p, r, lk_pass);
+    const int passes = descend(p, r, [](const Problem& q, std::vector<NodeId>& x) { return lk_pass(q, x); });
     if (p.has_inner_costs()) {
       EXPECT_EQ(r, start);
     }
@@ -163,6 +164,42 @@ TEST(LinKernighan, ImprovesOnShortMoveLocalOptima) {
   // Measured: 24 of 55 without precedence; precedence (a third of the clusters in pairs) blocks
   // more chains, 9 of 59.
   EXPECT_GT(improved_prec, total_prec / 10) << improved_prec << " of " << total_prec;
+}
+
+// Symmetric closed tours of at least 96 clusters without precedence (GTSPLIB 99-217) get LK chains
+// too, priced incrementally: from local optima of 2-opt and Or-opt every pass keeps the route
+// valid, the cost it tracks equals the recomputed one, and chains still find improvements. Below
+// 96 clusters the pass leaves such routes alone.
+TEST(LinKernighan, SymmetricLargeRoutesTrackTheirCost) {
+  Rng rng(37);
+  int improved = 0;
+  for (int k = 0; k < 12; ++k) {
+    SCOPED_TRACE("instance " + std::to_string(k));
+    test::RandomSpec spec;
+    spec.clusters = k < 10 ? 96 + static_cast<int>(rng.below(40)) : 60;
+    spec.max_nodes = 1 + static_cast<int>(rng.below(3));
+    spec.symmetric = true;
+    spec.scatter_nodes = k % 2 == 0;
+    const Problem p = test::random_problem(spec, rng);
+    ASSERT_TRUE(p.symmetric());
+    std::vector<NodeId> r = construct_route(p, rng);
+    for (int guard = 0; guard < 1000; ++guard)
+      if (!(two_opt_pass(p, r) | or_opt_pass(p, r))) break;
+    for (int pass = 0; pass < 100; ++pass) {
+      const Cost before = route_cost(p, r);
+      Cost tracked = -1;
+      const bool better = lk_pass(p, r, &tracked);
+      ASSERT_TRUE(valid(p, r));
+      EXPECT_EQ(tracked, route_cost(p, r));
+      EXPECT_EQ(better, route_cost(p, r) < before);
+      if (spec.clusters < 96) {
+        EXPECT_FALSE(better);
+      }
+      improved += better;
+      if (!better) break;
+    }
+  }
+  EXPECT_GT(improved, 10);
 }
 
 }  // namespace

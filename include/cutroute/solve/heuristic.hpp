@@ -37,8 +37,10 @@ std::vector<NodeId> construct_route(const Problem& p, Rng& rng);
 //     one). O(L^2) per examined position.
 //   two_opt on such matrices prices every arc of the reversed segment (prefix sums, O(1) a move).
 //   lk: Lin-Kernighan chains of up to 10 2-opt moves from every examined cluster (the same matrices,
-//     without inner costs; no-op elsewhere); intermediate routes may break precedence, the kept one
-//     does not. O(L) per chain step.
+//     and symmetric ones of >= 96 clusters without precedence; without inner costs; no-op
+//     elsewhere); intermediate routes may break precedence, the kept one does not. O(L) per chain
+//     step. `tracked_cost`, when given, receives the cost the pass tracked (priced incrementally on
+//     symmetric closed tours).
 //   cluster_optimise: for the fixed cluster order, the best node of every cluster (shortest path
 //     through the layered graph, all nodes of the smallest cluster tried as the cyclic start when
 //     the work fits `max_work`, else only its current node). O(k_min * sum |C_i||C_i+1|).
@@ -48,7 +50,7 @@ bool or_opt_pass(const Problem& p, std::vector<NodeId>& route);
 bool swap_pass(const Problem& p, std::vector<NodeId>& route);
 bool segment_exchange_pass(const Problem& p, std::vector<NodeId>& route);
 bool reversing_exchange_pass(const Problem& p, std::vector<NodeId>& route);
-bool lk_pass(const Problem& p, std::vector<NodeId>& route);
+bool lk_pass(const Problem& p, std::vector<NodeId>& route, Cost* tracked_cost = nullptr);
 bool cluster_optimise(const Problem& p, std::vector<NodeId>& route, double max_work = 2.0e6);
 // All of the above until none improves.
 void local_search(const Problem& p, std::vector<NodeId>& route);

@@ -67,10 +67,11 @@ struct SolveParams {
   double accept_threshold = 0.0;
   // Hybrid genetic search (docs/SOLVER.md "Population"): instead of continuing one route, every
   // iteration breeds a child from a population of this many routes kept diverse by distance (ordered
-  // crossover of two, or a destroy/repair step of one, then local search). 0: automatic, 25 on
-  // problems of 96-249 clusters without precedence (GTSPLIB 99-217 clusters, seeds 1-15: mean gap
-  // 0.11 % -> 0.03 %), off otherwise (89rbg443 got worse); < 0: off. Never on problems with
-  // precedence (SOP, most cutting routes): the crossover ignores it.
+  // crossover of two, or a destroy/repair step of one, then local search). 0: automatic, 40 on
+  // problems of 96-249 clusters without precedence (GTSPLIB 99-217 clusters, 25 seeds: mean gap
+  // 0.118 % -> 0.006 %; 25 routes: 0.008 %, one run above 0.3 %), off otherwise (89rbg443 no
+  // better, slower); < 0: off. Never on problems with precedence (SOP, most cutting routes): the
+  // crossover ignores it.
   int population_size = 0;
   static constexpr int kLargeClusters = 96;
 

@@ -158,17 +158,12 @@ class Worker {
       ops_.local_search(cur_);
       if (cur_.cost < best_.cost) best_ = cur_;
     }
-    const int movable = p.cluster_count() - 1;
-    if (movable < 1) return;
-    // At least 3 clusters (when there are) so tiny instances get perturbations local search cannot undo.
-    const int kmax = std::max(std::min(movable, 3), static_cast<int>(params_.max_removal_fraction * movable));
+    if (p.cluster_count() < 2) return;
     for (int it = 0; it < iterations; ++it) {
       if (stop.stop_requested() || stop.target_reached(best_.cost)) return;
       ++iterations_;
       trial_ = cur_;
-      const double u = rng_.uniform01();
-      const int k = std::min(movable, 1 + static_cast<int>(u * u * kmax));
-      destroy(trial_, k);
+      destroy(trial_, removal_size());
       repair(trial_);
       ops_.local_search(trial_);
       // Threshold acceptance in units of the mean step of the route, decaying over the round.
@@ -196,9 +191,7 @@ class Worker {
   // one, then local search. They join the population between rounds.
   void breed(int iterations, const StopToken& stop, const Population& pop) {
     const Problem& p = ops_.problem();
-    const int movable = p.cluster_count() - 1;
-    if (movable < 3 || pop.size() == 0) return;
-    const int kmax = std::max(3, static_cast<int>(params_.max_removal_fraction * movable));
+    if (p.cluster_count() < 4 || pop.size() == 0) return;
     for (int it = 0; it < iterations; ++it) {
       if (stop.stop_requested() || stop.target_reached(best_.cost)) return;
       ++iterations_;
@@ -213,8 +206,7 @@ class Worker {
         detail::order_crossover(ops_, pop.at(a), pop.at(b), i, j, trial_);
       } else {
         trial_ = pop.at(a);
-        const double u = rng_.uniform01();
-        destroy(trial_, std::min(movable, 1 + static_cast<int>(u * u * kmax)));
+        destroy(trial_, removal_size());
         repair(trial_);
       }
       ops_.local_search(trial_);
@@ -232,6 +224,16 @@ class Worker {
   long long iterations() const { return iterations_; }
 
  private:
+  // Clusters one destroy removes: 1 + floor(u^2 * kmax), kmax the removal fraction of the movable
+  // clusters but at least 3 (when there are), so tiny instances get perturbations local search
+  // cannot undo.
+  int removal_size() {
+    const int movable = ops_.problem().cluster_count() - 1;
+    const int kmax = std::max(std::min(movable, 3), static_cast<int>(params_.max_removal_fraction * movable));
+    const double u = rng_.uniform01();
+    return std::min(movable, 1 + static_cast<int>(u * u * kmax));
+  }
+
   void destroy(Tour& t, int k) {
     removed_.clear();
     const Problem& p = ops_.problem();
@@ -446,12 +448,13 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
   Worker::Fresh fresh = Worker::Fresh::none;
   // Runs between rounds on one thread: picks the best route (ties: lowest thread index), decides stop.
   auto combine = [&]() noexcept {
-    if (pop_mu > 0)
+    if (pop_mu > 0) {
       for (Worker& w : workers) {
         for (const Tour& c : w.children()) pop.add(ops, c);
         w.children().clear();
       }
-    if (pop_mu > 0) pop.refresh();
+      pop.refresh();
+    }
     if (elite_destroy > 0.0)
       for (const Worker& w : workers) {
         const Tour& b = w.best();
@@ -504,22 +507,25 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
     if (progress) progress({"heuristic", -1.0, static_cast<double>(global.cost)});
   };
 
+  // Population mode: twice the population size in fresh routes, shared evenly among the threads.
+  const int seed_share = (2 * pop_mu + threads - 1) / threads;
   auto body = [&](int i, auto&& sync) {
     Worker& w = workers[static_cast<std::size_t>(i)];
     w.start();
-    // Twice the population size in fresh routes (as many as threads can share evenly) and each
-    // thread's start route.
-    if (pop_mu > 0) w.seed_population((2 * pop_mu + threads - 1) / threads, stop), w.children().push_back(w.best());
+    if (pop_mu > 0) {
+      w.seed_population(seed_share, stop);
+      w.children().push_back(w.best());  // each thread's start route joins too
+    }
     sync();
     while (!done) {
-      if (pop_mu > 0) {
-        if (new_epoch) w.seed_population((2 * pop_mu + threads - 1) / threads, stop);  // combine() emptied it
-        else w.breed(round_iters, stop, pop);
-        sync();
-        continue;
+      if (pop_mu == 0) {
+        if (new_epoch) w.start();  // the worker's best restarts from a fresh route
+        w.round(round_iters, stop, fresh);
+      } else if (new_epoch) {
+        w.seed_population(seed_share, stop);  // combine() emptied the population
+      } else {
+        w.breed(round_iters, stop, pop);
       }
-      if (new_epoch) w.start();  // the worker's best restarts from a fresh route
-      w.round(round_iters, stop, fresh);
       sync();
     }
   };

@@ -10,16 +10,12 @@
 #include <cutroute/solve/solution.hpp>
 
 #include "random_instance.hpp"
+#include "route_check.hpp"
 
 namespace cutroute::solve {
 namespace {
 
-bool valid(const Problem& p, const std::vector<NodeId>& r) {
-  Solution s;
-  s.route = r;
-  s.cost = route_cost(p, r);
-  return validate(p, s).empty();
-}
+bool valid(const Problem& p, const std::vector<NodeId>& r) { return test::route_errors(p, r).empty(); }
 
 // Instance k of a series: 4 to 3 + max_more clusters, a symmetric matrix plus independent noise of a
 // few % of the mean arc on every arc; open or closed, with or without precedence and inner costs.

@@ -10,6 +10,7 @@
 #include <cutroute/solve/solution.hpp>
 
 #include "random_instance.hpp"
+#include "route_check.hpp"
 
 namespace cutroute::solve {
 namespace {
@@ -27,10 +28,7 @@ SequenceCost neighbour_rule(const Problem& p, Cost weight) {
 }
 
 void expect_valid(const Problem& p, const std::vector<NodeId>& r) {
-  Solution s;
-  s.route = r;
-  s.cost = route_cost(p, r);
-  const auto errors = validate(p, s);
+  const auto errors = test::route_errors(p, r);
   EXPECT_TRUE(errors.empty()) << (errors.empty() ? "" : errors.front());
 }
 

@@ -8,15 +8,13 @@
 #include <cutroute/solve/solution.hpp>
 
 #include "random_instance.hpp"
+#include "route_check.hpp"
 
 namespace cutroute::solve {
 namespace {
 
 void expect_valid(const Problem& p, const std::vector<NodeId>& r, const char* what) {
-  Solution s;
-  s.route = r;
-  s.cost = route_cost(p, r);
-  const auto errors = validate(p, s);
+  const auto errors = test::route_errors(p, r);
   EXPECT_TRUE(errors.empty()) << what << ": " << (errors.empty() ? "" : errors.front());
 }
 

@@ -12,6 +12,7 @@
 #include <cutroute/solve/solution.hpp>
 
 #include "random_instance.hpp"
+#include "route_check.hpp"
 
 namespace cutroute::solve {
 namespace {
@@ -33,10 +34,7 @@ TEST(Population, OrderCrossoverKeepsTheStretchAndTheOtherParentsOrder) {
     const std::vector<NodeId> child = order_crossover(p, a, b, i, j);
     ASSERT_EQ(static_cast<int>(child.size()), L);
     EXPECT_EQ(child[0], a[0]);
-    Solution s;
-    s.route = child;
-    s.cost = route_cost(p, child);
-    EXPECT_TRUE(validate(p, s).empty()) << "instance " << k;
+    EXPECT_TRUE(test::route_errors(p, child).empty()) << "instance " << k;
     std::set<int> stretch;
     for (int q = i; q <= j; ++q) {
       EXPECT_EQ(child[static_cast<std::size_t>(q)], a[static_cast<std::size_t>(q)]);

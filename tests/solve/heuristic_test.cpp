@@ -5,6 +5,7 @@
 #include <cutroute/solve/solve.hpp>
 
 #include "random_instance.hpp"
+#include "route_check.hpp"
 
 namespace cutroute::solve {
 namespace {
@@ -31,17 +32,7 @@ SolveParams short_run(std::uint64_t seed) {
   return sp;
 }
 
-// Solves twice and checks that both runs agree (route, iterations) and that the route is valid
-// and priced right; returns the first.
-Solution solve_deterministic(const Problem& p, const SolveParams& sp) {
-  const Solution a = solve(p, sp);
-  const Solution b = solve(p, sp);
-  EXPECT_EQ(a.route, b.route);
-  EXPECT_EQ(a.stats.iterations, b.stats.iterations);
-  EXPECT_TRUE(validate(p, a).empty());
-  EXPECT_EQ(a.cost, route_cost(p, a.route));
-  return a;
-}
+using test::solve_deterministic;
 
 TEST(Heuristic, SameSeedAndThreadsGiveTheSameRoute) {
   for (bool prec : {false, true}) {

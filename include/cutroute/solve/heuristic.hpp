@@ -3,6 +3,8 @@
 // every operator by example (STYLE.md #9); the comments here give the contract and the cost.
 #pragma once
 
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <cutroute/core/random.hpp>
@@ -80,11 +82,32 @@ std::vector<NodeId> order_crossover(const Problem& p, const std::vector<NodeId>&
 std::vector<std::vector<NodeId>> population_survivors(const Problem& p, const std::vector<std::vector<NodeId>>& routes,
                                                       int mu, int lambda);
 
+// The node-set search on its own (docs/SOLVER.md "Node sets"), for closed tours on asymmetric
+// matrices without precedence or inner costs: from `route`'s nodes, an iterated descent over the
+// choice of one node per cluster that lowers the assignment bound of the chosen nodes, until
+// `patience` kicks in a row bring no lower bound. Returns the nodes (by cluster) and their bound.
+// O(m^2) per node change solved (most are refused by an O(m) bound first).
+struct NodeSetResult {
+  std::vector<NodeId> nodes;
+  Cost bound = 0;
+};
+NodeSetResult node_set_search(const Problem& p, const std::vector<NodeId>& route, std::uint64_t seed, int patience);
+// The assignment bound of one node per cluster (`nodes` by cluster): the cheapest way to give every
+// chosen node a successor among the others, each used once (a cover by cycles of two or more
+// clusters), so no tour through these nodes is cheaper. Solved from scratch, O(m^3).
+Cost assignment_bound(const Problem& p, const std::vector<NodeId>& nodes);
+// The same bound re-solved after each (cluster, node) change in turn, in O(m^2) from the previous
+// solution as the node-set search does; for each change also the O(m) lower bound the search uses
+// to skip it. Returns {skip bound, new bound} per change.
+std::vector<std::pair<Cost, Cost>> assignment_bounds_after(const Problem& p, std::vector<NodeId> nodes,
+                                                           const std::vector<std::pair<ClusterId, NodeId>>& changes);
+
 // The metaheuristic (docs/SOLVER.md): per thread, construction + local search, then rounds of
 // destroy (random / segment / worst / related removal of 1..30 % of the clusters, double bridge, and
 // on wide problems the elite-difference removal above), repair (cheapest
 // unified insertion, optionally noisy), local search and threshold acceptance; after every round
-// all threads continue from the best route so far. On large problems without precedence the threads
+// all threads continue from the best route so far (on asymmetric matrices, see node_set_search, they
+// start from the best route through the node set the search found). On large problems without precedence the threads
 // breed children from a population instead (SolveParams::population_size). Stops on time limit,
 // target, stagnation, work budget, cancel.
 // Deterministic for a fixed seed and thread count when no time limit or cancel cuts it.

@@ -48,7 +48,8 @@ bool Assignment::augment(int r, Cost limit) {
     if (row_of_[j] < 0) ++free_cols, free_col = static_cast<int>(j);
     if (d_[j] < best) best = d_[j], jmin = j;
   }
-  const Cost fixed = free_cols == 1 && limit != kNoLimit ? value_ + ur + v_[static_cast<std::size_t>(free_col)] : kNoLimit;
+  const Cost fixed =
+      free_cols == 1 && limit != kNoLimit ? value_ + ur + v_[static_cast<std::size_t>(free_col)] : kNoLimit;
   scanned_.clear();
   Cost mu = 0;
   int sink = -1;
@@ -112,7 +113,8 @@ bool Assignment::replace(int k, const Cost* row, const Cost* col, Cost limit) {
   // free rows get theirs in augment()).
   Cost best = kInf;
   for (int i = 0; i < m_; ++i)
-    if (col_of_[static_cast<std::size_t>(i)] >= 0) best = std::min(best, at(i, k) - u_[static_cast<std::size_t>(i)]);
+    if (col_of_[static_cast<std::size_t>(i)] >= 0)
+      best = std::min(best, at(i, k) - u_[static_cast<std::size_t>(i)]);
   v_[K] = best == kInf ? 0 : best;
   if (!augment(k, kNoLimit)) return false;
   if (ik >= 0 && ik != k && !augment(ik, limit)) return false;
@@ -135,12 +137,14 @@ Assignment::Cost Assignment::bound_with(int k, const Cost* row, const Cost* col)
 void Assignment::save(int k, Saved& s) const {
   s.u = u_, s.v = v_, s.row_of = row_of_, s.col_of = col_of_, s.value = value_;
   s.row.resize(static_cast<std::size_t>(m_)), s.col.resize(static_cast<std::size_t>(m_));
-  for (int j = 0; j < m_; ++j) s.row[static_cast<std::size_t>(j)] = at(k, j), s.col[static_cast<std::size_t>(j)] = at(j, k);
+  for (int j = 0; j < m_; ++j)
+    s.row[static_cast<std::size_t>(j)] = at(k, j), s.col[static_cast<std::size_t>(j)] = at(j, k);
 }
 
 void Assignment::restore(int k, const Saved& s) {
   u_ = s.u, v_ = s.v, row_of_ = s.row_of, col_of_ = s.col_of, value_ = s.value;
-  for (int j = 0; j < m_; ++j) at(k, j) = s.row[static_cast<std::size_t>(j)], at(j, k) = s.col[static_cast<std::size_t>(j)];
+  for (int j = 0; j < m_; ++j)
+    at(k, j) = s.row[static_cast<std::size_t>(j)], at(j, k) = s.col[static_cast<std::size_t>(j)];
 }
 
 }  // namespace cutroute::solve::detail

@@ -22,12 +22,14 @@ class Assignment {
 
   // m x m, every entry 0 and nothing assigned; fill with at() and call solve().
   void reset(int m);
-  int size() const { return m_; }
-  Cost& at(int i, int j) { return c_[static_cast<std::size_t>(i) * static_cast<std::size_t>(m_) + static_cast<std::size_t>(j)]; }
-  Cost at(int i, int j) const { return c_[static_cast<std::size_t>(i) * static_cast<std::size_t>(m_) + static_cast<std::size_t>(j)]; }
+  Cost& at(int i, int j) {
+    return c_[static_cast<std::size_t>(i) * static_cast<std::size_t>(m_) + static_cast<std::size_t>(j)];
+  }
+  Cost at(int i, int j) const {
+    return c_[static_cast<std::size_t>(i) * static_cast<std::size_t>(m_) + static_cast<std::size_t>(j)];
+  }
   void solve();  // assigns every free row, O(m^2) each
   Cost value() const { return value_; }
-  int column_of(int row) const { return col_of_[static_cast<std::size_t>(row)]; }
 
   // Sets row k and column k to row[] and col[] (row[k], col[k] ignored: the diagonal stays) and
   // re-solves from the current matching, O(m^2). With a limit, gives up (false, state undefined
@@ -50,7 +52,7 @@ class Assignment {
   bool augment(int row, Cost limit);
   int m_ = 0;
   std::vector<Cost> c_;
-  std::vector<Cost> u_, v_, d_;      // row and column potentials, Dijkstra distances
+  std::vector<Cost> u_, v_, d_;       // row and column potentials, Dijkstra distances
   std::vector<int> row_of_, col_of_;  // -1: free
   std::vector<int> pred_, scanned_;
   std::vector<char> done_;

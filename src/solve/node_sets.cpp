@@ -26,16 +26,41 @@ bool node_sets_apply(const Problem& p) {
 
 namespace {
 
+// The assignment on `set` (one node per cluster, by cluster), solved from scratch.
+void load(const Problem& p, const std::vector<NodeId>& set, Assignment& a) {
+  const int m = p.cluster_count();
+  a.reset(m);
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j)
+      a.at(i, j) = i == j ? Assignment::kBig
+                          : p.arc_cost(set[static_cast<std::size_t>(i)], set[static_cast<std::size_t>(j)]);
+  a.solve();
+}
+
+// The row and column a cluster gets when its node in `set` becomes v; its own entry is not used.
+// Read straight from a matrix when there is one (through arc_cost() they were a third of the
+// search's time). Forbidden arcs stay kForbiddenCost, below Assignment::kBig.
+void row_and_column(const Problem& p, const std::vector<NodeId>& set, NodeId v, Cost* row, Cost* col) {
+  const std::size_t n = static_cast<std::size_t>(p.node_count());
+  if (const Cost* mat = p.matrix_data()) {
+    const Cost* out = mat + v.index() * n;
+    const Cost* in = mat + v.index();
+    for (std::size_t j = 0; j < set.size(); ++j) {
+      const std::size_t w = set[j].index();
+      row[j] = out[w];
+      col[j] = in[w * n];
+    }
+    return;
+  }
+  for (std::size_t j = 0; j < set.size(); ++j) row[j] = p.arc_cost(v, set[j]), col[j] = p.arc_cost(set[j], v);
+}
+
 class Search {
  public:
-  Search(const Problem& p, const std::vector<NodeId>& route)
-      : p_(&p), m_(p.cluster_count()), n_(static_cast<std::size_t>(p.node_count())) {
+  Search(const Problem& p, const std::vector<NodeId>& route) : p_(&p), m_(p.cluster_count()) {
     set_.resize(static_cast<std::size_t>(m_));
     for (NodeId v : route) set_[p.cluster_of(v).index()] = v;
-    ap_.reset(m_);
-    for (int i = 0; i < m_; ++i)
-      for (int j = 0; j < m_; ++j) ap_.at(i, j) = i == j ? Assignment::kBig : p.arc_cost(set_[idx(i)], set_[idx(j)]);
-    ap_.solve();
+    load(p, set_, ap_);
     row_.resize(static_cast<std::size_t>(m_));
     col_.resize(static_cast<std::size_t>(m_));
   }
@@ -88,22 +113,10 @@ class Search {
     return improved;
   }
 
-  // Row and column of a cluster with node v, read straight from the matrix (through arc_cost() they
-  // were a third of the search's time). The cluster's own entry is not used. Forbidden arcs stay kForbiddenCost,
-  // below Assignment::kBig.
-  void fill(NodeId v) {
-    const Cost* out = p_->matrix_data() + v.index() * n_;
-    const Cost* in = p_->matrix_data() + v.index();
-    for (int j = 0; j < m_; ++j) {
-      const std::size_t w = set_[idx(j)].index();
-      row_[idx(j)] = out[w];
-      col_[idx(j)] = in[w * n_];
-    }
-  }
+  void fill(NodeId v) { row_and_column(*p_, set_, v, row_.data(), col_.data()); }
 
   const Problem* p_;
   int m_;
-  std::size_t n_;
   std::vector<NodeId> set_;
   Assignment ap_;
   Assignment::Saved saved_;
@@ -122,8 +135,10 @@ NodeSet search_node_sets(const Problem& p, const std::vector<NodeId>& route, Rng
     cur.descend(stop);
     if (cur.value() < best.value()) idle = -1;
     // Equal sets are taken too: the bound has wide plateaus (costs 0-24 on rbg).
-    if (cur.value() <= best.value()) best = cur;
-    else cur = best;
+    if (cur.value() <= best.value())
+      best = cur;
+    else
+      cur = best;
   }
   return {best.nodes(), best.value()};
 }
@@ -134,8 +149,9 @@ Problem restrict_to_nodes(const Problem& p, const std::vector<NodeId>& nodes) {
   std::vector<Cost> mat(static_cast<std::size_t>(m) * static_cast<std::size_t>(m), 0);
   for (int i = 0; i < m; ++i)
     for (int j = 0; j < m; ++j)
-      if (i != j) mat[static_cast<std::size_t>(i) * static_cast<std::size_t>(m) + static_cast<std::size_t>(j)] =
-          p.arc_cost(nodes[static_cast<std::size_t>(i)], nodes[static_cast<std::size_t>(j)]);
+      if (i != j)
+        mat[static_cast<std::size_t>(i) * static_cast<std::size_t>(m) + static_cast<std::size_t>(j)] =
+            p.arc_cost(nodes[static_cast<std::size_t>(i)], nodes[static_cast<std::size_t>(j)]);
   b.set_cost_matrix(std::move(mat));
   for (int c = 0; c < m; ++c) {
     b.add_cluster({NodeId(c)});
@@ -165,7 +181,8 @@ std::vector<NodeId> node_set_start(const Problem& p, int threads, Rng& rng, cons
   run(0);
   for (auto& th : pool) th.join();
   if (stop.stop_requested()) return {};
-  const auto best = std::min_element(sets.begin(), sets.end(), [](const NodeSet& a, const NodeSet& b) { return a.bound < b.bound; });
+  const auto best = std::min_element(sets.begin(), sets.end(),
+                                     [](const NodeSet& a, const NodeSet& b) { return a.bound < b.bound; });
   const Problem sub = restrict_to_nodes(p, best->nodes);
   SolveParams sp;
   sp.threads = static_cast<int>(count);
@@ -187,36 +204,28 @@ std::vector<NodeId> node_set_start(const Problem& p, int threads, Rng& rng, cons
 
 namespace cutroute::solve {
 
-NodeSetResult node_set_search(const Problem& p, const std::vector<NodeId>& route, std::uint64_t seed, int patience) {
+NodeSetResult node_set_search(const Problem& p, const std::vector<NodeId>& route, std::uint64_t seed,
+                              int patience) {
   Rng rng(seed);
   const detail::NodeSet s = detail::search_node_sets(p, route, rng, patience, StopToken());
   return {s.nodes, s.bound};
 }
 
-namespace {
-detail::Assignment assignment_of(const Problem& p, const std::vector<NodeId>& nodes) {
-  const int m = p.cluster_count();
+Cost assignment_bound(const Problem& p, const std::vector<NodeId>& nodes) {
   detail::Assignment a;
-  a.reset(m);
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j)
-      a.at(i, j) = i == j ? detail::Assignment::kBig : p.arc_cost(nodes[static_cast<std::size_t>(i)], nodes[static_cast<std::size_t>(j)]);
-  a.solve();
-  return a;
+  detail::load(p, nodes, a);
+  return a.value();
 }
-}  // namespace
 
-Cost assignment_bound(const Problem& p, const std::vector<NodeId>& nodes) { return assignment_of(p, nodes).value(); }
-
-std::vector<std::pair<Cost, Cost>> assignment_bounds_after(const Problem& p, std::vector<NodeId> nodes,
-                                                           const std::vector<std::pair<ClusterId, NodeId>>& changes) {
-  detail::Assignment a = assignment_of(p, nodes);
-  const auto m = static_cast<std::size_t>(p.cluster_count());
-  std::vector<Cost> row(m), col(m);
+std::vector<std::pair<Cost, Cost>> assignment_bounds_after(
+    const Problem& p, std::vector<NodeId> nodes, const std::vector<std::pair<ClusterId, NodeId>>& changes) {
+  detail::Assignment a;
+  detail::load(p, nodes, a);
+  std::vector<Cost> row(nodes.size()), col(nodes.size());
   std::vector<std::pair<Cost, Cost>> out;
   for (auto [c, v] : changes) {
     nodes[c.index()] = v;
-    for (std::size_t j = 0; j < m; ++j) row[j] = p.arc_cost(v, nodes[j]), col[j] = p.arc_cost(nodes[j], v);
+    detail::row_and_column(p, nodes, v, row.data(), col.data());
     const Cost skip = a.bound_with(c.value(), row.data(), col.data());
     a.replace(c.value(), row.data(), col.data());
     out.emplace_back(skip, a.value());

@@ -94,7 +94,8 @@ TEST(NodeSets, SearchEndsInALocalOptimumOfTheBound) {
     for (NodeId v : start) start_nodes[p.cluster_of(v).index()] = v;
     const NodeSetResult r = node_set_search(p, start, seed, 5);
     ASSERT_EQ(r.nodes.size(), start_nodes.size());
-    for (int c = 0; c < p.cluster_count(); ++c) EXPECT_EQ(p.cluster_of(r.nodes[static_cast<std::size_t>(c)]), ClusterId(c));
+    for (int c = 0; c < p.cluster_count(); ++c)
+      EXPECT_EQ(p.cluster_of(r.nodes[static_cast<std::size_t>(c)]), ClusterId(c));
     EXPECT_EQ(r.bound, assignment_bound(p, r.nodes));
     EXPECT_LE(r.bound, assignment_bound(p, start_nodes));
     for (int c = 0; c < p.cluster_count(); ++c)

@@ -107,9 +107,9 @@ std::vector<std::pair<Cost, Cost>> assignment_bounds_after(const Problem& p, std
 // on wide problems the elite-difference removal above), repair (cheapest
 // unified insertion, optionally noisy), local search and threshold acceptance; after every round
 // all threads continue from the best route so far (on asymmetric matrices, see node_set_search, they
-// start from the best route through the node set the search found). On large problems without precedence the threads
-// breed children from a population instead (SolveParams::population_size). Stops on time limit,
-// target, stagnation, work budget, cancel.
+// start from the best route through the node set the search found). On large problems without
+// precedence the threads breed children from a population instead (SolveParams::population_size).
+// Stops on time limit, target, stagnation, work budget, cancel.
 // Deterministic for a fixed seed and thread count when no time limit or cancel cuts it.
 Solution solve_heuristic(const Problem& p, const SolveParams& params, const StopToken& stop,
                          const ProgressFn& progress = {});

@@ -92,10 +92,12 @@ Ops::Ops(const Problem& p, const StopToken* stop)
   // practically never pays and the O(L^2) scan only costs time.
   if (mat_ && !p.symmetric() && m_ <= kMaxAsymTwoOptClusters) {
     double diff = 0, sum = 0;
+    finite_symmetric_ = true;
     for (std::size_t u = 0; u < n_; ++u)
       for (std::size_t v = u + 1; v < n_; ++v) {
         const Cost a = mat_[u * n_ + v], b = mat_[v * n_ + u];
         if (a >= kForbiddenCost || b >= kForbiddenCost) continue;
+        finite_symmetric_ = finite_symmetric_ && a == b;
         diff += static_cast<double>(a > b ? a - b : b - a);
         sum += 0.5 * static_cast<double>(a + b);
       }

@@ -177,6 +177,7 @@ class Ops {
   bool no_ = false;
   std::vector<Cost> nmin_, cmin_;  // cheapest arc node -> cluster, cluster -> cluster (neighbour_opt.cpp)
   bool near_symmetric_ = false;  // asymmetric matrix within 10 % of symmetric (asym_two_opt.cpp)
+  bool finite_symmetric_ = false;  // c(a,b) == c(b,a) wherever both arcs are allowed (SOP prob.100)
   bool lk_ = false;              // Lin-Kernighan chains apply (lin_kernighan.cpp)
 };
 

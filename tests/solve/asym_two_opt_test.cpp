@@ -162,6 +162,26 @@ TEST(LinKernighan, ImprovesOnShortMoveLocalOptima) {
   EXPECT_GT(improved_prec, total_prec / 10) << improved_prec << " of " << total_prec;
 }
 
+// LK passes with a tracked cost until one finds nothing (at most 100): each must keep the route
+// valid, track its cost exactly and report exactly when it improved. Returns the improving passes.
+int tracked_lk_passes(const Problem& p, std::vector<NodeId>& r) {
+  int improved = 0;
+  for (int pass = 0; pass < 100; ++pass) {
+    const Cost before = route_cost(p, r);
+    Cost tracked = -1;
+    const bool better = lk_pass(p, r, &tracked);
+    if (!valid(p, r)) {
+      ADD_FAILURE() << "pass " << pass << " left an invalid route";
+      break;
+    }
+    EXPECT_EQ(tracked, route_cost(p, r));
+    EXPECT_EQ(better, route_cost(p, r) < before);
+    if (!better) break;
+    ++improved;
+  }
+  return improved;
+}
+
 // Symmetric closed tours of at least 96 clusters without precedence (GTSPLIB 99-217) get LK chains
 // too, priced incrementally: from local optima of 2-opt and Or-opt every pass keeps the route
 // valid, the cost it tracks equals the recomputed one, and chains still find improvements. Below
@@ -181,21 +201,40 @@ TEST(LinKernighan, SymmetricLargeRoutesTrackTheirCost) {
     std::vector<NodeId> r = construct_route(p, rng);
     for (int guard = 0; guard < 1000; ++guard)
       if (!(two_opt_pass(p, r) | or_opt_pass(p, r))) break;
-    for (int pass = 0; pass < 100; ++pass) {
-      const Cost before = route_cost(p, r);
-      Cost tracked = -1;
-      const bool better = lk_pass(p, r, &tracked);
-      ASSERT_TRUE(valid(p, r));
-      EXPECT_EQ(tracked, route_cost(p, r));
-      EXPECT_EQ(better, route_cost(p, r) < before);
-      if (spec.clusters < 96) {
-        EXPECT_FALSE(better);
-      }
-      improved += better;
-      if (!better) break;
+    const int passes = tracked_lk_passes(p, r);
+    if (spec.clusters < 96) {
+      EXPECT_EQ(passes, 0);
     }
+    improved += passes;
   }
   EXPECT_GT(improved, 10);
+}
+
+// Matrices symmetric but for forbidden arcs (SOP prob.100: precedence forbids one direction) get
+// their chains priced in O(1), with a route priced from scratch only when it would become the
+// best: every pass keeps the route valid (no forbidden arc), the cost it tracks equals the
+// recomputed one, and chains still find improvements, with and without precedence.
+TEST(LinKernighan, SymmetricButForbiddenArcsTrackTheirCost) {
+  Rng rng(41);
+  int improved = 0;
+  for (int k = 0; k < 40; ++k) {
+    SCOPED_TRACE("instance " + std::to_string(k));
+    test::RandomSpec spec;
+    spec.clusters = 30 + static_cast<int>(rng.below(40));
+    spec.max_nodes = 1;
+    spec.symmetric = true;
+    spec.closed = k % 2 == 0;
+    spec.forbidden_arcs = 3 * spec.clusters;
+    spec.precedence_pairs = k % 4 < 2 ? 0 : spec.clusters / 4;
+    const Problem p = test::random_problem(spec, rng);
+    ASSERT_FALSE(p.symmetric());
+    std::vector<NodeId> r = construct_route(p, rng);
+    if (!valid(p, r)) continue;  // a forbidden arc the construction could not avoid
+    for (int guard = 0; guard < 1000; ++guard)
+      if (!(two_opt_pass(p, r) | or_opt_pass(p, r))) break;
+    improved += tracked_lk_passes(p, r);
+  }
+  EXPECT_GT(improved, 20);
 }
 
 }  // namespace

@@ -35,8 +35,12 @@ bool Ops::lk_pass(Tour& t) const {
   // routes), which is what lets a chain get past the pairs that block 2-opt.
   // On symmetric closed tours without precedence a chain's route costs the old cost minus the
   // partial gain plus the closing arc: O(1) instead of an O(L) pricing (LK was 18 % of a 200E1k.0
-  // run priced from scratch, 14 % of it in full_cost).
+  // run priced from scratch, 14 % of it in full_cost). On matrices symmetric but for forbidden arcs
+  // (SOP prob.100) the same O(1) gain is exact unless the route now uses a forbidden arc or breaks
+  // precedence, so only a chain about to become the best is checked and priced from scratch: the
+  // same chains as pricing every step, 3 % more iterations on prob.100.
   const bool sym_gain = p_.symmetric() && closed_ && !prec_;
+  const bool checked_gain = !sym_gain && finite_symmetric_;
   const auto& pairs = p_.precedence();
   auto feasible = [&]() {
     for (auto [a, b] : pairs)
@@ -139,18 +143,9 @@ bool Ops::lk_pass(Tour& t) const {
           added.push_back({t2, c.t3});
           removed.push_back({c.t3, c.t4});
           ends.push_back(c.t3), ends.push_back(c.t4);
-          Cost closing = 0;
-          if (sym_gain) {
-            closing = c.rank - arc(c.t4, t1);
-          } else if (finite_symmetric_) {
-            // Symmetric but for forbidden arcs (SOP prob.100): the O(1) gain is exact unless the
-            // route now uses a forbidden arc, so only a chain about to become the best is priced
-            // from scratch. Same chains as pricing every step; 3 % more iterations on prob.100.
-            closing = c.rank - arc(c.t4, t1);
-            if (closing > best_gain) closing = feasible() ? t.cost - full_cost(t.seq) : 0;
-          } else if (feasible()) {
-            closing = t.cost - full_cost(t.seq);
-          }
+          Cost closing = sym_gain || checked_gain ? c.rank - arc(c.t4, t1) : 0;
+          if (!sym_gain && (!checked_gain || closing > best_gain))
+            closing = feasible() ? t.cost - full_cost(t.seq) : 0;
           if (closing > best_gain) best_gain = closing, best_len = flips.size();
           t2 = c.t4;
           if (depth + 1 >= kMaxDepth) break;

@@ -41,7 +41,7 @@ bool Ops::lk_pass(Tour& t) const {
   // same chains as pricing every step, 3 % more iterations on prob.100.
   const bool sym_gain = p_.symmetric() && closed_ && !prec_;
   const bool checked_gain = !sym_gain && finite_symmetric_;
-  const auto& pairs = p_.precedence();
+  const auto& pairs = lk_pairs_;
   auto feasible = [&]() {
     for (auto [a, b] : pairs)
       if (t.pos[a.index()] > t.pos[b.index()]) return false;

@@ -113,6 +113,9 @@ Ops::Ops(const Problem& p, const StopToken* stop)
   // 23 % more time). Not yet on cutting routes (inner costs), which were not measured.
   const bool large_sym = p.symmetric() && !prec_ && m_ >= SolveParams::kLargeClusters;
   lk_ = kn_ > 0 && (near_symmetric_ || large_sym) && plain_mat_;
+  if (lk_)
+    for (auto pr : p.precedence())
+      if (pr.first != p.start_cluster()) lk_pairs_.push_back(pr);
   if (kn_ == 0) return;
   const double avg = static_cast<double>(p.node_count()) / m_;
   // One cluster-optimisation pass costs about m * (n/m)^2 evaluations per start node.

@@ -25,7 +25,8 @@ bool Ops::lk_pass(Tour& t) const {
   const int L = static_cast<int>(t.seq.size());
   if (!lk_ || L < 8) return false;
   auto P = [&](NodeId v) { return t.pos[cl(v).index()]; };
-  auto at = [&](int i) { return t.seq[static_cast<std::size_t>(i < 0 ? i + L : i >= L ? i - L : i)]; };
+  auto wrap = [&](int i) { return i < 0 ? i + L : i >= L ? i - L : i; };
+  auto at = [&](int i) { return t.seq[static_cast<std::size_t>(wrap(i))]; };
   auto succ = [&](NodeId v) { return at(P(v) + 1); };
   auto pred = [&](NodeId v) { return at(P(v) - 1); };
   // Each route of the chain is priced from scratch (a reversal changes every inner arc's direction)
@@ -48,11 +49,8 @@ bool Ops::lk_pass(Tour& t) const {
     return true;
   };
   // On an open path the cycle closes through a dummy arc last -> first, which no move may remove.
-  auto dummy = [&](NodeId x, NodeId y) {
-    if (closed_) return false;
-    const int px = P(x), py = P(y);
-    return (px == L - 1 && py == 0) || (py == L - 1 && px == 0);
-  };
+  auto dummy_at = [&](int px, int py) { return !closed_ && ((px == L - 1 && py == 0) || (py == L - 1 && px == 0)); };
+  auto dummy = [&](NodeId x, NodeId y) { return dummy_at(P(x), P(y)); };
   // Reverses the cyclic run seq[i..j] (forward from i to j), or its complement when the run holds
   // index 0 (the start cluster stays first); the cycle is the same either way, its direction not.
   struct Flip {
@@ -110,11 +108,9 @@ bool Ops::lk_pass(Tour& t) const {
       if (t3 == t1 || t3 == t2) continue;
       const Cost g1 = g - arc(t2, t3);
       if (g1 <= 0) continue;
-      const int q4 = before_t3 ? (q == 0 ? L - 1 : q - 1) : (q == L - 1 ? 0 : q + 1);
+      const int q4 = wrap(before_t3 ? q - 1 : q + 1);
       const NodeId t4 = t.seq[static_cast<std::size_t>(q4)];
-      if (t4 == t2 || t4 == t1) continue;
-      if (!closed_ && ((q == L - 1 && q4 == 0) || (q4 == L - 1 && q == 0))) continue;  // the dummy arc
-      if (in(added, t3, t4) || in(removed, t2, t3)) continue;
+      if (t4 == t2 || t4 == t1 || dummy_at(q, q4) || in(added, t3, t4) || in(removed, t2, t3)) continue;
       choices.push_back({g1 + arc(t3, t4), t3, t4});
     }
     if (all || choices.size() > 16) {

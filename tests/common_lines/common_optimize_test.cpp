@@ -94,6 +94,7 @@ TEST(CommonOptimize, StandardCutsSharedEdgesTwice) {
   const auto check = optimize_and_check(l.dxf, dir, "--technique standard", 0.005);
   EXPECT_NEAR(check.boundary_cut_mm, l.perimeters, 0.01);
   EXPECT_EQ(check.runs, 12);
+  std::filesystem::remove_all(dir);
 }
 
 // Blocks that switch the controller's kerf compensation on (G41 / G42).
@@ -119,6 +120,7 @@ TEST(CommonOptimize, CommonCutsSharedEdgesOnce) {
   EXPECT_EQ(check.pierces_on_a_cut, 0);
   // Common lines are centre lines: cut without compensation; everything else with it.
   EXPECT_EQ(compensated_runs(program), 6 + 1);
+  std::filesystem::remove_all(dir);
 }
 
 // With the technique chosen automatically both alternatives are reported and the faster one is
@@ -151,6 +153,7 @@ TEST(CommonOptimize, AutoReportsAlternativesAndKeepsTheFaster) {
   EXPECT_LT(common->at("cut_length_mm").get<double>(), standard->at("cut_length_mm").get<double>() - l.shared + 1.0);
   EXPECT_EQ(report.at("chosen"), best_name);
   EXPECT_EQ(best_name, "common");
+  std::filesystem::remove_all(dir);
 }
 
 // A row of four parts drawn one kerf apart: the common cuts run on the centre lines of the gaps.
@@ -173,6 +176,7 @@ TEST(CommonOptimize, KerfApartRow) {
   EXPECT_EQ(check.runs, 1 + 3);
   // Three 90 mm centre lines instead of six edges; the outline crosses each gap twice.
   EXPECT_NEAR(check.boundary_cut_mm, perimeters - 3 * 90 + 6 * k, 0.05);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

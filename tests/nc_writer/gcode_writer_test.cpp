@@ -213,6 +213,7 @@ TEST(GcodeWriter, LinuxCncInterpreterAcceptsOurPrograms) {
     std::ofstream(path) << w.text;
     const auto r = test::run_rs274(path.string());
     EXPECT_EQ(r.exit_code, 0) << name << "\n" << r.out << r.err << "\n" << w.text;
+    std::filesystem::remove(path);
   }
 }
 

@@ -60,6 +60,19 @@ class Ops {
     return a == b ? p_.inner_cost(b) : p_.step(a, b);
   }
   ClusterId cl(NodeId v) const { return p_.cluster_of(v); }
+  // Calls f(lnk) where lnk(a, b) == link(a, b) for a != b: on plain matrices the entry read through
+  // local copies of the matrix pointer and size (in O(L^2) loops GCC otherwise reloads the members
+  // at every step), elsewhere link() itself. For loops that never price a node's arc to itself.
+  template <class F>
+  void with_distinct_link(F&& f) const {
+    if (plain_mat_) {
+      const Cost* mat = mat_;
+      const std::size_t n = n_;
+      f([mat, n](NodeId a, NodeId b) { return mat[a.index() * n + b.index()]; });
+    } else {
+      f([this](NodeId a, NodeId b) { return link(a, b); });
+    }
+  }
 
   Cost full_cost(const std::vector<NodeId>& seq) const;
   void init(Tour& t) const;                      // pos and cost from seq; every cluster dirty

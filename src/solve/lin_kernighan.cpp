@@ -57,9 +57,16 @@ bool Ops::lk_pass(Tour& t) const {
     int lo, hi;
   };
   std::vector<Flip> flips;
+  // Flips and their undoing move about 36 clusters each on prob.100, 20 M times in a 5-s run: the
+  // reversal and the position update run as one loop over local pointers.
+  NodeId* const seq = t.seq.data();
+  int* const pos = t.pos.data();
   auto raw = [&](int lo, int hi) {
-    std::reverse(t.seq.begin() + lo, t.seq.begin() + hi + 1);
-    reindex(t, lo, hi + 1);
+    for (int a = lo, b = hi; a < b; ++a, --b) {
+      const NodeId x = seq[b], y = seq[a];
+      seq[a] = x, seq[b] = y;
+      pos[cl(x).index()] = a, pos[cl(y).index()] = b;
+    }
   };
   auto flip_run = [&](int i, int j) {
     int lo = i, hi = j;

@@ -34,6 +34,9 @@ using solve::NodeId;
 constexpr int kMaxMatrixNodes = 3000;
 // Largest DIMENSION / GTSP_SETS accepted, so a typo cannot make us allocate terabytes.
 constexpr long kMaxDimension = 1'000'000;
+// Largest |coordinate|: every TSPLIB distance between such points stays below solve::kMaxCost (2^40),
+// and a huge value cannot overflow the conversion to an integer cost.
+constexpr double kMaxCoordinate = 1.0e11;
 
 struct Line {
   long number = 0;
@@ -185,6 +188,8 @@ std::optional<Diagnostic> Parser::parse_header_line(const Line& l) {
     value = sp == std::string::npos ? "" : trim(std::string_view(joined).substr(sp + 1));
   }
   auto number = [&](long& out, const char* field) -> std::optional<Diagnostic> {
+    // Sections already read were sized by the first value (a second one overran them).
+    if (out >= 0) return error(l.number, std::string(field) + " given twice");
     long v = 0;
     const auto r = std::from_chars(value.data(), value.data() + value.size(), v);
     if (r.ec != std::errc() || r.ptr != value.data() + value.size() || v <= 0 || v > kMaxDimension)
@@ -215,6 +220,8 @@ std::optional<Diagnostic> Parser::parse_coords() {
     auto& c = coords_[static_cast<std::size_t>(id - 1)];
     if (auto e = next_real(c.x, "x coordinate")) return e;
     if (auto e = next_real(c.y, "y coordinate")) return e;
+    if (std::fabs(c.x) > kMaxCoordinate || std::fabs(c.y) > kMaxCoordinate)
+      return error(line_no(), "node " + std::to_string(id) + ": coordinate beyond +-1e11");
   }
   have_coords_ = true;
   skip_section();  // e.g. a third coordinate
@@ -233,13 +240,27 @@ std::optional<Diagnostic> Parser::parse_weights() {
     if (auto e = next_integer(dim, "dimension repeated at the start of EDGE_WEIGHT_SECTION")) return e;
     if (dim != n_) return error(line_no(), "EDGE_WEIGHT_SECTION starts with " + std::to_string(dim) + ", DIMENSION is " + std::to_string(n_));
   }
-  matrix_.assign(n * n, 0);
   std::string f = weight_format_.empty() ? "FULL_MATRIX" : weight_format_;
   // Column formats read the transposed triangle.
   if (f == "UPPER_COL") f = "LOWER_ROW";
   else if (f == "LOWER_COL") f = "UPPER_ROW";
   else if (f == "UPPER_DIAG_COL") f = "LOWER_DIAG_ROW";
   else if (f == "LOWER_DIAG_COL") f = "UPPER_DIAG_ROW";
+  std::size_t need = 0;
+  if (f == "FULL_MATRIX") need = n * n;
+  else if (f == "UPPER_ROW" || f == "LOWER_ROW") need = n * (n - 1) / 2;
+  else if (f == "UPPER_DIAG_ROW" || f == "LOWER_DIAG_ROW") need = n * (n + 1) / 2;
+  else return error(at, "unsupported EDGE_WEIGHT_FORMAT '" + weight_format_ + "'");
+  // The n x n matrix is allocated only once the section is seen to hold its numbers, so a short file
+  // declaring a large DIMENSION cannot take gigabytes; extra numbers are an error too.
+  std::size_t given = 0, end = li_;
+  for (; end < lines_.size() && ((end == li_ && ti_ > 0) || !is_keyword_line(lines_[end])); ++end)
+    given += lines_[end].tokens.size() - (end == li_ ? ti_ : 0);
+  if (given < need)
+    return error(end < lines_.size() ? lines_[end].number : line_no(),
+                 "section ended early: EDGE_WEIGHT_SECTION gives " + std::to_string(given) + " of the " + std::to_string(need) +
+                     " weights " + f + " needs for DIMENSION " + std::to_string(n_));
+  matrix_.assign(n * n, 0);
   auto read = [&](std::size_t i, std::size_t j, bool mirror) -> std::optional<Diagnostic> {
     long long v = 0;
     if (auto e = next_integer(v, "edge weight")) return e;
@@ -267,12 +288,12 @@ std::optional<Diagnostic> Parser::parse_weights() {
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = 0; j < i + d; ++j)
         if (auto e = read(i, j, true)) return e;
-  } else {
-    return error(at, "unsupported EDGE_WEIGHT_FORMAT '" + weight_format_ + "'");
   }
   have_weights_ = true;
-  if (li_ < lines_.size() && ti_ != 0 && ti_ < lines_[li_].tokens.size())
+  if (given > need) {
+    while (li_ < lines_.size() && ti_ >= lines_[li_].tokens.size()) ++li_, ti_ = 0;
     return error(line_no(), "more edge weights than the format " + f + " holds for DIMENSION " + std::to_string(n_));
+  }
   skip_section();
   return std::nullopt;
 }
@@ -318,7 +339,8 @@ std::optional<Diagnostic> Parser::parse_ordering() {
     if (v.back() == -1) v.pop_back();
     if (v.size() < 2) return error(l.number, "GTSP_SET_ORDERING: a line needs a set and at least one successor");
     for (long long x : v)
-      if (x < 1 || (m_ > 0 && x > m_)) return error(l.number, "GTSP_SET_ORDERING: set id " + std::to_string(x) + " does not exist");
+      if (x < 1 || x > (m_ > 0 ? m_ : kMaxDimension))
+        return error(l.number, "GTSP_SET_ORDERING: set id " + std::to_string(x) + " does not exist");
     for (std::size_t k = 1; k < v.size(); ++k) {
       order_.emplace_back(ClusterId(static_cast<int>(v[0] - 1)), ClusterId(static_cast<int>(v[k] - 1)));
       order_lines_.push_back(l.number);
@@ -440,7 +462,14 @@ Result<Instance> Parser::finish() {
     b.set_kind(solve::RouteKind::closed_tour);
     if (start_group_ < 1 || start_group_ > m_) return error(start_group_line_, "START_GROUP_SECTION names set " + std::to_string(start_group_) + ", there are " + std::to_string(m_));
     b.set_start_cluster(ClusterId(static_cast<int>(start_group_ - 1)));
-    for (std::size_t k = 0; k < order_.size(); ++k) b.add_precedence(order_[k].first, order_[k].second);
+    for (std::size_t k = 0; k < order_.size(); ++k) {
+      // The section may come before GTSP_SETS, so its ids are checked against it only here.
+      const auto [a, c] = order_[k];
+      if (std::max(a.value(), c.value()) >= m_)
+        return error(order_lines_[k], "GTSP_SET_ORDERING: set id " + std::to_string(std::max(a.value(), c.value()) + 1) +
+                                          " does not exist (GTSP_SETS is " + std::to_string(m_) + ")");
+      b.add_precedence(a, c);
+    }
   }
   if (m_ != static_cast<long>(sets_.size())) return error(last, "GTSP_SETS does not match the sets given");
   auto built = b.build();

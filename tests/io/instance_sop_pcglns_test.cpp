@@ -3,6 +3,8 @@
 
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include <cutroute/io/instance.hpp>
 #include <cutroute/solve/exact_dp.hpp>
@@ -91,16 +93,30 @@ TEST(InstancePcglns, OrderingLineWithSeveralSuccessors) {
   EXPECT_FALSE(r->problem.must_precede(ClusterId(2), ClusterId(3)));
 }
 
-// One defect per case; the message must name the line.
+// One defect per case: the message must hold `message` and name `line` (none when 0).
+struct BadInstance {
+  const char* what;
+  std::string text;
+  long line;
+  const char* message;
+};
+
+void expect_errors(const std::vector<BadInstance>& cases, const std::string& file) {
+  for (const auto& c : cases) {
+    auto r = parse_instance(c.text, file);
+    ASSERT_FALSE(r.ok()) << c.what;
+    EXPECT_NE(r.error().message.find(c.message), std::string::npos) << c.what << ": " << r.error().message;
+    EXPECT_EQ(r.error().file, file) << c.what;
+    if (c.line > 0) {
+      ASSERT_TRUE(r.error().line.has_value()) << c.what;
+      EXPECT_EQ(*r.error().line, c.line) << c.what << ": " << format(r.error());
+    }
+  }
+}
+
 TEST(InstanceErrors, MalformedFilesGiveLineNumbers) {
   const std::string good_head = "NAME : b\nTYPE : GTSP\nDIMENSION : 3\nGTSP_SETS : 2\nEDGE_WEIGHT_TYPE : EUC_2D\n";  // lines 1-5
-  struct Case {
-    const char* what;
-    std::string text;
-    long line;
-    const char* message;
-  };
-  const Case cases[] = {
+  expect_errors({
       {"bad coordinate", good_head + "NODE_COORD_SECTION\n1 0 0\n2 x 0\n3 1 1\nGTSP_SET_SECTION\n1 1 -1\n2 2 3 -1\n", 8, "expected a number"},
       {"node id out of range", good_head + "NODE_COORD_SECTION\n1 0 0\n2 1 0\n3 1 1\nGTSP_SET_SECTION\n1 1 -1\n2 2 9 -1\n", 12, "node 9"},
       {"truncated coordinates", good_head + "NODE_COORD_SECTION\n1 0 0\n2 1 0\nGTSP_SET_SECTION\n1 1 -1\n2 2 3 -1\n", 9, "ended early"},
@@ -109,19 +125,43 @@ TEST(InstanceErrors, MalformedFilesGiveLineNumbers) {
                          "GTSP_SET_SECTION\n1 1 -1\n2 2 3 -1\n", 5, "unsupported EDGE_WEIGHT_TYPE"},
       {"node in two sets", good_head + "NODE_COORD_SECTION\n1 0 0\n2 1 0\n3 1 1\nGTSP_SET_SECTION\n1 1 2 -1\n2 2 3 -1\nEOF\n", 0, "in clusters"},
       {"stray number", "NAME : b\n42\n", 2, "outside of any section"},
-  };
-  for (const auto& c : cases) {
-    auto r = parse_instance(c.text, "bad.gtsp");
-    ASSERT_FALSE(r.ok()) << c.what;
-    EXPECT_NE(r.error().message.find(c.message), std::string::npos) << c.what << ": " << r.error().message;
-    EXPECT_EQ(r.error().file, "bad.gtsp") << c.what;
-    if (c.line > 0) {
-      ASSERT_TRUE(r.error().line.has_value()) << c.what;
-      EXPECT_EQ(*r.error().line, c.line) << c.what << ": " << format(r.error());
-    }
-  }
+      // Found by fuzzing: a second DIMENSION after the coordinates read past them (ASan).
+      {"dimension given again", good_head + "NODE_COORD_SECTION\n1 0 0\n2 1 0\n3 1 1\nDIMENSION : 5\nGTSP_SET_SECTION\n1 1 -1\n2 2 3 -1\n", 10,
+       "DIMENSION given twice"},
+      // Found by fuzzing: distances of such points overflowed the int64 conversion (UBSan, above 3000 nodes).
+      {"huge coordinate", good_head + "NODE_COORD_SECTION\n1 0 0\n2 1e200 0\n3 1 1\nGTSP_SET_SECTION\n1 1 -1\n2 2 3 -1\n", 8, "coordinate beyond +-1e11"}},
+                "bad.gtsp");
   auto missing = read_instance("/nonexistent/x.gtsp");
   EXPECT_FALSE(missing.ok());
+}
+
+// Defects of the explicit-matrix formats the fuzzer found; each was read silently, crashed or took
+// gigabytes before.
+TEST(InstanceErrors, MalformedPcglnsFilesGiveLineNumbers) {
+  const std::string head = "NAME : b\nTYPE : PCGLNS\nDIMENSION : 3\nGTSP_SETS : 2\nEDGE_WEIGHT_TYPE : EXPLICIT\n"
+                           "EDGE_WEIGHT_FORMAT : FULL_MATRIX\nEDGE_WEIGHT_SECTION\n";  // lines 1-7
+  const std::string matrix = "0 1 2\n1 0 3\n2 3 0\n";                                  // lines 8-10
+  const std::string sets = "GTSP_SET_SECTION\n1 1 -1\n2 2 3 -1\n";                     // lines 11-13
+  expect_errors({
+      {"a row too many", head + matrix + "4 4 4\n" + sets, 11, "more edge weights than the format FULL_MATRIX holds"},
+      {"DIMENSION again after the matrix", head + matrix + "DIMENSION : 9\n" + sets, 11, "DIMENSION given twice"},
+      {"GTSP_SETS again after the sets", head + matrix + sets + "GTSP_SETS : 9\n", 14, "GTSP_SETS given twice"},
+      // 12 000 nodes declared, one weight given: refused before the 1.15-GB matrix is allocated.
+      {"large DIMENSION, short section",
+       "NAME : b\nTYPE : PCGLNS\nDIMENSION : 12000\nGTSP_SETS : 1\nEDGE_WEIGHT_TYPE : EXPLICIT\nEDGE_WEIGHT_SECTION\n0\nEOF\n", 8,
+       "gives 1 of the 144000000 weights FULL_MATRIX needs"},
+      {"short section", head + "0 1 2\n1 0\n" + sets, 10, "gives 5 of the 9 weights"},
+      // 4294967298 - 1 wrapped to cluster 1 when cast to int.
+      {"ordering id beyond int", "NAME : b\nTYPE : PCGLNS\nGTSP_SET_ORDERING\n4294967298 4294967299 -1\n", 4,
+       "set id 4294967298 does not exist"},
+      {"ordering before GTSP_SETS names a missing set",
+       "NAME : b\nTYPE : PCGLNS\nGTSP_SET_ORDERING\n1 5 -1\nDIMENSION : 3\nGTSP_SETS : 2\nEDGE_WEIGHT_TYPE : EXPLICIT\n"
+       "EDGE_WEIGHT_FORMAT : FULL_MATRIX\nEDGE_WEIGHT_SECTION\n" + matrix + sets + "EOF\n",
+       4, "set id 5 does not exist (GTSP_SETS is 2)"}},
+                "bad.pcglns");
+  // The same file without the defects reads.
+  auto good = parse_instance(head + matrix + sets + "GTSP_SET_ORDERING\n1 2 -1\nSTART_GROUP_SECTION\n1\nEOF\n", "good.pcglns");
+  ASSERT_TRUE(good.ok()) << format(good.error());
 }
 
 }  // namespace

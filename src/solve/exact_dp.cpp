@@ -82,7 +82,7 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
   Solution out;
   out.stats.solver = "exact";
   Cost ub = kInf;
-  if (incumbent && !incumbent->route.empty() && incumbent->cost < kForbiddenCost) {
+  if (incumbent && !incumbent->route.empty() && !uses_forbidden_arc(p, incumbent->route)) {
     out.route = incumbent->route;
     out.cost = incumbent->cost;
     out.status = SolveStatus::feasible;

@@ -556,7 +556,7 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
   Solution s;
   s.route = global.seq;
   s.cost = ops.full_cost(global.seq);
-  s.status = s.cost < kForbiddenCost ? SolveStatus::feasible : SolveStatus::no_solution;
+  s.status = uses_forbidden_arc(p, s.route) ? SolveStatus::no_solution : SolveStatus::feasible;
   if (s.status == SolveStatus::no_solution) s.route.clear(), s.cost = 0;
   s.stats.solver = "heuristic";
   s.stats.threads = threads;

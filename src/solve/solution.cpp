@@ -22,6 +22,12 @@ Cost route_cost(const Problem& p, std::span<const NodeId> route) {
   return total;
 }
 
+bool uses_forbidden_arc(const Problem& p, std::span<const NodeId> route) {
+  for (std::size_t i = 0; i + 1 < route.size(); ++i)
+    if (p.forbidden(route[i], route[i + 1])) return true;
+  return p.closed() && route.size() > 1 && p.forbidden(route.back(), route.front());
+}
+
 std::vector<std::string> validate(const Problem& p, const Solution& s) {
   std::vector<std::string> errors;
   const int m = p.cluster_count();

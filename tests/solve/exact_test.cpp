@@ -20,6 +20,37 @@ Problem medium(std::uint64_t seed, int clusters, int nodes, int pairs) {
   return test::random_problem(spec, rng);
 }
 
+// Found by fuzzing: routes of valid arcs near kMaxCost cost more than kForbiddenCost in all, and both
+// solvers reported "no route without forbidden arcs" for them. Arcs of 2^40 - 0..6 on 6 clusters:
+// every tour costs about 6 * 2^40 = 3 * kForbiddenCost.
+TEST(ExactDp, RoutesDearerThanTheForbiddenSentinelAreSolutions) {
+  const int n = 6;
+  std::vector<Cost> m(static_cast<std::size_t>(n * n));
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) m[static_cast<std::size_t>(i * n + j)] = i == j ? 0 : kMaxCost - (i + j) % 7;
+  ProblemBuilder b(n);
+  b.set_cost_matrix(m);
+  for (int i = 0; i < n; ++i) b.add_cluster({NodeId(i)});
+  auto built = b.build();
+  ASSERT_TRUE(built.ok()) << built.error().message;
+  const Problem& p = *built;
+  const Solution ex = solve_exact(p, std::size_t{1} << 30, StopToken{});
+  ASSERT_EQ(ex.status, SolveStatus::optimal);
+  EXPECT_GT(ex.cost, kForbiddenCost);
+  EXPECT_TRUE(validate(p, ex).empty());
+  SolveParams hp;
+  hp.solver = SolverKind::heuristic;
+  hp.threads = 1;
+  const Solution h = solve(p, hp);
+  ASSERT_EQ(h.status, SolveStatus::feasible);
+  EXPECT_TRUE(validate(p, h).empty());
+  EXPECT_EQ(h.cost, ex.cost);
+  // The heuristic's route as the DP's incumbent is kept, not discarded as infeasible.
+  const Solution ex2 = solve_exact(p, std::size_t{1} << 30, StopToken{}, &h);
+  EXPECT_EQ(ex2.status, SolveStatus::optimal);
+  EXPECT_EQ(ex2.cost, ex.cost);
+}
+
 TEST(ExactDp, ProvesOptimumBelowEveryHeuristicRun) {
   const Problem p = medium(3, 11, 5, 6);
   const Solution ex = solve_exact(p, std::size_t{1} << 30, StopToken{});

@@ -36,6 +36,11 @@ struct Solution {
 // inner costs. kForbiddenCost-sized terms appear when a forbidden arc is used.
 Cost route_cost(const Problem& p, std::span<const NodeId> route);
 
+// True when `route` takes a forbidden arc (its closing arc included on a closed tour). A route's
+// cost cannot tell: arcs may cost up to 2^40, so a long route of dear arcs costs more than
+// kForbiddenCost without taking one.
+bool uses_forbidden_arc(const Problem& p, std::span<const NodeId> route);
+
 // Every reason `s` is not a valid route of `p` (empty when valid): node ids in range, exactly one
 // node of every cluster, route[0] in the start cluster, every precedence (transitively) kept,
 // no forbidden arc, and s.cost equal to the cost recomputed from scratch.

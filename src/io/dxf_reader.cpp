@@ -111,7 +111,8 @@ class Collector : public DL_CreationAdapter {
   }
   void addSpline(const DL_SplineData& d) override {
     if (Payload* p = slot()) {
-      p->degree = static_cast<int>(std::min(d.degree, 64u));
+      // dxflib reads group 71 as unsigned: a written -1 arrives as 2^32 - 1 and is reported as -1.
+      p->degree = static_cast<int>(d.degree);
       p->flags = d.flags;
       p->tan_start = {d.tangentStartX, d.tangentStartY};
       p->tan_end = {d.tangentEndX, d.tangentEndY};
@@ -547,8 +548,10 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
       for (std::size_t i = 1; i < s.knots.size(); ++i) {
         if (s.knots[i] < s.knots[i - 1]) return entity_error("SPLINE knots are not in increasing order", top);
       }
-      const std::size_t need = s.control.size() + static_cast<std::size_t>(std::max(0, s.degree)) + 1;
-      if (s.degree < 1 || s.control.size() < static_cast<std::size_t>(s.degree) + 1 || s.knots.size() != need) {
+      if (s.degree < 1 || s.degree > 64)
+        return entity_error("SPLINE of degree " + std::to_string(s.degree) + ": only degrees 1 to 64 are read", top);
+      const std::size_t need = s.control.size() + static_cast<std::size_t>(s.degree) + 1;
+      if (s.control.size() < static_cast<std::size_t>(s.degree) + 1 || s.knots.size() != need) {
         return entity_error("SPLINE of degree " + std::to_string(s.degree) + " with " + std::to_string(s.control.size()) +
                                 " control points needs " + std::to_string(need) + " knots, has " +
                                 std::to_string(s.knots.size()),

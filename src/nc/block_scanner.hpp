@@ -14,7 +14,11 @@ struct Word {
   std::size_t column = 0;  // 1-based column of the letter, for messages
 };
 
-enum class ScanError { none, unclosed_comment, missing_number, malformed_number, unsupported_character };
+enum class ScanError { none, unclosed_comment, missing_number, malformed_number, number_out_of_range, unsupported_character };
+
+// Largest |number| a word may carry: 10^9 mm is a thousand kilometres, 10^9 s of dwell thirty years;
+// beyond it sums of lengths and times could overflow to infinity.
+inline constexpr double kMaxWordMagnitude = 1.0e9;
 
 struct ScanResult {
   ScanError error = ScanError::none;
@@ -130,6 +134,12 @@ ScanResult scan_block(std::string_view line, OnWord&& on_word) {
     const auto fc = std::from_chars(num, p, v, std::chars_format::fixed);
     if (fc.ec != std::errc{} || fc.ptr != p) {
       r.error = ScanError::malformed_number;
+      r.column = w.column;
+      r.letter = w.letter;
+      return r;
+    }
+    if (v > kMaxWordMagnitude) {
+      r.error = ScanError::number_out_of_range;
       r.column = w.column;
       r.letter = w.letter;
       return r;

@@ -214,6 +214,8 @@ class Reader {
         return error(std::string("word ") + s.letter + " has no number" + col);
       case detail::ScanError::malformed_number:
         return error(std::string("malformed number after ") + s.letter + col);
+      case detail::ScanError::number_out_of_range:
+        return error(std::string("number after ") + s.letter + " beyond +-1e9" + col);
       case detail::ScanError::unsupported_character: {
         std::string c = (s.character >= 32 && s.character < 127)
                             ? std::string(1, s.character)
@@ -282,6 +284,8 @@ class Reader {
     if (b.has_word('F')) {
       const double f = b.word('F');
       if (f < 0.0) return error("negative feed F" + num(f));
+      // A feed this small makes a cut last longer than any sum of times can hold.
+      if (f > 0.0 && f < 1.0e-3) return error("feed F" + num(f) + " below 0.001 per minute");
       feed_mm_min_ = f * scale_;
     }
     for (std::size_t k = 0; k < b.nm; ++k) {

@@ -1,5 +1,6 @@
 // Malformed files of tests/data/dxf/bad/ (one defect each): exact error message and line, no crash.
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -116,6 +117,22 @@ TEST(DxfBad, OverlongNumberIsAnError) {
   const auto r = io::read_dxf_string(text, "long.dxf", {});
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.error().message, "group code 10: number of more than 1000 characters");
+}
+
+// Found by fuzzing: degree 0 gave "needs 5 knots, has 5", and -1 (read by dxflib as 2^32 - 1) was
+// reported as degree 64.
+TEST(DxfBad, SplineDegreeOutOfRangeIsNamed) {
+  for (const auto& [degree, shown] : {std::pair{"0", "0"}, std::pair{"-1", "-1"}, std::pair{"65", "65"}}) {
+    DxfBuilder b;
+    b.spline(3, {0, 0, 0, 0, 1, 1, 1, 1}, {{0, 0}, {1, 1}, {2, 1}, {3, 0}}, {}, 8);
+    std::string text = b.str();
+    const std::string lead = "71\n3\n";
+    ASSERT_NE(text.find(lead), std::string::npos);
+    text.replace(text.find(lead), lead.size(), std::string("71\n") + degree + "\n");
+    const auto r = io::read_dxf_string(text, "deg.dxf", {});
+    ASSERT_FALSE(r.ok()) << degree;
+    EXPECT_EQ(r.error().message, std::string("SPLINE of degree ") + shown + ": only degrees 1 to 64 are read");
+  }
 }
 
 // Single-byte corruptions anywhere in a valid file never crash.

@@ -85,6 +85,23 @@ TEST(BrokenProgramInline, AbsurdCoordinatesAndEmptyInput) {
   EXPECT_EQ(*bin.error().line, 2);
 }
 
+// Found by fuzzing: two dwells of 10^78 s summed to infinity, and a denormal feed made a cut last
+// forever; both reported a total of "inf" (JSON null) with exit 0.
+TEST(BrokenProgramInline, DwellsAndFeedsThatOverflowTheTotals) {
+  const std::string huge = "G4 P" + std::string(79, '9') + "\n";
+  auto dwell = read_gcode("G21\nG0 X1\nM3\n" + huge + huge + "G1 X10 F1000\nM5\nM30\n", "d.nc", ReadOptions{});
+  ASSERT_FALSE(dwell.ok());
+  EXPECT_EQ(*dwell.error().line, 4);
+  EXPECT_NE(dwell.error().message.find("number after P beyond +-1e9"), std::string::npos) << format(dwell.error());
+  auto feed = read_gcode("G21\nG0 X1\nM3\nG1 X10 F0." + std::string(320, '0') + "1\nM5\nM30\n", "f.nc", ReadOptions{});
+  ASSERT_FALSE(feed.ok());
+  EXPECT_EQ(*feed.error().line, 4);
+  EXPECT_NE(feed.error().message.find("below 0.001 per minute"), std::string::npos) << format(feed.error());
+  // The largest values still read give finite totals.
+  auto big = read_gcode("G21\nG0 X1\nM3\nG4 P999999999\nG1 X10 F0.001\nM5\nM30\n", "b.nc", ReadOptions{});
+  ASSERT_TRUE(big.ok()) << format(big.error());
+}
+
 TEST(BrokenProgramInline, MissingFile) {
   auto r = read_gcode_file(test::test_data("nc/does_not_exist.nc"), ReadOptions{});
   ASSERT_FALSE(r.ok());

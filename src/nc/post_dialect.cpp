@@ -1,6 +1,9 @@
 #include <cutroute/nc/post_dialect.hpp>
 
+#include <cstdint>
 #include <filesystem>
+#include <limits>
+#include <type_traits>
 #include <set>
 
 #include <nlohmann/json.hpp>
@@ -23,7 +26,18 @@ void get(const json& j, const char* key, T& out, std::set<std::string>& seen) {
   seen.insert(key);
   if (!j.contains(key)) return;
   try {
-    out = j.at(key).get<T>();
+    if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
+      // get<int>() would wrap 2147483648 to a negative line number without a word.
+      const json& v = j.at(key);
+      if (!v.is_number_integer()) throw FieldError{key, "has the wrong type"};
+      if (v.is_number_unsigned() ? v.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<T>::max())
+                                 : v.get<std::int64_t>() < std::numeric_limits<T>::min() ||
+                                       v.get<std::int64_t>() > std::numeric_limits<T>::max())
+        throw FieldError{key, "is out of range"};
+      out = static_cast<T>(v.get<std::int64_t>());
+    } else {
+      out = j.at(key).get<T>();
+    }
   } catch (const json::exception&) {
     throw FieldError{key, "has the wrong type"};
   }
@@ -93,7 +107,10 @@ Result<PostDialect> load_post_dialect(const std::string& path) {
   }
   if (d.decimals < 0 || d.decimals > 6) return make_error("dialect field 'decimals' must be 0..6", path);
   if (d.feed_decimals < 0 || d.feed_decimals > 4) return make_error("dialect field 'feed_decimals' must be 0..4", path);
-  if (d.line_number_step <= 0) return make_error("dialect field 'line_number_step' must be positive", path);
+  if (d.line_number_step <= 0 || d.line_number_step > 100000)
+    return make_error("dialect field 'line_number_step' must be 1..100000", path);
+  if (d.line_number_start < 0 || d.line_number_start > 99999999)
+    return make_error("dialect field 'line_number_start' must be 0..99999999", path);
   if (d.program_end.empty()) return make_error("dialect field 'program_end' must not be empty", path);
   return d;
 }

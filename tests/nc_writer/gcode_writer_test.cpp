@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include <cutroute/core/version.hpp>
+#include <cutroute/nc/gcode_reader.hpp>
 #include <cutroute/nc/gcode_writer.hpp>
 
 #include "support/gcode_probe.hpp"
@@ -103,6 +104,39 @@ TEST(GcodeWriter, ReparsedProgramHasTheMeasuredLengths) {
   }
 }
 
+// Found by fuzzing: an edge of bulge 1e-8 was written "G2 ... J2500000000", and slightly jittered
+// spline arcs had centres beyond 1e6 mm; controllers and our own reader refuse such words. Arcs of
+// radius above 100 m are written as chords within the output resolution.
+TEST(GcodeWriter, NearlyStraightArcsBecomeChordsTheReaderAccepts) {
+  const double c = 3000, radius = 2.0e5;
+  const double b = std::tan(std::asin(c / 2 / radius) / 2);  // bulge of that radius over that chord
+  Toolpath tp;
+  tp.pierce_time_s = 0.2;
+  CutSegment s;
+  s.pierce = {0, 0};
+  s.feed_mm_min = 3000;
+  s.pieces.push_back({Contour{{Vertex{{0, 0}, 1e-8}, Vertex{{10, 0}, b}, Vertex{{10 + c, 0}, 0}}, false}, PieceRole::contour, 0});
+  tp.segments.push_back(s);
+  const auto w = write_gcode(tp, PostDialect{}, GcodeWriteOptions{});
+  EXPECT_EQ(w.text.find("\nG2 "), std::string::npos) << w.text;
+  EXPECT_EQ(w.text.find("\nG3 "), std::string::npos) << w.text;
+  const auto read = read_gcode(w.text, "flat.nc", ReadOptions{});
+  ASSERT_TRUE(read.ok()) << format(read.error());
+  const auto probe = test::probe_gcode(w.text);
+  ASSERT_TRUE(probe.errors.empty());
+  const Vec2 centre{10 + c / 2, std::sqrt(radius * radius - c * c / 4)};  // b > 0: counter-clockwise, centre to the left
+  int chords = 0;
+  for (const auto& m : probe.moves) {
+    if (m.rapid || m.x0 < 10 - 1e-9) continue;
+    ++chords;
+    // Every chord end on the circle, every chord's middle within 1 µm (plus rounding) of it.
+    EXPECT_NEAR(std::hypot(m.x1 - centre.x, m.y1 - centre.y), radius, 1e-3);
+    EXPECT_NEAR(std::hypot((m.x0 + m.x1) / 2 - centre.x, (m.y0 + m.y1) / 2 - centre.y), radius, 2e-3);
+  }
+  EXPECT_GT(chords, 20);
+  EXPECT_NEAR(w.cut_length_mm, 10 + 2 * radius * std::asin(c / 2 / radius), 0.01);
+}
+
 TEST(GcodeWriter, RFormatSplitsArcsAbove150Degrees) {
   PostDialect d;
   d.arc_format = ArcFormat::r;
@@ -182,6 +216,13 @@ TEST(PostDialect, ErrorsNameTheField) {
   r = load_post_dialect(write("d3.json", R"({"arc_format": "xy"})"));
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().message.find("'arc_format'"), std::string::npos);
+  // Found by fuzzing: 2147483640 + step overflowed int, 2147483648 wrapped to N-2147483648.
+  r = load_post_dialect(write("d5.json", R"({"line_numbers": true, "line_number_start": 2147483648})"));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("'line_number_start' is out of range"), std::string::npos) << r.error().message;
+  r = load_post_dialect(write("d6.json", R"({"line_numbers": true, "line_number_start": 2147483640})"));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("'line_number_start' must be 0..99999999"), std::string::npos) << r.error().message;
   r = load_post_dialect(write("d4.json", "{ not json"));
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.error().file, (dir / "d4.json").string());

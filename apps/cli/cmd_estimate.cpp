@@ -16,6 +16,8 @@
 #include <cutroute/nc/dialect.hpp>
 #include <cutroute/nc/gcode_reader.hpp>
 
+#include "input_options.hpp"
+
 #include "commands.hpp"
 
 namespace cutroute::cli {
@@ -223,7 +225,7 @@ void add_estimate(CLI::App& root, Commands& out) {
       root.add_subcommand("estimate", "Cutting time (eq. 1, eq. 10) and cost (eq. 3) of a G-code program");
   app->add_option("program", opt->program, "G-code program (.nc, .ngc)")->required();
   app->add_option("--material", opt->material, "Material or alias (default: the profile's default_job)");
-  app->add_option("--thickness", opt->thickness_mm, "Sheet thickness [mm]")->check(CLI::PositiveNumber);
+  app->add_option("--thickness", opt->thickness_mm, "Sheet thickness [mm]")->check(finite_range(1e-3, 1000));
   app->add_option("--machine", opt->machine, "Machine profile JSON (default: data/machines/bystar3015.json)");
   app->add_option("--dialect", opt->dialect,
                   "Built-in dialect overriding the profile's (rs274, rs274-m7m9, fanuc-ms)");

@@ -61,6 +61,9 @@ Result<geometry::Vec2> parse_point(const std::string& s, const char* what) {
     const double x = std::stod(s.substr(0, comma), &i1);
     const double y = std::stod(s.substr(comma + 1), &i2);
     if (i1 != comma || i2 != s.size() - comma - 1 || !std::isfinite(x) || !std::isfinite(y)) throw std::invalid_argument("bad");
+    // A start 1e308 mm away made rapids of infinite length ("G0 Xinf" in the program).
+    if (std::abs(x) > units::kMaxCoordinateMm || std::abs(y) > units::kMaxCoordinateMm)
+      return make_error(std::string(what) + " is more than 1e6 mm from the origin (got '" + s + "')");
     return geometry::Vec2{x, y};
   } catch (const std::exception&) {
     return make_error(std::string(what) + " wants X,Y in mm (got '" + s + "')");
@@ -268,8 +271,9 @@ void add_optimize(CLI::App& root, Commands& out) {
   app->add_option("--report", o->report, "Write the JSON report to this file");
   app->add_option("--svg", o->svg, "Write the route picture to this SVG file");
   app->add_option("--html", o->html, "Write a self-contained HTML page with the animated route");
-  app->add_option("--material", o->material, "Material (Table 1 name or alias), default from the machine profile");
-  app->add_option("--thickness", o->thickness, "Sheet thickness [mm]")->check(CLI::PositiveNumber);
+  app->add_option("--material", o->material, "Material (Table 1 name or alias), default from the machine profile")
+      ->check(CLI::Validator([](std::string& v) { return v.empty() ? std::string("empty material name") : std::string(); }, "NAME"));
+  app->add_option("--thickness", o->thickness, "Sheet thickness [mm]")->check(finite_range(1e-3, 1000));
   app->add_option("--machine", o->machine, "Machine profile JSON (default: the built-in ByStar 3015-class laser)");
   app->add_flag("--interpolate", o->interpolate, "Interpolate speeds between Table 1 thicknesses");
   app->add_option("--objective", o->objective, "time (eq. 10) or cost (eq. 3)")->check(CLI::IsMember({"time", "cost"}));

@@ -33,8 +33,9 @@ Status write_file_atomic(const std::string& path, std::string_view content) {
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
   if (ec) {
+    const std::string why = ec.message();  // before remove() overwrites ec ("Success")
     std::filesystem::remove(tmp, ec);
-    return make_error("cannot move the finished output into place: " + ec.message(), path);
+    return make_error("cannot move the finished output into place: " + why, path);
   }
   return Ok{};
 }

@@ -25,7 +25,8 @@ struct Rgb {
 // Viridis-like ramp, t = 0 cheap (yellow) ... t = 1 expensive (purple).
 Rgb ramp(double t) {
   static const Rgb stops[] = {{253, 231, 37}, {94, 201, 98}, {33, 145, 140}, {59, 82, 139}, {68, 1, 84}};
-  t = std::clamp(t, 0.0, 1.0) * 4.0;
+  // NaN (a flat cost surface: 0 / 0 in shade()) would pass std::clamp and index past the stops.
+  t = std::isfinite(t) ? std::clamp(t, 0.0, 1.0) * 4.0 : 0.0;
   const int k = std::min(3, static_cast<int>(t));
   const double u = t - k;
   return {stops[k].r + (stops[k + 1].r - stops[k].r) * u, stops[k].g + (stops[k + 1].g - stops[k].g) * u,
@@ -116,7 +117,7 @@ std::string report_svg(const RunOutput& out) {
           std::log(vf(g.vc.back(), g.f.back()))};
   const double ct_ref = r.solution ? r.solution->cost.total : *std::min_element(g.CT.begin(), g.CT.end());
   const double ct_top = std::min(*std::max_element(g.CT.begin(), g.CT.end()), 2.0 * ct_ref);
-  const auto shade = [&](double ct) { return std::log(ct / ct_ref) / std::log(ct_top / ct_ref); };
+  const auto shade = [&](double ct) { return ct_top > ct_ref ? std::log(ct / ct_ref) / std::log(ct_top / ct_ref) : 0.0; };
 
   const std::string sub =
       r.solution ? "optimum vc = " + fmt(r.solution->vc, 6) + " m/min, f = " + fmt(r.solution->f, 5) +

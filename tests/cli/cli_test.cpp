@@ -46,6 +46,28 @@ TEST(Cli, UsageErrorsExitOne) {
   EXPECT_NE(r.err.find("--sheet"), std::string::npos);
 }
 
+// Found by fuzzing: each of these ran with exit 0 (a program ending "G0 Xinf", the default thickness
+// for NaN, the default material for "").
+TEST(Cli, AbsurdOptionValuesAreUsageErrors) {
+  for (const char* bad : {"--start 1e308,0", "--start 0,2e6", "--thickness nan", "--thickness inf", "--material ''"}) {
+    auto r = run_command(cli_path() + " optimize /nonexistent/nest.dxf " + bad);
+    EXPECT_EQ(r.exit_code, 1) << bad << ": " << r.err;
+    EXPECT_NE(r.err.find(std::string(bad).substr(0, std::string(bad).find(' '))), std::string::npos) << bad << ": " << r.err;
+  }
+}
+
+// The reason a finished output cannot be moved into place is the rename's, not "Success".
+TEST(Cli, OutputOntoADirectoryNamesTheReason) {
+  const auto dir = temp_dir("ontodir");
+  ASSERT_EQ(run_command(cli_path() + " demo " + (dir / "n.dxf").string()).exit_code, 0);
+  fs::create_directories(dir / "p.ngc");
+  auto r = run_command(cli_path() + " optimize " + (dir / "n.dxf").string() + " --time-limit 0.2 -o " + (dir / "p.ngc").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("cannot move the finished output into place"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("Success"), std::string::npos) << r.err;
+  fs::remove_all(dir);
+}
+
 TEST(Cli, MissingFileIsAnInputErrorNamingTheFile) {
   auto r = run_command(cli_path() + " inspect /nonexistent/nest.dxf");
   EXPECT_EQ(r.exit_code, 2);

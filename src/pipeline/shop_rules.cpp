@@ -373,6 +373,7 @@ nlohmann::json apply_to_toolpath(nc::Toolpath& path, const model::Nest& nest, co
     j["tip_up_program"] = {{"rapids_over_freed_parts", st.rapids_over_freed},
                            {"detours", st.detours},
                            {"unavoidable", st.unavoidable},
+                           {"unavoidable_search_budget_spent", st.over_budget},
                            {"detour_extra_mm", st.extra_mm}};
   }
   if (r.tabs > 0) {

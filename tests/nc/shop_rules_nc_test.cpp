@@ -131,6 +131,35 @@ TEST(RapidDetours, CrossingIsDetectedCornerToCornerAndDetourKeepsClear) {
   EXPECT_TRUE(obs.detour({0, 0}, {80, 80}, none)->empty());
 }
 
+// Found by fuzzing: with a margin of a metre every part is in every leg's way, and the searches of
+// 3 000 small parts ran for minutes past the time limit. A spent budget gives up (left straight).
+TEST(RapidDetours, SearchGivesUpWhenItsBudgetIsSpent) {
+  const auto nest = nest_of({geometry::rectangle({10, 10, 30, 30}), geometry::rectangle({50, 50, 70, 70})});
+  const PartObstacles obs(nest, 2.0);
+  const std::vector<char> freed{1, 1};
+  std::size_t plenty = 1'000'000;
+  const auto via = obs.detour({0, 0}, {80, 80}, freed, &plenty);
+  ASSERT_TRUE(via.has_value());
+  EXPECT_FALSE(via->empty());
+  const std::size_t used = 1'000'000 - plenty;
+  EXPECT_GT(used, 2u);
+  std::size_t short_budget = used / 2;
+  EXPECT_FALSE(obs.detour({0, 0}, {80, 80}, freed, &short_budget).has_value());
+  EXPECT_EQ(short_budget, 0u);
+  std::size_t exact = used;
+  EXPECT_EQ(obs.detour({0, 0}, {80, 80}, freed, &exact), via);  // the same route with just enough
+  // The post pass counts rapids it left straight for want of budget among the unavoidable ones.
+  std::vector<geometry::Contour> grid;
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j) grid.push_back(geometry::rectangle({i * 30.0, j * 30.0, i * 30.0 + 10, j * 30.0 + 10}));
+  const auto many = nest_of(grid);
+  Toolpath tp = whole_contours(many);
+  std::reverse(tp.segments.begin() + 50, tp.segments.end());  // rapids back across the freed half
+  const auto st = route_rapids_around_freed_parts(tp, many, 1000.0);
+  EXPECT_EQ(st.detours + st.unavoidable, st.rapids_over_freed);
+  EXPECT_LE(st.over_budget, st.unavoidable);
+}
+
 TEST(RapidDetours, PostPassRoutesOnlyAroundPartsAlreadyCut) {
   const auto nest = nest_of({geometry::rectangle({10, 10, 30, 30}), geometry::rectangle({50, 50, 70, 70})});
   Toolpath tp = whole_contours(nest);  // part 1 cut first from (10,10), then part 2 from (50,50)

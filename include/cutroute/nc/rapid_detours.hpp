@@ -32,9 +32,11 @@ class PartObstacles {
   // parts) or when more than kMaxDetourParts parts would have to be gone around.
   // Visibility graph over the hulls of the parts in the way, grown until no leg crosses a freed
   // part: O(V² · E) per round for V hull corners and E polygon edges near the legs.
+  // `tests_left`, when given, bounds the work: each test of a leg against one part spends one, and
+  // the search gives up (nullopt) when none is left.
   static constexpr std::size_t kMaxDetourParts = 24;
-  std::optional<std::vector<geometry::Vec2>> detour(geometry::Vec2 a, geometry::Vec2 b,
-                                                    const std::vector<char>& freed) const;
+  std::optional<std::vector<geometry::Vec2>> detour(geometry::Vec2 a, geometry::Vec2 b, const std::vector<char>& freed,
+                                                    std::size_t* tests_left = nullptr) const;
 
  private:
   struct Obstacle {
@@ -55,12 +57,15 @@ struct DetourStats {
   int rapids_over_freed = 0;   // straight rapids that would pass over a part already cut free
   int detours = 0;             // of these, routed around (waypoints written as extra G0 moves)
   int unavoidable = 0;         // no way around found: left straight
+  int over_budget = 0;         // of these, left straight because the toolpath's search budget was spent
   double extra_mm = 0.0;       // added rapid length of the detours [mm]
 };
 
 // Post-pass on a finished toolpath: a part is free once the segment that cuts its outer contour is
 // done; every later rapid (and the one to the park position) that would pass over a free part gets
 // the waypoints of PartObstacles::detour() in CutSegment::rapid_via / Toolpath::end_via.
+// The searches of one toolpath share a budget of kDetourTestBudget leg-part tests (under a second).
+inline constexpr std::size_t kDetourTestBudget = 5'000'000;
 DetourStats route_rapids_around_freed_parts(Toolpath& path, const model::Nest& nest, double margin_mm);
 
 }  // namespace cutroute::nc

@@ -12,6 +12,8 @@ namespace cutroute::machining {
 
 namespace {
 
+constexpr double kMaxCubatureWork = 2.0e8;
+
 struct Checker {
   std::vector<std::string> out;
   void positive(const char* path, double v) {
@@ -137,6 +139,10 @@ std::vector<std::string> validate(const Problem& p) {
            "accuracy.integration.simpson_m must be even and in [2, 4096]");
     c.rule(a.cubature.n >= 2 && a.cubature.n % 2 == 0 && a.cubature.n <= 4096,
            "accuracy.integration.simpson_n must be even and in [2, 4096]");
+    // Each field alone may be large; together they set the cubature's work (the default 36 * 1 * 64 * 64
+    // takes milliseconds). 3600 * 1000 * 4096 * 4096 ran for minutes and did not stop on SIGTERM.
+    c.rule(static_cast<double>(a.n_phi) * a.n_z * a.cubature.m * a.cubature.n <= kMaxCubatureWork,
+           "accuracy.integration: n_phi * n_z * simpson_m * simpson_n must be at most 2e8");
     if (a.delta_allow) c.positive("accuracy.delta_allow", *a.delta_allow);
   }
 

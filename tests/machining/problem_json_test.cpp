@@ -101,6 +101,12 @@ TEST(MachiningJson, BadInputNamesTheField) {
       {"string for number", [](json& j) { j["operation"]["D"] = "40"; }, "operation.D", "expected a number"},
       {"eta > 1", [](json& j) { j["machine"]["eta"] = 1.2; }, "machine.eta", "(0, 1]"},
       {"odd simpson", [](json& j) { j["accuracy"]["integration"]["simpson_m"] = 63; }, "simpson_m", "even"},
+      // Found by fuzzing: each within its range, together they ran for minutes (SIGTERM ignored).
+      {"cubature too fine",
+       [](json& j) {
+         j["accuracy"]["integration"] = {{"n_phi", 3600}, {"n_z", 1000}, {"simpson_m", 4096}, {"simpson_n", 4096}};
+       },
+       "accuracy.integration", "at most 2e8"},
       {"P = 1", [](json& j) { j["accuracy"]["P"] = 1.0; }, "accuracy.P", "(0, 1)"},
       {"bad f_range",
        [](json& j) {

@@ -229,6 +229,7 @@ TEST(PostDialect, ErrorsNameTheField) {
   r = find_post_dialect("no-such-dialect");
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().message.find("generic"), std::string::npos);
+  for (const char* name : {"d1.json", "d2.json", "d3.json", "d4.json", "d5.json", "d6.json"}) std::filesystem::remove(dir / name);
 }
 
 TEST(PostDialect, ShippedDialectsLoad) {

@@ -99,5 +99,19 @@ TEST(MachiningReport, SvgShowsMapValleyContoursAndLegend) {
   EXPECT_LT(svg.size(), 2'000'000u);
 }
 
+// Found by fuzzing: a load time of 1e20 min makes every grid cost the same double, the shading
+// divided log 1 by log 1, and the NaN indexed the colour ramp (UBSan).
+TEST(MachiningReport, SvgOfAFlatCostSurfaceHasNoNan) {
+  Problem p = test::load_machining_example(test::kE0);
+  p.econ.t_load = 1e20;
+  const OptimizeResult r = optimize(p);
+  ASSERT_TRUE(r.surface.has_value());
+  ASSERT_EQ(*std::min_element(r.surface->CT.begin(), r.surface->CT.end()),
+            *std::max_element(r.surface->CT.begin(), r.surface->CT.end()));
+  const std::string svg = report_svg(RunOutput{&p, &r, std::nullopt, {}});
+  EXPECT_NE(svg.find("<polygon"), std::string::npos);
+  EXPECT_EQ(svg.find("nan"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace cutroute::machining

@@ -7,18 +7,19 @@
 #include <cutroute/core/number_format.hpp>
 #include <cutroute/core/tolerances.hpp>
 #include <cutroute/core/units.hpp>
+#include <cutroute/geometry/arc.hpp>
 
 namespace cutroute::nc {
 namespace {
 
 using geometry::Vec2;
 
-// Arc centre from end points and bulge: the chord's perpendicular bisector, offset by
-// (1 - b²) / (4 b) chord lengths to the left of the chord direction.
 // Largest arc radius written as G2/G3 (100 m). Such an arc over a whole 3-m sheet still bows 11 mm,
 // so larger ones are written as chords (flat_arc), and no I/J/R word goes beyond 1e5 mm.
 constexpr double kMaxArcRadiusMm = 1.0e5;
 
+// Arc centre from end points and bulge: the chord's perpendicular bisector, offset by
+// (1 - b²) / (4 b) chord lengths to the left of the chord direction.
 Vec2 arc_center(Vec2 a, Vec2 b, double bulge) {
   const Vec2 d = b - a;
   return (a + b) / 2 + geometry::perp(d) * ((1 - bulge * bulge) / (4 * bulge));
@@ -101,28 +102,18 @@ class Emitter {
     return true;
   }
 
-  // An arc of radius beyond kMaxArcRadiusMm as chords that stay within the output resolution of it.
-  // Nearly straight arcs (bulge 1e-8 on a 10-mm edge: I J of 2.5e9 mm) made centres that the
-  // controller's range, and our own reader, refuse. The offset of the arc from its chord at distance
-  // d from the chord's middle is h - d^2 / (R + sqrt(R^2 - d^2)), free of the cancellation in R - sqrt.
-  bool flat_arc(Vec2 q, double bulge, const std::string& feed_word) {
+  // An arc of radius beyond kMaxArcRadiusMm as chords whose sagitta R (1 - cos(phi / 2)) ~ R phi^2 / 8
+  // stays within the output resolution. Nearly straight arcs (bulge 1e-8 on a 10-mm edge: I J of
+  // 2.5e9 mm) made centres that the controller's range, and our own reader, refuse. The chord ends
+  // come from the chord-based arc_point_at_sweep, which stays exact where the centre is far away.
+  bool flat_arc(Vec2 q, double bulge, double radius, const std::string& feed_word) {
     const Vec2 a = pos_;
-    const Vec2 d = q - a;
-    const double chord = geometry::distance(a, q);
-    const double b = std::abs(bulge);
-    const double radius = chord * (1 + b * b) / (4 * b);
-    const double h = chord * b / 2;  // sagitta
-    const double sweep = 4 * std::atan(b);
-    const double pieces = std::ceil(sweep * std::sqrt(radius / (8 * res_mm_)));
+    const double sweep = 4 * std::atan(bulge);
+    const double pieces = std::ceil(std::abs(sweep) * std::sqrt(radius / (8 * res_mm_)));
     const int k = static_cast<int>(std::clamp(pieces, 1.0, 100000.0));
-    const Vec2 out = geometry::perp(d) * ((bulge > 0 ? -1.0 : 1.0) / chord);  // the side the arc bulges to
     bool wrote = false;
-    for (int i = 1; i < k; ++i) {
-      const double t = static_cast<double>(i) / k;
-      const double x = (t - 0.5) * chord;
-      const double off = h - x * x / (radius + std::sqrt(radius * radius - x * x));
-      wrote = line(a + d * t + out * off, wrote ? std::string() : feed_word) || wrote;
-    }
+    for (int i = 1; i < k; ++i)
+      wrote = line(geometry::arc_point_at_sweep(a, q, bulge, sweep * i / k), wrote ? std::string() : feed_word) || wrote;
     return line(q, wrote ? std::string() : feed_word) || wrote;
   }
 
@@ -132,9 +123,9 @@ class Emitter {
     if (std::abs(bulge) < tol::kStraightBulge || geometry::distance(pos_, q) < 2 * res_mm_) {
       return line(to, feed_word);
     }
-    const double chord = geometry::distance(pos_, q);
     const double b = std::abs(bulge);
-    if (chord * (1 + b * b) / (4 * b) > kMaxArcRadiusMm) return flat_arc(q, bulge, feed_word);
+    const double radius = geometry::distance(pos_, q) * (1 + b * b) / (4 * b);
+    if (radius > kMaxArcRadiusMm) return flat_arc(q, bulge, radius, feed_word);
     const double sweep = 4 * std::atan(bulge);
     if (d_.arc_format == ArcFormat::r && std::abs(sweep) > 150.0 * std::numbers::pi / 180.0) {
       // Split at the arc's midpoint into two arcs of half the sweep.

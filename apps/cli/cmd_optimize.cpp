@@ -170,6 +170,7 @@ int run(const Opts& o) {
   ProgressLine progress(show_progress(o.quiet));
   std::vector<int> codes(o.nests.size(), kOk);
   std::vector<std::string> messages(o.nests.size());
+  std::vector<std::string> warnings(o.nests.size());  // printed even with --quiet: the program is less safe than asked for
   std::atomic<std::size_t> next{0};
   auto work = [&] {
     for (std::size_t i = next++; i < o.nests.size(); i = next++) {
@@ -208,6 +209,11 @@ int run(const Opts& o) {
         codes[i] = kInputError;
         continue;
       }
+      for (Diagnostic d : res->diagnostics) {
+        if (d.code != "tip_up.time_limit") continue;
+        if (d.file.empty()) d.file = o.nests[i];
+        warnings[i] += "cutroute: " + format(d) + "\n";
+      }
       const auto& r = res->report;
       messages[i] = o.nests[i] + ": " + std::to_string(r["pierces"].get<std::size_t>()) + " pierces, cut " +
                     format_fixed(r["cut_length_mm"].get<double>(), 1) + " mm, rapid " +
@@ -226,6 +232,7 @@ int run(const Opts& o) {
 
   int code = kOk;
   for (std::size_t i = 0; i < o.nests.size(); ++i) {
+    std::cerr << warnings[i];
     if (codes[i] != kOk) {
       std::cerr << "cutroute: " << messages[i] << '\n';
       code = codes[i];

@@ -122,13 +122,18 @@ std::vector<int> PartObstacles::crossed(Vec2 a, Vec2 b) const {
 }
 
 std::optional<std::vector<Vec2>> PartObstacles::detour(Vec2 a, Vec2 b, const std::vector<char>& freed,
-                                                       std::size_t* tests_left) const {
+                                                       std::size_t* tests_left, const StopToken* stop) const {
   // A tip-up margin of a metre around hundreds of small parts put every part in every leg's way:
   // 400 circles took 14 s and 3 000 more than 5 minutes, past the time limit and SIGTERM.
-  bool spent = false;
+  bool spent = false;  // out of budget, or stopped
+  std::size_t tested = 0;
   auto blockers = [&](Vec2 u, Vec2 v, std::vector<int>* out) {
     bool blocked = false;
     index_.visit(box_of(u, v), [&](std::uint32_t i) {
+      if (stop && tested++ % kStopPollTests == 0 && stop->stop_requested()) {
+        spent = true;
+        return false;
+      }
       if (tests_left) {
         if (*tests_left == 0) {
           spent = true;
@@ -199,21 +204,30 @@ std::optional<std::vector<Vec2>> PartObstacles::detour(Vec2 a, Vec2 b, const std
   return std::nullopt;
 }
 
-DetourStats route_rapids_around_freed_parts(Toolpath& path, const model::Nest& nest, double margin_mm) {
+DetourStats route_rapids_around_freed_parts(Toolpath& path, const model::Nest& nest, double margin_mm,
+                                            const StopToken& stop) {
   DetourStats st;
   const PartObstacles obstacles(nest, margin_mm);
   std::vector<char> freed(nest.parts.size(), 0);
   std::size_t tests_left = kDetourTestBudget;
+  bool stopped = false;  // stop requests stay requested: read the clock once per rapid until then
   auto route = [&](Vec2 from, Vec2 to, std::vector<Vec2>& via) {
     via.clear();
     bool over = false;
     for (int k = 0; k < obstacles.part_count() && !over; ++k) over = freed[static_cast<std::size_t>(k)] && obstacles.crosses(k, from, to);
     if (!over) return;
     ++st.rapids_over_freed;
-    auto d = obstacles.detour(from, to, freed, &tests_left);
+    stopped = stopped || stop.stop_requested();
+    auto d = stopped ? std::nullopt : obstacles.detour(from, to, freed, &tests_left, &stop);
     if (!d || d->empty()) {
       ++st.unavoidable;
-      if (tests_left == 0) ++st.over_budget;
+      // A search that gave up for the token leaves it requesting a stop (see detour()).
+      stopped = stopped || (!d && stop.stop_requested());
+      if (stopped) {
+        ++st.left_at_time_limit;
+      } else if (tests_left == 0) {
+        ++st.over_budget;
+      }
       return;
     }
     via = std::move(*d);

@@ -1,7 +1,9 @@
 #include <cutroute/pipeline/optimize.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include <cutroute/core/number_format.hpp>
 #include <cutroute/core/tolerances.hpp>
@@ -104,10 +106,27 @@ struct Evaluated {
   cost::TimeEstimate estimate;
   double objective = 0;  // t_cut_s (time) or cost (cost form)
   nlohmann::json rules;  // shop rules applied to the toolpath (detours, tabs)
+  int detours_left = 0;  // shop rules: rapids over freed parts left straight because the run stopped
 };
 
+// Is program a better than program b? The lower objective, but first the fewer rapids left over
+// freed parts by a stopped detour pass: those rapids are shorter than their detours, and a program
+// whose pass ran out of time must not win for them (0 for both without tip-up detours).
+bool better(const Evaluated& a, const Evaluated& b) {
+  if (a.detours_left != b.detours_left) return a.detours_left < b.detours_left;
+  return a.objective < b.objective - 1e-9;
+}
+
+// One entry of the report's lead_alternatives.
+nlohmann::json lead_json(const std::string& lead_in, const Evaluated& ev) {
+  nlohmann::json j = {{"lead_in", lead_in}, {"frames", ev.frames}, {"t_cut_s", ev.estimate.t_cut_s}, {"objective", ev.objective}};
+  if (ev.detours_left > 0) j["tip_up_left_at_time_limit"] = ev.detours_left;  // why a shorter program lost (better())
+  return j;
+}
+
+// `detour_stop`: where the shop rules' tip-up detour searches stop (see RunLimit).
 Evaluated evaluate(const model::Nest& nest, const std::vector<model::EntryCandidate>& seq, const Setup& s,
-                   const OptimizeOptions& o) {
+                   const OptimizeOptions& o, const StopToken& detour_stop) {
   std::vector<const model::EntryCandidate*> ptrs;
   ptrs.reserve(seq.size());
   for (const auto& e : seq) ptrs.push_back(&e);
@@ -119,7 +138,10 @@ Evaluated evaluate(const model::Nest& nest, const std::vector<model::EntryCandid
   to.kerf = o.kerf_mode;
   Evaluated ev;
   ev.toolpath = nc::build_toolpath(nest, ptrs, to);
-  if (o.rules.any()) ev.rules = rules::apply_to_toolpath(ev.toolpath, nest, o.rules);  // shop rules
+  if (o.rules.any()) {  // shop rules
+    ev.rules = rules::apply_to_toolpath(ev.toolpath, nest, o.rules, detour_stop);
+    if (ev.rules.contains("tip_up_program")) ev.detours_left = ev.rules["tip_up_program"]["unavoidable_left_at_time_limit"].get<int>();
+  }
   ev.program = nc::write_gcode(ev.toolpath, s.dialect, nc::GcodeWriteOptions{o.title, true});
   ev.frames = nc::count_frames(ev.program.text);
   cost::ProgramTotals totals;
@@ -210,6 +232,42 @@ class Laps {
   Clock::time_point mark_ = Clock::now();
 };
 
+// The time limit as the shop rules' steps after the route solver see it. The solver of a large nest
+// runs to its deadline, so with --time-limit it would leave the rules' re-ordering search and the
+// tip-up detours nothing (before, both ignored the limit: 400 circles with a tip-up margin of a
+// metre took 3.6 s under --time-limit 1, 3 010 took 10 s, and SIGTERM waited for the detours).
+// With these rules on, the solver leaves them their shares of the limit (rules::time_shares(): a
+// fifth for the search, a tenth for the detours), and each stops at its own deadline:
+//  - the search (an improvement of the order) at the run's deadline less the detours' share;
+//  - the detours at the run's deadline, but never before a tenth of the limit from their start,
+//    as the solver's own floor: they are what makes the program safe to run (a rapid over a part
+//    cut free can catch it tipped up), and a deadline already spent by an earlier step (a cut job
+//    that took long on a big nest) should not cost an ordinary nest the few milliseconds they
+//    take there. The detours of an alternative's programs (its lead types) share one deadline.
+// Rapids whose detour was not found in time are left straight, counted in the report and warned
+// about. Without a limit nothing changes; without these rules the solver gets what it got before.
+// A stop request (SIGINT/SIGTERM) ends both at once, like the solver and the refinement.
+class RunLimit {
+ public:
+  RunLimit(const OptimizeOptions& o, Clock::time_point begin) : limit_s_(o.time_limit_s), shares_(rules::time_shares(o.rules)) {
+    if (o.time_limit_s > 0) deadline_ = begin + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.time_limit_s));
+  }
+  // [s] kept from each solver for the rules' steps after it.
+  double rules_reserve_s() const { return (shares_.search + shares_.detours) * limit_s_; }
+  StopToken search(const StopToken& stop) const {
+    return deadline_ ? stop.with_time_limit(seconds_left() - shares_.detours * limit_s_) : stop;
+  }
+  StopToken detours(const StopToken& stop) const {
+    return deadline_ ? stop.with_time_limit(std::max(seconds_left(), 0.1 * limit_s_)) : stop;
+  }
+
+ private:
+  double seconds_left() const { return std::chrono::duration<double>(*deadline_ - Clock::now()).count(); }
+  double limit_s_;
+  rules::TimeShares shares_;
+  std::optional<Clock::time_point> deadline_;
+};
+
 // The basic segments of one technique (SCCP); an error when the technique cannot be built here.
 // `standard`: the standard job when already built (other techniques start from its candidates).
 Result<model::CutJob> build_job(const model::Nest& nest, const model::EntryPlanner& planner, const model::EntryOptions& entries,
@@ -246,11 +304,12 @@ struct Alternative {
   nlohmann::json leads_json;
   nlohmann::json rules_json;  // shop rules: the history-dependent re-ordering's search and effects
   int rigid_corners = 0;      // shop rules: outer contours entered at a rigid corner
+  StopToken detour_stop;      // shop rules: where the tip-up detours of its programs stop
 };
 
 // Steps 3-6 for one set of basic segments.
 Result<Alternative> solve_alternative(const model::Nest& nest, const model::CutJob& job, const model::EntryPlanner& planner,
-                                      const Setup& s, const OptimizeOptions& o, double time_limit_s,
+                                      const Setup& s, const OptimizeOptions& o, double time_limit_s, const RunLimit& run,
                                       const StopToken& stop, const ProgressFn& progress, nlohmann::json& timing) {
   Laps lap(timing);
   // 3. Sequencing.
@@ -269,7 +328,7 @@ Result<Alternative> solve_alternative(const model::Nest& nest, const model::CutJ
   if (alt.solution.route.empty()) return make_error("the route solver stopped before it found any route");
   // Shop rules: history-dependent re-ordering of the solver's route.
   const std::vector<solve::NodeId> route =
-      o.rules.orders() ? rules::reorder(nest, job, *rp, alt.solution.route, o.rules, stop, alt.rules_json)
+      o.rules.orders() ? rules::reorder(nest, job, *rp, alt.solution.route, o.rules, run.search(stop), alt.rules_json)
                        : alt.solution.route;
   if (o.rules.orders()) alt.rules_json["route"] = rules::route_effects(nest, job, *rp, route, o.rules);
   auto& seq = alt.sequence;
@@ -285,11 +344,11 @@ Result<Alternative> solve_alternative(const model::Nest& nest, const model::CutJ
   lap("refine");
 
   // 5-6. Program, frames, V_on*(n) with the lead type asked for (the others: compare_leads()).
-  alt.best = evaluate(nest, seq, s, o);
+  alt.detour_stop = run.detours(stop);
+  alt.best = evaluate(nest, seq, s, o, alt.detour_stop);
   alt.lead_name = model::to_string(s.entries.lead.in_kind);
   alt.leads_json = nlohmann::json::array();
-  alt.leads_json.push_back({{"lead_in", alt.lead_name}, {"frames", alt.best.frames}, {"t_cut_s", alt.best.estimate.t_cut_s},
-                            {"objective", alt.best.objective}});
+  alt.leads_json.push_back(lead_json(alt.lead_name, alt.best));
   lap("evaluate");
   return alt;
 }
@@ -320,10 +379,9 @@ void compare_leads(const model::Nest& nest, const model::EntryPlanner& planner, 
         e = std::move(*moved_e);
       }
     }
-    Evaluated ev = evaluate(nest, alt_seq, s, o);
-    alt.leads_json.push_back({{"lead_in", model::to_string(kind)}, {"frames", ev.frames}, {"t_cut_s", ev.estimate.t_cut_s},
-                              {"objective", ev.objective}});
-    if (ev.objective < alt.best.objective - 1e-9) {
+    Evaluated ev = evaluate(nest, alt_seq, s, o, alt.detour_stop);
+    alt.leads_json.push_back(lead_json(model::to_string(kind), ev));
+    if (better(ev, alt.best)) {
       alt.best = std::move(ev);
       seq = std::move(alt_seq);
       alt.lead_name = model::to_string(kind);
@@ -420,6 +478,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   // first alternative has been measured, its post-processing is guessed from the time the
   // standard job took (the same kind of geometric work over the same contours).
   const auto deadline = t_begin + std::chrono::duration<double>(o.time_limit_s);
+  const RunLimit run(o, t_begin);  // shop rules: their steps after the solver
   double post_s = 2.0 * standard_job_s;  // [s] refinement, evaluation and lead comparison of one alternative (estimate)
   std::optional<Alternative> best;
   std::size_t chosen = 0;
@@ -430,7 +489,8 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     double budget = 0.0;
     if (o.time_limit_s > 0) {
       const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
-      budget = std::max((left - left_alts * post_s) / left_alts, 0.1 * o.time_limit_s / static_cast<double>(jobs.size()));
+      budget = std::max((left - left_alts * (post_s + run.rules_reserve_s())) / left_alts,
+                        0.1 * o.time_limit_s / static_cast<double>(jobs.size()));
     }
     // After Ctrl-C the alternative solved so far is written; the others are not started.
     if (best && stop.stop_requested()) {
@@ -438,7 +498,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
       continue;
     }
     auto& alt_timing = timing[to_string(built[k])];
-    auto alt = solve_alternative(cut_nest, jobs[k], planner, s, o, budget, stop, progress, alt_timing);
+    auto alt = solve_alternative(cut_nest, jobs[k], planner, s, o, budget, run, stop, progress, alt_timing);
     if (!alt && best) {
       alternatives[slot[k]] = {{"name", to_string(built[k])}, {"available", false}, {"reason", alt.error().message}};
       continue;
@@ -461,7 +521,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     j["t_cut_s"] = alt->best.estimate.t_cut_s;
     j["objective"] = alt->best.objective;
     alternatives[slot[k]] = std::move(j);
-    if (!best || alt->best.objective < best->best.objective - 1e-9) {
+    if (!best || better(alt->best, best->best)) {
       best = std::move(alt).value();
       chosen = k;
     }
@@ -474,6 +534,17 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   const std::string& lead_name = win.lead_name;
   auto& leads_json = win.leads_json;
   Evaluated& best_ev = win.best;
+
+  if (best_ev.detours_left > 0) {  // shop rules: tip-up detours stopped (report: rules.tip_up_program)
+    Diagnostic w = make_warning(
+        "tip-up: " + std::to_string(best_ev.detours_left) + " of " +
+        std::to_string(best_ev.rules["tip_up_program"]["rapids_over_freed_parts"].get<int>()) +
+        " rapids over parts already cut free are left straight: " +
+        (stop.cancelled() ? std::string("the run was interrupted before their detours were found")
+                          : std::string("the time limit ran out before their detours were found (a longer --time-limit routes them around)")));
+    w.code = "tip_up.time_limit";
+    result.diagnostics.push_back(std::move(w));
+  }
 
   // 7. Report.
   nlohmann::json r;

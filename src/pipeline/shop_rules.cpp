@@ -287,6 +287,13 @@ Vec2 uncut_centre(const model::Nest& nest, const std::vector<model::EntryCandida
 
 }  // namespace
 
+TimeShares time_shares(const ShopRules& r) {
+  TimeShares t;
+  if (r.orders()) t.search = 0.2;
+  if (r.avoid_tip_up && r.tabs <= 0) t.detours = 0.1;
+  return t;
+}
+
 void restrict_candidates(model::CutJob& job, const model::Nest& nest, const ShopRules& r) {
   if (!r.part_rigidity) return;
   for (auto& ce : job.segments) {
@@ -366,14 +373,15 @@ int place_rigid_entries(const model::Nest& nest, const model::CutJob& job, std::
   return corners;
 }
 
-nlohmann::json apply_to_toolpath(nc::Toolpath& path, const model::Nest& nest, const ShopRules& r) {
+nlohmann::json apply_to_toolpath(nc::Toolpath& path, const model::Nest& nest, const ShopRules& r, const StopToken& stop) {
   nlohmann::json j;
   if (r.avoid_tip_up && r.tabs <= 0) {
-    const nc::DetourStats st = nc::route_rapids_around_freed_parts(path, nest, r.tip_up_margin_mm);
+    const nc::DetourStats st = nc::route_rapids_around_freed_parts(path, nest, r.tip_up_margin_mm, stop);
     j["tip_up_program"] = {{"rapids_over_freed_parts", st.rapids_over_freed},
                            {"detours", st.detours},
                            {"unavoidable", st.unavoidable},
                            {"unavoidable_search_budget_spent", st.over_budget},
+                           {"unavoidable_left_at_time_limit", st.left_at_time_limit},
                            {"detour_extra_mm", st.extra_mm}};
   }
   if (r.tabs > 0) {

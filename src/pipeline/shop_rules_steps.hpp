@@ -15,6 +15,15 @@
 
 namespace cutroute::pipeline::rules {
 
+// Shares of --time-limit that optimize_nest() keeps from the route solver for the rules' steps
+// after it (0 for a step that does not run with these rules): the re-ordering search (step 3) and
+// the tip-up detours of the programs (step 5). Why and how they are used: optimize.cpp, RunLimit.
+struct TimeShares {
+  double search = 0.0;
+  double detours = 0.0;
+};
+TimeShares time_shares(const ShopRules& r);
+
 // Step 2 (cut job): with part rigidity, outer contours keep only their corner candidates (those
 // without any corner keep all, and are counted in the report).
 void restrict_candidates(model::CutJob& job, const model::Nest& nest, const ShopRules& r);
@@ -38,8 +47,10 @@ nlohmann::json route_effects(const model::Nest& nest, const model::CutJob& job, 
 int place_rigid_entries(const model::Nest& nest, const model::CutJob& job, std::vector<model::EntryCandidate>& seq,
                         const ShopRules& r);
 
-// Step 5 (toolpath): detours around freed parts, then tabs. Returns the report of both.
-nlohmann::json apply_to_toolpath(nc::Toolpath& path, const model::Nest& nest, const ShopRules& r);
+// Step 5 (toolpath): detours around freed parts, then tabs. Returns the report of both. The
+// detour searches stop when `stop` requests it (deadline or cancel): the rapids not yet routed
+// stay straight and are counted in tip_up_program.unavoidable_left_at_time_limit.
+nlohmann::json apply_to_toolpath(nc::Toolpath& path, const model::Nest& nest, const ShopRules& r, const StopToken& stop);
 
 // The report's "rules" object: the active rules with their settings, and what they did (the
 // search's and the final route's effects, the toolpath passes, corner entries).

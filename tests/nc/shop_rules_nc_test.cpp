@@ -131,6 +131,40 @@ TEST(RapidDetours, CrossingIsDetectedCornerToCornerAndDetourKeepsClear) {
   EXPECT_TRUE(obs.detour({0, 0}, {80, 80}, none)->empty());
 }
 
+// A 10 x 10 grid of squares cut row by row, the second half in reverse: its rapids run back across
+// the freed half. With a margin of a metre every freed part is in every detour leg's way.
+struct FreedGrid {
+  model::Nest nest;
+  Toolpath path;
+  FreedGrid() {
+    std::vector<geometry::Contour> grid;
+    for (int i = 0; i < 10; ++i)
+      for (int j = 0; j < 10; ++j) grid.push_back(geometry::rectangle({i * 30.0, j * 30.0, i * 30.0 + 10, j * 30.0 + 10}));
+    nest = nest_of(grid);
+    path = whole_contours(nest);
+    std::reverse(path.segments.begin() + 50, path.segments.end());
+  }
+  // Rapids (the park move included) whose straight line passes over a part cut before them,
+  // counted with PartObstacles::crossed() alone.
+  int rapids_over_freed() const {
+    const PartObstacles obs(nest, 1000.0);
+    std::vector<char> freed(nest.parts.size(), 0);
+    int over = 0;
+    auto count = [&](Vec2 a, Vec2 b) {
+      const auto hit = obs.crossed(a, b);
+      over += std::any_of(hit.begin(), hit.end(), [&](int k) { return freed[static_cast<std::size_t>(k)] != 0; });
+    };
+    Vec2 at = path.start;
+    for (const auto& seg : path.segments) {
+      count(at, seg.pierce);
+      freed[nest.contours[model::ContourId(seg.pieces.front().contour)].part.index()] = 1;
+      at = tool_off_point(seg);
+    }
+    count(at, path.end);
+    return over;
+  }
+};
+
 // Found by fuzzing: with a margin of a metre every part is in every leg's way, and the searches of
 // 3 000 small parts ran for minutes past the time limit. A spent budget gives up (left straight).
 TEST(RapidDetours, SearchGivesUpWhenItsBudgetIsSpent) {
@@ -149,15 +183,47 @@ TEST(RapidDetours, SearchGivesUpWhenItsBudgetIsSpent) {
   std::size_t exact = used;
   EXPECT_EQ(obs.detour({0, 0}, {80, 80}, freed, &exact), via);  // the same route with just enough
   // The post pass counts rapids it left straight for want of budget among the unavoidable ones.
-  std::vector<geometry::Contour> grid;
-  for (int i = 0; i < 10; ++i)
-    for (int j = 0; j < 10; ++j) grid.push_back(geometry::rectangle({i * 30.0, j * 30.0, i * 30.0 + 10, j * 30.0 + 10}));
-  const auto many = nest_of(grid);
-  Toolpath tp = whole_contours(many);
-  std::reverse(tp.segments.begin() + 50, tp.segments.end());  // rapids back across the freed half
-  const auto st = route_rapids_around_freed_parts(tp, many, 1000.0);
+  FreedGrid g;
+  const auto st = route_rapids_around_freed_parts(g.path, g.nest, 1000.0, StopToken{});
+  EXPECT_EQ(st.rapids_over_freed, g.rapids_over_freed());
   EXPECT_EQ(st.detours + st.unavoidable, st.rapids_over_freed);
   EXPECT_LE(st.over_budget, st.unavoidable);
+  EXPECT_EQ(st.left_at_time_limit, 0);  // a token without deadline, not cancelled
+}
+
+// A run stopped (its deadline passed, or SIGINT/SIGTERM) before the post-pass: no search runs and
+// every rapid over a freed part stays straight, counted as left at the time limit.
+void expect_every_rapid_left_straight(const StopToken& stop) {
+  FreedGrid g;
+  const int over = g.rapids_over_freed();
+  ASSERT_GT(over, 10);
+  const auto st = route_rapids_around_freed_parts(g.path, g.nest, 1000.0, stop);
+  EXPECT_EQ(st.rapids_over_freed, over);
+  EXPECT_EQ(st.left_at_time_limit, over);
+  EXPECT_EQ(st.unavoidable, over);
+  EXPECT_EQ(st.detours, 0);
+  EXPECT_EQ(st.over_budget, 0);
+  EXPECT_EQ(st.extra_mm, 0.0);
+  for (const auto& seg : g.path.segments) EXPECT_TRUE(seg.rapid_via.empty());
+  EXPECT_TRUE(g.path.end_via.empty());
+  // A search handed such a token gives up before its first leg-part test.
+  const PartObstacles obs(g.nest, 1000.0);
+  const std::vector<char> freed(g.nest.parts.size(), 1);
+  std::size_t tests_left = 1'000'000;
+  EXPECT_FALSE(obs.detour({-20, -20}, {320, 320}, freed, &tests_left, &stop).has_value());
+  EXPECT_EQ(tests_left, 1'000'000u);
+}
+
+TEST(RapidDetours, ExpiredDeadlineLeavesEveryRapidOverAFreedPartStraight) {
+  const StopToken expired = StopToken{}.with_time_limit(-1.0);  // a deadline a second ago
+  ASSERT_TRUE(expired.deadline_passed());
+  expect_every_rapid_left_straight(expired);
+}
+
+TEST(RapidDetours, CancelledRunLeavesEveryRapidOverAFreedPartStraight) {
+  const StopToken cancelled;
+  cancelled.request_stop();
+  expect_every_rapid_left_straight(cancelled);
 }
 
 TEST(RapidDetours, PostPassRoutesOnlyAroundPartsAlreadyCut) {
@@ -165,7 +231,7 @@ TEST(RapidDetours, PostPassRoutesOnlyAroundPartsAlreadyCut) {
   Toolpath tp = whole_contours(nest);  // part 1 cut first from (10,10), then part 2 from (50,50)
   tp.start = {0, 0};
   tp.end = {0, 0};
-  const auto st = route_rapids_around_freed_parts(tp, nest, 2.0);
+  const auto st = route_rapids_around_freed_parts(tp, nest, 2.0, StopToken{});
   // (0,0) -> (10,10): nothing free yet. (10,10) -> (50,50): runs diagonally over part 1, now free
   // -> detour. Back from (50,50) to (0,0): over both -> detour.
   EXPECT_TRUE(tp.segments[0].rapid_via.empty());

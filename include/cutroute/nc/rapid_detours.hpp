@@ -4,6 +4,7 @@
 #include <optional>
 #include <vector>
 
+#include <cutroute/core/stop.hpp>
 #include <cutroute/geometry/box.hpp>
 #include <cutroute/geometry/spatial_index.hpp>
 #include <cutroute/geometry/vec2.hpp>
@@ -33,10 +34,13 @@ class PartObstacles {
   // Visibility graph over the hulls of the parts in the way, grown until no leg crosses a freed
   // part: O(V² · E) per round for V hull corners and E polygon edges near the legs.
   // `tests_left`, when given, bounds the work: each test of a leg against one part spends one, and
-  // the search gives up (nullopt) when none is left.
+  // the search gives up (nullopt) when none is left. `stop`, when given, is polled at the first
+  // test and then every kStopPollTests tests (a few milliseconds; no clock read per test): the
+  // search gives up (nullopt) when it requests a stop, which then stays requested.
   static constexpr std::size_t kMaxDetourParts = 24;
+  static constexpr std::size_t kStopPollTests = 4096;
   std::optional<std::vector<geometry::Vec2>> detour(geometry::Vec2 a, geometry::Vec2 b, const std::vector<char>& freed,
-                                                    std::size_t* tests_left = nullptr) const;
+                                                    std::size_t* tests_left = nullptr, const StopToken* stop = nullptr) const;
 
  private:
   struct Obstacle {
@@ -58,6 +62,8 @@ struct DetourStats {
   int detours = 0;             // of these, routed around (waypoints written as extra G0 moves)
   int unavoidable = 0;         // no way around found: left straight
   int over_budget = 0;         // of these, left straight because the toolpath's search budget was spent
+  int left_at_time_limit = 0;  // of these, left straight because `stop` requested a stop (deadline or
+                               // cancel) before or during their search; disjoint from over_budget
   double extra_mm = 0.0;       // added rapid length of the detours [mm]
 };
 
@@ -65,7 +71,12 @@ struct DetourStats {
 // done; every later rapid (and the one to the park position) that would pass over a free part gets
 // the waypoints of PartObstacles::detour() in CutSegment::rapid_via / Toolpath::end_via.
 // The searches of one toolpath share a budget of kDetourTestBudget leg-part tests (under a second).
+// `stop` (the run's deadline and cancel flag) is polled before each search and inside it: once it
+// requests a stop, no more searches run and every remaining rapid over a freed part is left
+// straight (still counted in rapids_over_freed, unavoidable and left_at_time_limit). The toolpath
+// stays complete: only waypoints are added, never moves removed.
 inline constexpr std::size_t kDetourTestBudget = 5'000'000;
-DetourStats route_rapids_around_freed_parts(Toolpath& path, const model::Nest& nest, double margin_mm);
+DetourStats route_rapids_around_freed_parts(Toolpath& path, const model::Nest& nest, double margin_mm,
+                                            const StopToken& stop);
 
 }  // namespace cutroute::nc

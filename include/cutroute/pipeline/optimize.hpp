@@ -71,7 +71,9 @@ struct OptimizeResult {
   nc::Toolpath toolpath;
   nc::WrittenProgram program;
   nlohmann::json report;     // the --report JSON
-  Diagnostics diagnostics;   // entry fallbacks, extrapolated speeds, ...
+  Diagnostics diagnostics;   // entry fallbacks, extrapolated speeds, ...; code "tip_up.time_limit":
+                             // tip-up detours left straight because the time limit ran out or the run
+                             // was interrupted (the CLI prints this one)
 };
 
 // Steps (each a function in src/pipeline/):
@@ -82,8 +84,8 @@ struct OptimizeResult {
 //     leads in scrap, precedence. With `automatic`, a chain/common job that joins nothing is not
 //     solved again, and one that cannot be built is reported as not available;
 //  then for each job (the solver gets what is left of time_limit_s after the work measured or
-//  estimated for the steps that follow it, split evenly over the jobs left; at least a tenth of
-//  an even share):
+//  estimated for the steps that follow it and the shares of the shop rules' steps after it,
+//  split evenly over the jobs left; at least a tenth of an even share):
 //  3. the routing problem in integer time or cost (cost::build_route_problem) and solve::solve();
 //  4. continuous refinement of each one-contour entry along its contour for the fixed order;
 //  5. toolpath -> G-code in the dialect; frames n counted on the written program;

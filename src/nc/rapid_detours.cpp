@@ -121,6 +121,16 @@ std::vector<int> PartObstacles::crossed(Vec2 a, Vec2 b) const {
   return out;
 }
 
+bool PartObstacles::crosses_any(Vec2 a, Vec2 b, const std::function<bool(int)>& counts) const {
+  bool hit = false;
+  index_.visit(box_of(a, b), [&](std::uint32_t i) {
+    const int k = static_cast<int>(i);
+    hit = counts(k) && crosses(k, a, b);
+    return !hit;
+  });
+  return hit;
+}
+
 std::optional<std::vector<Vec2>> PartObstacles::detour(Vec2 a, Vec2 b, const std::vector<char>& freed,
                                                        std::size_t* tests_left, const StopToken* stop) const {
   // A tip-up margin of a metre around hundreds of small parts put every part in every leg's way:

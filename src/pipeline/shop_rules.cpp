@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include <cutroute/core/tolerances.hpp>
 #include <cutroute/core/units.hpp>
@@ -348,6 +349,30 @@ nlohmann::json route_effects(const model::Nest& nest, const model::CutJob& job, 
   Effects fx;
   rc.price(route, &fx);
   return effects_json(fx, r);
+}
+
+EntryPenalty tip_up_entry_penalty(const model::Nest& nest, const std::vector<model::EntryCandidate>& seq, const ShopRules& r) {
+  if (!r.avoid_tip_up || r.tabs > 0) return {};
+  auto obstacles = std::make_shared<const nc::PartObstacles>(nest, r.tip_up_margin_mm);
+  constexpr std::size_t kNever = std::numeric_limits<std::size_t>::max();
+  auto freed_at = std::make_shared<std::vector<std::size_t>>(nest.parts.size(), kNever);
+  for (std::size_t k = 0; k < seq.size(); ++k)
+    for (const auto& piece : seq[k].pieces) {
+      if (!piece.contour.valid()) continue;
+      const auto& c = nest.contours[piece.contour];
+      if (c.role == model::ContourRole::outer && c.part.valid()) {
+        auto& f = (*freed_at)[c.part.index()];
+        f = std::min(f, k);
+      }
+    }
+  const double w = r.tip_up_weight;
+  return [obstacles, freed_at, w](std::size_t k, Vec2 prev, Vec2 pierce, Vec2 off, const std::optional<Vec2>& next) {
+    const auto& at = *freed_at;
+    double v = 0;
+    if (obstacles->crosses_any(prev, pierce, [&](int part) { return at[static_cast<std::size_t>(part)] < k; })) v += w;
+    if (next && obstacles->crosses_any(off, *next, [&](int part) { return at[static_cast<std::size_t>(part)] <= k; })) v += w;
+    return v;
+  };
 }
 
 int place_rigid_entries(const model::Nest& nest, const model::CutJob& job, std::vector<model::EntryCandidate>& seq,

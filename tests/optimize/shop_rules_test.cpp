@@ -246,6 +246,45 @@ TEST(ShopRules, TipUpRapidsGoAroundFreedParts) {
   fs::remove_all(dir);
 }
 
+// The straight moves between runs (end of one run's cut, lead-out included, to the next run's
+// pierce) that pass over a part cut by an earlier run: what the program's rapids would be without
+// detour waypoints, measured on the re-parsed program.
+int straight_transitions_over_freed(const Program& p, const std::vector<Rect>& parts) {
+  int over = 0;
+  std::vector<char> freed(parts.size(), 0);
+  for (std::size_t i = 1; i < p.runs.size(); ++i) {
+    freed[static_cast<std::size_t>(p.runs[i - 1].part)] = 1;
+    const Vec2 a = p.runs[i - 1].end;
+    const Vec2 b{p.runs[i].moves.front()->x0, p.runs[i].moves.front()->y0};
+    bool hit = false;
+    for (std::size_t k = 0; k < parts.size() && !hit; ++k)
+      for (int t = 0; t <= 400 && freed[k] && !hit; ++t) hit = parts[k].strictly_inside(a + (b - a) * (t / 400.0), 0.01);
+    over += hit;
+  }
+  return over;
+}
+
+// The entry refinement slides pierce points along their contours to shorten rapids; with tip-up it
+// must not bring back the rapids over freed parts that the order avoided. A 6 x 6 grid of 20-mm
+// squares at a 30-mm pitch: the route leaves no rapid over a freed part, and before the refinement
+// priced them, sliding the entries made 2 of the program's rapids cross a freed square (detoured).
+TEST(ShopRules, TipUpEntryRefinementKeepsRapidsOffFreedParts) {
+  const auto dir = temp_dir("tipup_refine");
+  std::vector<Rect> parts;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) parts.push_back({10.0 + i * 30, 10.0 + j * 30, 30.0 + i * 30, 30.0 + j * 30});
+  const auto dxf = write_nest(dir, parts, 190, 190);
+  const Program tip = optimize(dxf, dir, "--avoid-tip-up", parts);
+  expect_admissible(dxf, tip);
+  const auto& rules = tip.report["rules"];
+  ASSERT_EQ(rules["route"]["tip_up"]["straight_rapids_over_freed_parts"].get<int>(), 0);
+  EXPECT_EQ(straight_transitions_over_freed(tip, parts), 0);
+  EXPECT_EQ(rules["tip_up_program"]["rapids_over_freed_parts"].get<int>(), 0);
+  EXPECT_EQ(static_cast<int>(tip.rapids.size()), static_cast<int>(tip.runs.size()) + 1);  // no detour waypoints
+  EXPECT_EQ(rapids_over_freed(tip, parts), 0);
+  fs::remove_all(dir);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Part rigidity: every outer contour entered at a corner, the corner nearest the parts cut after it.
 

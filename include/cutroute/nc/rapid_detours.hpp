@@ -1,6 +1,7 @@
 // Tip-up avoidance: parts' outer contours as obstacles, and a post-pass that routes rapids around parts already cut free.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -26,6 +27,9 @@ class PartObstacles {
   bool crosses(int part, geometry::Vec2 a, geometry::Vec2 b) const;
   // Every part the straight move passes over, in increasing index order.
   std::vector<int> crossed(geometry::Vec2 a, geometry::Vec2 b) const;
+  // Does the straight move pass over some part with counts(part) true? Through the spatial
+  // index: O(log P + parts near the move), for callers that ask many times (entry refinement).
+  bool crosses_any(geometry::Vec2 a, geometry::Vec2 b, const std::function<bool(int)>& counts) const;
   // The shortest polyline a -> b (waypoints only, a and b excluded) through the corners of the
   // grown hulls that passes over none of the parts with freed[part] != 0 and keeps the margin
   // from them (except from a part an end point is already that close to); empty when the straight

@@ -15,6 +15,7 @@
 #include <cutroute/cost/speed_table.hpp>
 #include <cutroute/nc/dialect.hpp>
 #include <cutroute/nc/gcode_reader.hpp>
+#include <cutroute/nc/post_dialect.hpp>
 
 #include "input_options.hpp"
 
@@ -40,9 +41,27 @@ struct EstimateOptions {
   bool json = false;
 };
 
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+// --dialect NAME: a built-in reader dialect, else a post-processor dialect (shipped name or JSON
+// file) read the way it writes, so that the programs `optimize --dialect NAME` wrote are understood.
+Result<nc::Dialect> dialect_named(const std::string& name) {
+  if (auto b = nc::builtin_dialect(name)) return b;
+  auto post = nc::find_post_dialect(name);
+  if (post) return nc::reader_dialect(*post);
+  if (!post.error().file.empty()) return post.error();  // a dialect file that does not load
+  return make_error(
+      "unknown --dialect '" + name + "' (reader dialects: " + joined(nc::builtin_dialect_names()) +
+      "; post-processor dialects: " + joined(nc::post_dialect_names()) + "; or a dialect JSON file)");
+}
+
 // The profile's dialect (a built-in name, or explicit codes) as reader options.
 Result<nc::Dialect> dialect_of(const cost::MachineProfile& p, const std::string& override_name) {
-  if (!override_name.empty()) return nc::builtin_dialect(override_name);
+  if (!override_name.empty()) return dialect_named(override_name);
   const auto& d = p.dialect;
   if (d.beam_on.empty()) {
     auto b = nc::builtin_dialect(d.name);
@@ -228,7 +247,8 @@ void add_estimate(CLI::App& root, Commands& out) {
   app->add_option("--thickness", opt->thickness_mm, "Sheet thickness [mm]")->check(finite_range(1e-3, 1000));
   app->add_option("--machine", opt->machine, "Machine profile JSON (default: data/machines/bystar3015.json)");
   app->add_option("--dialect", opt->dialect,
-                  "Built-in dialect overriding the profile's (rs274, rs274-m7m9, fanuc-ms)");
+                  "Dialect overriding the profile's: rs274, rs274-m7m9, fanuc-ms, or a post-processor "
+                  "dialect (generic, plasma-thc, a dialect JSON file) to read a program written with it");
   app->add_flag("--interpolate", opt->interpolate, "Blend the two neighbouring thicknesses linearly");
   app->add_flag("--json", opt->json, "Print JSON");
   out.push_back({app, [opt] { return run_estimate(*opt); }});

@@ -4,6 +4,7 @@
 
 #include <charconv>
 #include <cstddef>
+#include <string>
 #include <string_view>
 
 namespace cutroute::nc::detail {
@@ -148,6 +149,31 @@ ScanResult scan_block(std::string_view line, OnWord&& on_word) {
     on_word(static_cast<const Word&>(w));
   }
   return r;
+}
+
+// What a failed scan_block() found, as a message naming the column ("" when it did not fail).
+inline std::string scan_message(const ScanResult& s) {
+  const std::string col = " (column " + std::to_string(s.column) + ")";
+  switch (s.error) {
+    case ScanError::unclosed_comment:
+      return "comment '(' is not closed on its line" + col;
+    case ScanError::missing_number:
+      return std::string("word ") + s.letter + " has no number" + col;
+    case ScanError::malformed_number:
+      return std::string("malformed number after ") + s.letter + col;
+    case ScanError::number_out_of_range:
+      return std::string("number after ") + s.letter + " beyond +-1e9" + col;
+    case ScanError::unsupported_character: {
+      std::string c = (s.character >= 32 && s.character < 127)
+                          ? std::string(1, s.character)
+                          : "\\x" + std::to_string(static_cast<unsigned char>(s.character));
+      return "unsupported character '" + c + "'" + col +
+             ": parameters, expressions and other extensions are not read";
+    }
+    case ScanError::none:
+      break;
+  }
+  return {};
 }
 
 }  // namespace cutroute::nc::detail

@@ -205,29 +205,7 @@ class Reader {
     return d;
   }
 
-  Diagnostic scan_error(const detail::ScanResult& s) const {
-    const std::string col = " (column " + std::to_string(s.column) + ")";
-    switch (s.error) {
-      case detail::ScanError::unclosed_comment:
-        return error("comment '(' is not closed on its line" + col);
-      case detail::ScanError::missing_number:
-        return error(std::string("word ") + s.letter + " has no number" + col);
-      case detail::ScanError::malformed_number:
-        return error(std::string("malformed number after ") + s.letter + col);
-      case detail::ScanError::number_out_of_range:
-        return error(std::string("number after ") + s.letter + " beyond +-1e9" + col);
-      case detail::ScanError::unsupported_character: {
-        std::string c = (s.character >= 32 && s.character < 127)
-                            ? std::string(1, s.character)
-                            : "\\x" + std::to_string(static_cast<unsigned char>(s.character));
-        return error("unsupported character '" + c + "'" + col +
-                     ": parameters, expressions and other extensions are not read");
-      }
-      case detail::ScanError::none:
-        break;
-    }
-    return {};
-  }
+  Diagnostic scan_error(const detail::ScanResult& s) const { return error(detail::scan_message(s)); }
 
   // Executes one block in RS274/NGC order: F, beam M codes, dwell, units, plane, distance
   // modes, motion, then program end.
@@ -303,7 +281,8 @@ class Reader {
         repierce_ = false;
       } else if (m == 2 || m == 30) {
         end = true;
-      } else if (!(m == 0 || m == 1 || m == 3 || m == 4 || m == 5 || m == 6 || m == 7 || m == 8 || m == 9)) {
+      } else if (!(m == 0 || m == 1 || m == 3 || m == 4 || m == 5 || m == 6 || m == 7 || m == 8 || m == 9) &&
+                 !opt_.dialect.is_inert(m)) {
         warn(line_no_, "unknown word M" + std::to_string(m) + " ignored");
       }
     }

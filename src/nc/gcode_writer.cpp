@@ -61,11 +61,8 @@ class Emitter {
   }
 
   void codes(const std::vector<std::string>& lines, double pierce_s, double feed) {
-    for (std::string line : lines) {
-      replace(line, "{pierce_s}", format_fixed(pierce_s, 3));
-      replace(line, "{feed}", format_fixed(feed * scale_, d_.feed_decimals));
-      block(line);
-    }
+    for (const std::string& line : lines)
+      block(fill_placeholders(line, format_fixed(pierce_s, 3), format_fixed(feed * scale_, d_.feed_decimals)));
   }
 
   // Rounds a point to the output resolution (in mm).
@@ -192,9 +189,6 @@ class Emitter {
   }
 
  private:
-  static void replace(std::string& s, const std::string& what, const std::string& with) {
-    for (auto p = s.find(what); p != std::string::npos; p = s.find(what, p + with.size())) s.replace(p, what.size(), with);
-  }
   void coord(std::string& s, double mm) const { append_fixed(s, mm * scale_, d_.decimals); }
 
   const PostDialect& d_;

@@ -1,15 +1,19 @@
 #include <cutroute/nc/post_dialect.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <limits>
-#include <type_traits>
 #include <set>
+#include <type_traits>
 
 #include <nlohmann/json.hpp>
 
 #include <cutroute/core/version.hpp>
 #include <cutroute/io/output_file.hpp>
+
+#include "nc/block_scanner.hpp"
 
 namespace cutroute::nc {
 namespace {
@@ -56,6 +60,7 @@ Result<PostDialect> load_post_dialect(const std::string& path) {
   }
   if (!j.is_object()) return make_error("a dialect file holds one JSON object", path);
   PostDialect d;
+  d.file = path;
   std::set<std::string> seen;
   std::string arc = "ij", comments = "paren";
   try {
@@ -121,10 +126,101 @@ Result<PostDialect> find_post_dialect(const std::string& name_or_path) {
   const std::string builtin = std::string(data_dir()) + "/dialects/" + name_or_path + ".json";
   if (std::filesystem::is_regular_file(builtin, ec)) return load_post_dialect(builtin);
   std::string names;
-  for (const auto& e : std::filesystem::directory_iterator(std::string(data_dir()) + "/dialects", ec)) {
-    if (e.path().extension() == ".json") names += (names.empty() ? "" : ", ") + e.path().stem().string();
-  }
+  for (const auto& n : post_dialect_names()) names += (names.empty() ? "" : ", ") + n;
   return make_error("unknown dialect '" + name_or_path + "' (built in: " + names + "; or give a JSON file)");
+}
+
+std::string fill_placeholders(std::string line, const std::string& pierce_s, const std::string& feed) {
+  const auto replace = [&line](const std::string& what, const std::string& with) {
+    for (auto p = line.find(what); p != std::string::npos; p = line.find(what, p + with.size()))
+      line.replace(p, what.size(), with);
+  };
+  replace("{pierce_s}", pierce_s);
+  replace("{feed}", feed);
+  return line;
+}
+
+std::vector<std::string> post_dialect_names() {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(std::string(data_dir()) + "/dialects", ec)) {
+    if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+namespace {
+
+// A problem of `post` as a reader dialect: names the file, or the dialect when made in code.
+Diagnostic reader_error(const PostDialect& post, const std::string& message) {
+  return make_error(post.file.empty() ? "dialect '" + post.name + "': " + message : message, post.file);
+}
+
+// The M codes written by the lines of one dialect field, in order, with the writer's
+// placeholders standing for a number.
+Result<std::vector<int>> m_codes(const PostDialect& post, const char* field,
+                                 const std::vector<std::string>& lines) {
+  std::vector<int> codes;
+  for (const std::string& written : lines) {
+    const std::string line = fill_placeholders(written, "1", "1");
+    std::string bad;
+    const auto scan = detail::scan_block(line, [&](const detail::Word& w) {
+      if (w.letter != 'M' || !bad.empty()) return;
+      const double r = std::round(w.value);
+      if (r != w.value || r < 0 || r > 99999)
+        bad = "an M code is a whole number 0..99999";
+      else
+        codes.push_back(static_cast<int>(r));
+    });
+    if (scan.error != detail::ScanError::none) bad = detail::scan_message(scan);
+    if (!bad.empty())
+      return reader_error(post, "dialect field '" + std::string(field) + "': line '" + written +
+                                    "' cannot be read back: " + bad);
+  }
+  return codes;
+}
+
+}  // namespace
+
+Result<Dialect> reader_dialect(const PostDialect& post) {
+  auto on = m_codes(post, "beam_on", post.beam_on);
+  if (!on) return on.error();
+  auto off = m_codes(post, "beam_off", post.beam_off);
+  if (!off) return off.error();
+  Dialect d;
+  d.name = post.name;
+  d.beam_on = std::move(*on);
+  d.beam_off = std::move(*off);
+  d.dwell_p_unit = DwellUnit::seconds;  // {pierce_s} is written in seconds; no other dwell placeholder exists
+  if (d.beam_on.empty())
+    return reader_error(
+        post, "dialect field 'beam_on' writes no M code: a reader cannot tell where cutting starts");
+  for (const auto& [field, codes] : {std::pair{"beam_on", &d.beam_on}, std::pair{"beam_off", &d.beam_off}}) {
+    for (int m : *codes)
+      if (fixed_meaning_m(m))
+        return reader_error(post, "dialect field '" + std::string(field) + "' writes M" + std::to_string(m) +
+                                      ", which has a fixed meaning and cannot switch the beam");
+  }
+  for (int m : d.beam_on)
+    if (d.switches_off(m))
+      return reader_error(post, "dialect fields 'beam_on' and 'beam_off' both write M" + std::to_string(m));
+
+  const std::pair<const char*, std::vector<std::string>> others[] = {
+      {"header", post.header},           {"footer", post.footer},       {"pierce", post.pierce},
+      {"thc_on", post.thc_on},           {"thc_off", post.thc_off},     {"kerf_left", {post.kerf_left}},
+      {"kerf_right", {post.kerf_right}}, {"kerf_off", {post.kerf_off}}, {"program_end", {post.program_end}}};
+  for (const auto& [field, lines] : others) {
+    auto codes = m_codes(post, field, lines);
+    if (!codes) return codes.error();
+    for (int m : *codes)
+      if (!fixed_meaning_m(m) && !d.switches_on(m) && !d.switches_off(m)) d.inert.push_back(m);
+  }
+  for (auto* codes : {&d.beam_on, &d.beam_off, &d.inert}) {
+    std::sort(codes->begin(), codes->end());
+    codes->erase(std::unique(codes->begin(), codes->end()), codes->end());
+  }
+  return d;
 }
 
 }  // namespace cutroute::nc

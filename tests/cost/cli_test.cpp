@@ -1,12 +1,16 @@
 // `cutroute speed` and `cutroute estimate` end to end: JSON field names, exit codes, messages.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
+#include <cutroute/core/version.hpp>
 #include <cutroute/cost/machine_profile.hpp>
 
 #include "support/paths.hpp"
@@ -128,6 +132,46 @@ TEST(CliEstimate, MachineProfileOptionAndErrors) {
   EXPECT_EQ(d.exit_code, 2);
   EXPECT_NE(d.err.find("field dialect: unknown G-code dialect 'sinumerik'"), std::string::npos) << d.err;
   std::filesystem::remove(path);
+}
+
+// A program `optimize --dialect plasma-thc` wrote is read by `estimate --dialect plasma-thc` as it
+// was written: the torch-height outputs M64/M65 at every contour are known codes, not warnings.
+TEST(CliEstimate, ReadsAProgramWithThePostDialectThatWroteIt) {
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("cutroute-cli-thc-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto prog = (dir / "slots.ngc").string();
+  const auto w = cli("optimize " + test::test_data("dxf/slots_random_order.dxf") + " -o " + prog +
+                     " --dialect plasma-thc --time-limit 0.2 --quiet");
+  ASSERT_EQ(w.exit_code, 0) << w.err;
+  std::size_t torch_on = 0;
+  {
+    std::ifstream in(prog);
+    for (std::string line; std::getline(in, line);) torch_on += line.find("M3 S1") != std::string::npos;
+  }
+  ASSERT_GT(torch_on, 0u);
+
+  const auto r = cli("estimate " + prog + " --dialect plasma-thc --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("unknown word"), std::string::npos) << r.err;
+  const auto j = json::parse(r.out);
+  EXPECT_EQ(j["dialect"], "plasma-thc");
+  EXPECT_EQ(j["pierces"], torch_on);
+  EXPECT_TRUE(j["warnings"].empty()) << j["warnings"];
+  // The same program with the profile's rs274 reader warns about the outputs it does not know.
+  const auto plain = cli("estimate " + prog);
+  EXPECT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_NE(plain.err.find("unknown word M64 ignored"), std::string::npos) << plain.err;
+  // A post dialect given as a JSON file reads the same.
+  const auto by_path = cli_json("estimate " + prog + " --dialect " + std::string(data_dir()) +
+                                "/dialects/plasma-thc.json --json");
+  EXPECT_EQ(by_path["cut_length_mm"], j["cut_length_mm"]);
+
+  const auto bad = cli("estimate " + prog + " --dialect nosuch");
+  EXPECT_EQ(bad.exit_code, 2);
+  for (const char* listed : {"unknown --dialect 'nosuch'", "rs274-m7m9", "fanuc-ms", "generic", "plasma-thc"})
+    EXPECT_NE(bad.err.find(listed), std::string::npos) << listed << ": " << bad.err;
+  std::filesystem::remove_all(dir);
 }
 
 TEST(CliEstimate, MaterialAndThicknessGoTogether) {

@@ -19,7 +19,8 @@ namespace cutroute::nc {
 //   error); G20/G21; G90/G91; G40/G41/G42 (noted: lengths are of the programmed path, no
 //   compensation); G49, G54..G59, G61, G61.1, G64, G80, G94 accepted without effect; F S T N
 //   words; M3/M4/M5/M7/M8/M9 with the beam codes taken from the dialect; M0 M1 M6; M2/M30 end
-//   the program; comments ( ) and ;; '%' lines; block delete '/'; any letter case; LF, CRLF, CR.
+//   the program; the dialect's inert M codes (Dialect::inert) without effect; comments ( ) and
+//   ;; '%' lines; block delete '/'; any letter case; LF, CRLF, CR.
 // Unknown words or codes: a warning with the line number (a block with an unknown G code is not
 // moved). Malformed numbers, arcs whose end is not on the circle, missing program end: an error.
 // One executed XY move, recorded when ReadOptions::moves is set (for motion models and tests).

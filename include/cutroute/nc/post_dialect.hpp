@@ -5,6 +5,7 @@
 #include <vector>
 
 #include <cutroute/core/result.hpp>
+#include <cutroute/nc/dialect.hpp>
 
 namespace cutroute::nc {
 
@@ -15,6 +16,7 @@ enum class CommentStyle { paren, semicolon, none };
 // Code lists may contain the placeholders {pierce_s} (pierce dwell [s]) and {feed} (feed [mm/min
 // or in/min]), replaced when written.
 struct PostDialect {
+  std::string file;  // the JSON file it came from (messages); "" if made in code
   std::string name = "generic";
   std::string description;
   std::string units = "mm";                  // "mm" (G21) or "in" (G20): coordinates converted on output
@@ -50,5 +52,20 @@ struct PostDialect {
 Result<PostDialect> load_post_dialect(const std::string& path);
 // "generic", "plasma-thc", ... from <data_dir>/dialects/<name>.json, or a file path.
 Result<PostDialect> find_post_dialect(const std::string& name_or_path);
+// `line` with the placeholders {pierce_s} and {feed} replaced by the given texts (as written).
+std::string fill_placeholders(std::string line, const std::string& pierce_s, const std::string& feed);
+// The names of the shipped dialects (<data_dir>/dialects/*.json), sorted.
+std::vector<std::string> post_dialect_names();
+
+// The reader dialect that reads what `post` writes, so that `cutroute estimate` understands the
+// programs `cutroute optimize` wrote with it:
+//   beam on / off  the M words of the beam_on / beam_off lines;
+//   inert          every other M word the dialect writes (header, footer, pierce, thc_on,
+//                  thc_off, kerf and program-end lines: torch-height outputs, gas valves ...),
+//                  except the codes with a fixed meaning (fixed_meaning_m(): M0 M1 M2 M6 M30);
+//   G4 P unit      seconds: the writer's one dwell placeholder, {pierce_s}, is in seconds.
+// Errors (a line that is no G-code block, no M code in beam_on, a beam code with a fixed meaning
+// or in both beam_on and beam_off) name the dialect's file and the field.
+Result<Dialect> reader_dialect(const PostDialect& post);
 
 }  // namespace cutroute::nc

@@ -116,8 +116,11 @@ bool PartObstacles::blocks(int part, Vec2 a, Vec2 b) const {
 
 std::vector<int> PartObstacles::crossed(Vec2 a, Vec2 b) const {
   std::vector<int> out;
-  for (int k = 0; k < part_count(); ++k)
-    if (crosses(k, a, b)) out.push_back(k);
+  index_.visit(box_of(a, b), [&](std::uint32_t i) {
+    if (crosses(static_cast<int>(i), a, b)) out.push_back(static_cast<int>(i));
+    return true;
+  });
+  std::sort(out.begin(), out.end());
   return out;
 }
 

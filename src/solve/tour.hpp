@@ -108,6 +108,10 @@ class Ops {
   // The repair step's insertion: like best_insertion, but on long routes without precedence only
   // next to c's neighbour clusters (O(24 k) instead of O(L k)); the whole route when few are present.
   Insertion best_repair_insertion(const Tour& t, ClusterId c, double noise, Rng& rng) const;
+  // The cheapest of the positions next to c's candidate neighbours that precedence allows and the
+  // two ends of its window: O(24 k) instead of best_insertion's O(L k), for a construction that
+  // has run out of time.
+  Insertion nearby_insertion(const Tour& t, ClusterId c) const;
   void insert(Tour& t, const Insertion& ins) const;
   Cost removal_gain(const Tour& t, int i) const;
   void remove_at(Tour& t, int i) const;

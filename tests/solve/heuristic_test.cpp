@@ -105,20 +105,19 @@ TEST(Heuristic, CancelledTokenStillReturnsAValidRoute) {
   EXPECT_TRUE(s.stats.stopped_by_limit);
 }
 
-// A run stopped before its first route inserts each cluster, once the route is longer than a few
-// hundred, only next to its candidate neighbours (O(24 k), not O(L k)): still every cluster once
-// and every pair kept. On compact clusters (one node each, like small parts) it is about as cheap
-// as the full cheapest insertion (measured 0.94-1.03 of it here; 10 000 circles: the same T_cut).
-// Clusters whose nodes lie far apart fare worse (1.4-1.8 here), a price paid only when the run
-// is out of time anyway.
+// A run stopped before its first route inserts each cluster, once the route is longer than 2 048,
+// only next to its candidate neighbours (O(24 k), not O(L k)): still every cluster once and every
+// pair kept. On compact clusters (one node each, like small parts) it is about as cheap as the
+// full cheapest insertion (10 000 circles: the same T_cut). Clusters whose nodes lie far apart
+// fare worse, a price paid only when the run is out of time anyway: only validity is checked there.
 TEST(Heuristic, StoppedConstructionIsValidAndCloseToTheFullOne) {
-  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
     Rng rng(seed);
     test::RandomSpec spec;
-    spec.clusters = 1000;
-    spec.max_nodes = seed <= 6 ? 1 : 4;
+    spec.clusters = 2600;
+    spec.max_nodes = seed <= 3 ? 1 : 2;
     spec.closed = seed % 2 == 0;
-    spec.precedence_pairs = seed <= 4 || seed >= 7 ? 200 : 0;
+    spec.precedence_pairs = seed == 2 ? 0 : 500;
     const Problem p = test::random_problem(spec, rng);
     StopToken stop;
     stop.request_stop();
@@ -132,7 +131,7 @@ TEST(Heuristic, StoppedConstructionIsValidAndCloseToTheFullOne) {
     if (spec.max_nodes > 1) continue;
     Rng crng(seed);
     const double full = static_cast<double>(route_cost(p, construct_route(p, crng)));
-    EXPECT_LE(static_cast<double>(s.cost), 1.15 * full) << "seed " << seed;
+    EXPECT_LE(static_cast<double>(s.cost), 1.1 * full) << "seed " << seed;  // measured 0.965-1.014
   }
 }
 

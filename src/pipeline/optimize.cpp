@@ -305,6 +305,7 @@ struct Alternative {
   nlohmann::json leads_json;
   nlohmann::json rules_json;  // shop rules: the history-dependent re-ordering's search and effects
   int rigid_corners = 0;      // shop rules: outer contours entered at a rigid corner
+  StopToken refine_stop;      // shop rules: where the tip-up refinements of its lead types stop
   StopToken detour_stop;      // shop rules: where the tip-up detours of its programs stop
 };
 
@@ -337,13 +338,16 @@ Result<Alternative> solve_alternative(const model::Nest& nest, const model::CutJ
   lap("sequence");
 
   // 4. Continuous refinement of the entries for the fixed order.
+  // With tip-up the refinement asks spatial queries for every price (3 010 circles: 0.3 s instead
+  // of 0.1 s), so it keeps to the limit like the detours do (RunLimit::detours()); the refinements
+  // of all the alternative's lead types share one such deadline (each taking its own tenth of the
+  // limit, 10 000 circles with every rule on ended at 9.9 s under --time-limit 5). Without rules it
+  // runs to its end, as before.
+  alt.refine_stop = run.detours(stop);
   if (o.refine_entries) {
     if (progress) progress({"refine", -1, {}});
-    // With tip-up the refinement asks spatial queries for every price (3 010 circles: 0.3 s instead
-    // of 0.1 s), so it keeps to the limit like the detours do (RunLimit::detours()); without rules
-    // it is as cheap as before and runs to its end.
     const auto penalty = rules::tip_up_entry_penalty(nest, seq, o.rules);
-    alt.moved = refine_entries(planner, s.prices, s.start, s.start, seq, 2, penalty ? run.detours(stop) : stop, penalty);
+    alt.moved = refine_entries(planner, s.prices, s.start, s.start, seq, 2, penalty ? alt.refine_stop : stop, penalty);
   }
   alt.rigid_corners = rules::place_rigid_entries(nest, job, seq, o.rules);  // shop rules: part rigidity
   lap("refine");
@@ -366,7 +370,7 @@ Result<Alternative> solve_alternative(const model::Nest& nest, const model::CutJ
 // passed over freed parts 73-77 times where the refined default-lead route did 42 times; refined
 // again under the rule, 8-10 times).
 void compare_leads(const model::Nest& nest, const model::EntryPlanner& planner, const Setup& s, const OptimizeOptions& o,
-                   Alternative& alt, const RunLimit& run, const StopToken& stop) {
+                   Alternative& alt) {
   auto& seq = alt.sequence;
   for (model::LeadKind kind : {model::LeadKind::line, model::LeadKind::arc}) {
     if (kind == s.entries.lead.in_kind) continue;
@@ -390,7 +394,7 @@ void compare_leads(const model::Nest& nest, const model::EntryPlanner& planner, 
       }
     }
     if (const auto penalty = rules::tip_up_entry_penalty(nest, alt_seq, o.rules); penalty && o.refine_entries)
-      refine_entries(other, s.prices, s.start, s.start, alt_seq, 2, run.detours(stop), penalty);
+      refine_entries(other, s.prices, s.start, s.start, alt_seq, 2, alt.refine_stop, penalty);
     Evaluated ev = evaluate(nest, alt_seq, s, o, alt.detour_stop);
     alt.leads_json.push_back(lead_json(model::to_string(kind), ev));
     if (better(ev, alt.best)) {
@@ -518,7 +522,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     if (!alt) return alt.error();
     if (o.compare_leads) {
       const auto t_leads = Clock::now();
-      compare_leads(cut_nest, planner, s, o, *alt, run, stop);
+      compare_leads(cut_nest, planner, s, o, *alt);
       alt_timing["leads"] = std::chrono::duration<double>(Clock::now() - t_leads).count();
     }
     post_s = alt_timing.value("refine", 0.0) + alt_timing.value("evaluate", 0.0) + alt_timing.value("leads", 0.0);

@@ -261,22 +261,29 @@ nlohmann::json effects_json(const Effects& fx, const ShopRules& r) {
   return j;
 }
 
-// The centre of the material still uncut after position i of the sequence: the mean centre of the
-// parts whose outer contour is cut later; the sheet's (else the nest's) centre when none is.
-Vec2 uncut_centre(const model::Nest& nest, const std::vector<model::EntryCandidate>& seq, std::size_t i) {
+// The centre of the material still uncut after each position of the sequence: the mean centre of
+// the parts whose outer contour is cut later; the sheet's (else the nest's) centre when none is.
+// One pass from the end (it was a scan per outer contour, O(m^2): about 0.5 s on 10 000 circles).
+std::vector<Vec2> uncut_centres(const model::Nest& nest, const std::vector<model::EntryCandidate>& seq) {
+  Vec2 fallback;
+  if (nest.sheet) {
+    fallback = nest.contours[*nest.sheet].box.center();
+  } else {
+    geometry::Box all;
+    for (const auto& c : nest.contours) all.add(c.box);
+    fallback = all.center();
+  }
+  std::vector<Vec2> out(seq.size(), fallback);
   Vec2 sum{0, 0};
   int n = 0;
-  for (std::size_t k = i + 1; k < seq.size(); ++k) {
-    const auto& c = nest.contours[seq[k].contour];
+  for (std::size_t i = seq.size(); i-- > 0;) {
+    if (n > 0) out[i] = sum / n;
+    const auto& c = nest.contours[seq[i].contour];
     if (c.role != model::ContourRole::outer) continue;
     sum = sum + c.box.center();
     ++n;
   }
-  if (n > 0) return sum / n;
-  if (nest.sheet) return nest.contours[*nest.sheet].box.center();
-  geometry::Box all;
-  for (const auto& c : nest.contours) all.add(c.box);
-  return all.center();
+  return out;
 }
 
 }  // namespace
@@ -372,15 +379,19 @@ int place_rigid_entries(const model::Nest& nest, const model::CutJob& job, std::
                         const ShopRules& r) {
   if (!r.part_rigidity) return 0;
   int corners = 0;
+  // The first one-contour segment of each contour (a search through the segments per outer
+  // contour was O(m^2) too).
+  std::vector<int> segment_of(nest.contours.size(), -1);
+  for (std::size_t j = job.segments.size(); j-- > 0;)
+    if (job.segments[j].contours.size() == 1) segment_of[job.segments[j].contours.front().index()] = static_cast<int>(j);
+  const std::vector<Vec2> centres = uncut_centres(nest, seq);
   for (std::size_t i = 0; i < seq.size(); ++i) {
     if (nest.contours[seq[i].contour].role != model::ContourRole::outer) continue;
-    const auto it = std::find_if(job.segments.begin(), job.segments.end(), [&](const auto& ce) {
-      return ce.contours.size() == 1 && ce.contours.front() == seq[i].contour;
-    });
-    if (it == job.segments.end()) continue;
-    const Vec2 target = uncut_centre(nest, seq, i);
+    const int j = segment_of[seq[i].contour.index()];
+    if (j < 0) continue;
+    const Vec2 target = centres[i];
     const model::EntryCandidate* best = nullptr;
-    for (const auto& e : it->candidates) {
+    for (const auto& e : job.segments[static_cast<std::size_t>(j)].candidates) {
       if (!e.corner || e.clockwise != seq[i].clockwise) continue;
       if (!best || geometry::distance(e.point, target) < geometry::distance(best->point, target) - tol::kSamePointMm) best = &e;
     }

@@ -226,9 +226,7 @@ DetourStats route_rapids_around_freed_parts(Toolpath& path, const model::Nest& n
   bool stopped = false;  // stop requests stay requested: read the clock once per rapid until then
   auto route = [&](Vec2 from, Vec2 to, std::vector<Vec2>& via) {
     via.clear();
-    bool over = false;
-    for (int k = 0; k < obstacles.part_count() && !over; ++k) over = freed[static_cast<std::size_t>(k)] && obstacles.crosses(k, from, to);
-    if (!over) return;
+    if (!obstacles.crosses_any(from, to, [&](int k) { return freed[static_cast<std::size_t>(k)] != 0; })) return;
     ++st.rapids_over_freed;
     stopped = stopped || stop.stop_requested();
     auto d = stopped ? std::nullopt : obstacles.detour(from, to, freed, &tests_left, &stop);

@@ -246,8 +246,9 @@ class Laps {
 //    take there. The detours of an alternative's programs (its lead types) share one deadline.
 // With tip-up the entry refinement (which then prices the rule, and is no longer cheap on large
 // nests) keeps to the limit the same way as the detours. Rapids whose detour was not found in
-// time are left straight, counted in the report and warned about. Without a limit nothing changes; without these rules the solver gets what it got before.
-// A stop request (SIGINT/SIGTERM) ends both at once, like the solver and the refinement.
+// time are left straight, counted in the report and warned about. Without a limit nothing
+// changes; without these rules the solver gets what it got before. A stop request
+// (SIGINT/SIGTERM) ends both at once, like the solver and the refinement.
 class RunLimit {
  public:
   RunLimit(const OptimizeOptions& o, Clock::time_point begin) : limit_s_(o.time_limit_s), shares_(rules::time_shares(o.rules)) {

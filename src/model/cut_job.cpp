@@ -158,6 +158,18 @@ struct PlannerGeometry {
     }
     index = geometry::StaticSpatialIndex(boxes);
   }
+  // The drawn contours (EntryOptions::drawn), by the same ids; empty without one.
+  PlannerGeometry(const Nest& n, const Nest* drawn) : PlannerGeometry(n) {
+    if (!drawn) return;
+    std::vector<Box> boxes;
+    for (const auto& c : drawn->contours) {
+      boxes.push_back(c.box);
+      drawn_sets.push_back(geometry::make_segment_set(c.source.contour));
+    }
+    drawn_index = geometry::StaticSpatialIndex(boxes);
+  }
+  geometry::StaticSpatialIndex drawn_index;
+  std::vector<geometry::SegmentSet> drawn_sets;
 };
 
 struct EntryPlanner::Impl {
@@ -172,12 +184,33 @@ struct EntryPlanner::Impl {
   const std::vector<geometry::SegmentSet>& sets;
   const std::vector<detail::Measured>& measured_stored;
   const std::vector<detail::Measured>& measured_reversed;
-  mutable std::vector<std::uint32_t> scratch;
+  double drawn_clearance;  // from the drawn contours (EntryOptions::drawn)
+  mutable std::vector<std::uint32_t> scratch, drawn_scratch;
 
   Impl(const Nest& n, const EntryOptions& o, std::shared_ptr<const PlannerGeometry> g)
       : nest(n), opt(o), clearance(o.clearance_mm >= 0 ? o.clearance_mm : o.kerf_mm + 1.0), geo(std::move(g)),
         index(geo->index), stored_cw(geo->stored_cw), length(geo->length), reversed(geo->reversed), sets(geo->sets),
-        measured_stored(geo->measured_stored), measured_reversed(geo->measured_reversed) {}
+        measured_stored(geo->measured_stored), measured_reversed(geo->measured_reversed),
+        drawn_clearance(std::max(0.0, clearance - 0.5 * o.kerf_mm)) {}
+
+  // Does the open path (or point) keep drawn_clearance from every drawn contour but `own_a` and
+  // `own_b`? Always true without drawn contours.
+  bool drawn_clear(const geometry::SegmentSet& path, std::int64_t own_a, std::int64_t own_b = -1) const {
+    if (geo->drawn_sets.empty()) return true;
+    geo->drawn_index.query(path.box.inflated(drawn_clearance), drawn_scratch);
+    for (auto i : drawn_scratch) {
+      if (i == own_a || i == own_b) continue;
+      if (geometry::count_close_segment_pairs(path, geo->drawn_sets[i], drawn_clearance, 1) > 0) return false;
+    }
+    return true;
+  }
+  bool drawn_clear(Vec2 p, std::int64_t own) const {
+    if (geo->drawn_sets.empty()) return true;
+    geo->drawn_index.query(Box{p.x, p.y, p.x, p.y}.inflated(drawn_clearance), drawn_scratch);
+    for (auto i : drawn_scratch)
+      if (i != own && closer_than(geo->drawn_sets[i], p, drawn_clearance)) return false;
+    return true;
+  }
 
   const NestContour& nc(ContourId id) const { return nest.contours[id]; }
 
@@ -226,6 +259,7 @@ struct EntryPlanner::Impl {
       if (i == own.index()) continue;
       if (geometry::count_close_segment_pairs(lead, sets[i], clearance, 1) > 0) return false;
     }
+    if (!drawn_clear(lead, own.index())) return false;
     // Own contour: trim the touching end by a little, then no contact at all is allowed.
     const double len = geometry::length(path);
     const double trim = std::min(0.05 * len, 0.1);
@@ -259,7 +293,7 @@ struct EntryPlanner::Impl {
       const double need = i == own.index() ? own_min : clearance;
       if (closer_than(sets[i], p, need)) return false;
     }
-    return true;
+    return drawn_clear(p, own.index());
   }
 
   // Lead-in into p with unit tangent t (travel) and unit scrap normal n; `left` = n is the left normal.
@@ -435,7 +469,7 @@ struct EntryPlanner::Impl {
 };
 
 EntryPlanner::EntryPlanner(const Nest& nest, const EntryOptions& options)
-    : impl_(std::make_unique<Impl>(nest, options, std::make_shared<const PlannerGeometry>(nest))) {}
+    : impl_(std::make_unique<Impl>(nest, options, std::make_shared<const PlannerGeometry>(nest, options.drawn))) {}
 EntryPlanner::EntryPlanner(const EntryPlanner& same_nest, const EntryOptions& options)
     : impl_(std::make_unique<Impl>(same_nest.impl_->nest, options, same_nest.impl_->geo)) {}
 EntryPlanner::~EntryPlanner() = default;
@@ -485,6 +519,7 @@ bool EntryPlanner::bridge_clear(const geometry::Contour& path, ContourId from, C
     const double need = end_contour ? tol::kSamePointMm : I.clearance;
     if (geometry::count_close_segment_pairs(set, I.sets[i], need, 1) > 0) return false;
   }
+  if (!I.drawn_clear(set, from.index(), to.index())) return false;
   return I.in_scrap(detail::at_length(path, 0.5 * len).point);
 }
 

@@ -441,6 +441,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
       return *e;
     }
     for (const auto& d : kerf.diagnostics) result.diagnostics.push_back(d);
+    s.entries.drawn = &nest;  // leads keep clear of the drawing where toolpaths cannot follow it
     lap("kerf");
   }
   const model::Nest& cut_nest = o.kerf_mode == nc::KerfMode::cam ? kerf.nest : nest;

@@ -10,6 +10,7 @@
 
 #include <cutroute/core/number_format.hpp>
 #include <cutroute/io/nest_loader.hpp>
+#include <cutroute/model/cut_job.hpp>
 #include <cutroute/model/kerf_offset.hpp>
 
 #include "optimize_run.hpp"
@@ -213,6 +214,69 @@ TEST(KerfCam, PartsCloserThanTheKerfAreRefusedUnlessAllowed) {
   EXPECT_EQ(overlaps, 1);
   expect_cam_program(dxf, r, 0.3);
   fs::remove_all(dir);
+}
+
+// Two holes that touch at a point, as in d2g_DRAAK: a square hole's corner and the tip of a 4°
+// wedge. The wedge's toolpath stops 2.15 mm short of its tip (kerf/2 / sin 2°), so a lead into
+// the square's corner keeps the clearance from every toolpath and still passes 0.25 mm from the
+// wedge's drawn tip. With the drawing given (what `optimize --kerf-mode cam` does), every entry
+// the planner admits keeps clearance - kerf/2 from the other drawn contours, measured here
+// point by point; without it, the corner entry is admitted (the case this guards).
+TEST(KerfCam, LeadsKeepClearOfDrawnTipsTheToolpathCannotReach) {
+  const auto dir = temp_dir("cam-tip");
+  const auto dxf = (dir / "tip.dxf").string();
+  DxfBuilder b;
+  b.insunits(4);
+  b.lwpolyline({{{-30, -30}, 0}, {{30, -30}, 0}, {{30, 30}, 0}, {{-30, 30}, 0}}, true);  // part
+  b.lwpolyline({{{-10, -10}, 0}, {{0, -10}, 0}, {{0, 0}, 0}, {{-10, 0}, 0}}, true);      // square hole
+  const double half = 2.0 * std::numbers::pi / 180, len = 15;
+  const double a0 = std::numbers::pi / 4 - half, a1 = std::numbers::pi / 4 + half;
+  b.lwpolyline({{{0, 0}, 0}, {{len * std::cos(a0), len * std::sin(a0)}, 0}, {{len * std::cos(a1), len * std::sin(a1)}, 0}}, true);
+  write(dxf, b.str());
+  auto loaded = io::load_nest(dxf, io::NestLoadOptions{});
+  ASSERT_TRUE(loaded.ok());
+  const model::Nest& drawn = loaded->nest;
+  const double kerf = 0.15;
+  const auto offset = model::offset_for_kerf(drawn, kerf);
+  for (const auto& d : offset.diagnostics) ASSERT_NE(d.severity, Severity::error) << d.message;
+  // Which contour is the square hole, which the wedge.
+  model::ContourId square, wedge;
+  for (std::size_t i = 0; i < drawn.contours.size(); ++i) {
+    const model::ContourId id(static_cast<std::int32_t>(i));
+    if (drawn.contours[id].role != model::ContourRole::hole) continue;
+    (drawn.contours[id].area_mm2 > 50 ? square : wedge) = id;
+  }
+  ASSERT_TRUE(square.valid() && wedge.valid());
+
+  model::EntryOptions eo;
+  eo.kerf_mm = kerf;
+  eo.lead.in_length_mm = 2;
+  eo.lead.in_arc_radius_mm = 1;
+  eo.free_direction = true;
+  const double need = kerf + 1.0 - kerf / 2;  // default clearance (kerf + 1 mm) less the offset
+  // The closest any lead-in or pierce of an admitted entry of the square comes to the drawn wedge.
+  auto closest_to_wedge = [&](const model::EntryPlanner& planner) {
+    double closest = 1e9;
+    const auto& w = drawn.contours[wedge].source.contour;
+    auto measure = [&](const model::EntryCandidate& e) {
+      closest = std::min(closest, geometry::closest_point(w, e.pierce).distance);
+      const double l = geometry::length(e.lead_in);
+      for (int k = 0; k <= 50; ++k)
+        closest = std::min(closest, geometry::closest_point(w, geometry::point_at_length(e.lead_in, l * k / 50)).distance);
+    };
+    Diagnostics diags;
+    for (const auto& e : planner.candidates(square, diags)) measure(e);
+    const double total = planner.contour_length(square);
+    for (int k = 0; k < 4000; ++k)
+      for (bool cw : {false, true})
+        if (auto e = planner.entry_at(square, total * k / 4000, cw)) measure(*e);
+    return closest;
+  };
+  const model::EntryPlanner toolpaths_only(offset.nest, eo);
+  EXPECT_LT(closest_to_wedge(toolpaths_only), 0.3);  // entries next to the corner: 0.24 mm from the tip
+  eo.drawn = &drawn;
+  const model::EntryPlanner with_drawing(offset.nest, eo);
+  EXPECT_GE(closest_to_wedge(with_drawing), need - 1e-6);
 }
 
 // The checker can fail: the drawn contours (controller mode) are not a cam cut, nor is a cam cut

@@ -38,6 +38,12 @@ struct EntryOptions {
   bool free_direction = false;     // offer both directions (when the kerf side allows it)
   double corner_angle_deg = 15.0;  // a vertex whose tangent turns more than this is a corner
   double small_hole_mm = 0.0;      // holes narrower than this are pierced at their centre; 0 = auto (3 × lead)
+  // --kerf-mode cam: the drawn nest, when entries are planned on its kerf offset. Pierces, leads
+  // and bridges keep clearance − kerf/2 from its contours too: where a toolpath cannot follow the
+  // drawing (an acute inside corner, a slot narrower than the kerf) the drawn edge lies beyond
+  // the toolpath's, and a lead planned against toolpaths alone can come within a kerf of it
+  // (two holes of d2g_DRAAK touch at a point). Must outlive the planners built with it.
+  const Nest* drawn = nullptr;
 };
 
 // How a candidate's lead-in had to be compromised to be admissible.

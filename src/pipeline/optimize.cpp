@@ -237,16 +237,20 @@ class Laps {
 // tip-up detours nothing (before, both ignored the limit: 400 circles with a tip-up margin of a
 // metre took 3.6 s under --time-limit 1, 3 010 took 10 s, and SIGTERM waited for the detours).
 // With these rules on, the solver leaves them their shares of the limit (rules::time_shares(): a
-// fifth for the search, a tenth for the detours), and each stops at its own deadline:
-//  - the search (an improvement of the order) at the run's deadline less the detours' share;
+// fifth for the search, a tenth each for the tip-up refinement and the detours), and each stops
+// at its own deadline:
+//  - the search (an improvement of the order) at the run's deadline less the refinement's and
+//    the detours' shares and less the estimate of the evaluation and lead comparison after it
+//    (the estimate the solver's budget keeps): ending at the detours' share alone, it left the
+//    steps after it 0.5 s where they took 1.2 s (10 000 circles, every rule on, --time-limit 5
+//    ended at 6.2 s);
+//  - the tip-up entry refinement at the deadline less the detours' share (RunLimit::refine());
 //  - the detours at the run's deadline, but never before a tenth of the limit from their start,
 //    as the solver's own floor: they are what makes the program safe to run (a rapid over a part
 //    cut free can catch it tipped up), and a deadline already spent by an earlier step (a cut job
 //    that took long on a big nest) should not cost an ordinary nest the few milliseconds they
 //    take there. The detours of an alternative's programs (its lead types) share one deadline.
-// With tip-up the entry refinement (which then prices the rule, and is no longer cheap on large
-// nests) keeps to the limit the same way as the detours. Rapids whose detour was not found in
-// time are left straight, counted in the report and warned about. Without a limit nothing
+// Rapids whose detour was not found in time are left straight, counted in the report and warned about. Without a limit nothing
 // changes; without these rules the solver gets what it got before. A stop request
 // (SIGINT/SIGTERM) ends both at once, like the solver and the refinement.
 class RunLimit {
@@ -255,9 +259,18 @@ class RunLimit {
     if (o.time_limit_s > 0) deadline_ = begin + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.time_limit_s));
   }
   // [s] kept from each solver for the rules' steps after it.
-  double rules_reserve_s() const { return (shares_.search + shares_.detours) * limit_s_; }
+  double rules_reserve_s() const { return (shares_.search + shares_.refine + shares_.detours) * limit_s_; }
   StopToken search(const StopToken& stop) const {
-    return deadline_ ? stop.with_time_limit(seconds_left() - shares_.detours * limit_s_) : stop;
+    return deadline_ ? stop.with_time_limit(seconds_left() - (shares_.refine + shares_.detours) * limit_s_ - post_s_) : stop;
+  }
+  void set_post_estimate(double post_s) { post_s_ = post_s; }
+  // The tip-up entry refinement (of every lead type of an alternative): at the deadline less the
+  // detours' share, which the programs' evaluations need, but never before half its own share
+  // from its start (a search that ended late should not leave it nothing: on 400 circles that
+  // took the rapids over freed parts from 10 to 42).
+  StopToken refine(const StopToken& stop) const {
+    return deadline_ ? stop.with_time_limit(std::max(seconds_left() - shares_.detours * limit_s_, 0.5 * shares_.refine * limit_s_))
+                     : stop;
   }
   StopToken detours(const StopToken& stop) const {
     return deadline_ ? stop.with_time_limit(std::max(seconds_left(), 0.1 * limit_s_)) : stop;
@@ -266,6 +279,7 @@ class RunLimit {
  private:
   double seconds_left() const { return std::chrono::duration<double>(*deadline_ - Clock::now()).count(); }
   double limit_s_;
+  double post_s_ = 0.0;  // [s] refinement, evaluation and lead comparison after the search (estimate)
   rules::TimeShares shares_;
   std::optional<Clock::time_point> deadline_;
 };
@@ -333,18 +347,17 @@ Result<Alternative> solve_alternative(const model::Nest& nest, const model::CutJ
   const std::vector<solve::NodeId> route =
       o.rules.orders() ? rules::reorder(nest, job, *rp, alt.solution.route, o.rules, run.search(stop), alt.rules_json)
                        : alt.solution.route;
-  if (o.rules.orders()) alt.rules_json["route"] = rules::route_effects(nest, job, *rp, route, o.rules);
   auto& seq = alt.sequence;
   for (const auto* e : cost::route_entries(job, *rp, route)) seq.push_back(*e);
   lap("sequence");
 
   // 4. Continuous refinement of the entries for the fixed order.
   // With tip-up the refinement asks spatial queries for every price (3 010 circles: 0.3 s instead
-  // of 0.1 s), so it keeps to the limit like the detours do (RunLimit::detours()); the refinements
-  // of all the alternative's lead types share one such deadline (each taking its own tenth of the
-  // limit, 10 000 circles with every rule on ended at 9.9 s under --time-limit 5). Without rules it
-  // runs to its end, as before.
-  alt.refine_stop = run.detours(stop);
+  // of 0.1 s), so it keeps to the limit (RunLimit::refine()); the refinements of all the
+  // alternative's lead types share one deadline (each taking its own tenth of the limit, 10 000
+  // circles with every rule on ended at 9.9 s under --time-limit 5). Without rules it runs to its
+  // end, as before.
+  alt.refine_stop = run.refine(stop);
   if (o.refine_entries) {
     if (progress) progress({"refine", -1, {}});
     const auto penalty = rules::tip_up_entry_penalty(nest, seq, o.rules);
@@ -496,7 +509,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   // first alternative has been measured, its post-processing is guessed from the time the
   // standard job took (the same kind of geometric work over the same contours).
   const auto deadline = t_begin + std::chrono::duration<double>(o.time_limit_s);
-  const RunLimit run(o, t_begin);  // shop rules: their steps after the solver
+  RunLimit run(o, t_begin);  // shop rules: their steps after the solver
   double post_s = 2.0 * standard_job_s;  // [s] refinement, evaluation and lead comparison of one alternative (estimate)
   std::optional<Alternative> best;
   std::size_t chosen = 0;
@@ -515,6 +528,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
       alternatives[slot[k]] = {{"name", to_string(built[k])}, {"available", false}, {"reason", "not solved (interrupted)"}};
       continue;
     }
+    run.set_post_estimate(post_s);
     auto& alt_timing = timing[to_string(built[k])];
     auto alt = solve_alternative(cut_nest, jobs[k], planner, s, o, budget, run, stop, progress, alt_timing);
     if (!alt && best) {

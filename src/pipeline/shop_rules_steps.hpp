@@ -18,10 +18,12 @@
 namespace cutroute::pipeline::rules {
 
 // Shares of --time-limit that optimize_nest() keeps from the route solver for the rules' steps
-// after it (0 for a step that does not run with these rules): the re-ordering search (step 3) and
-// the tip-up detours of the programs (step 5). Why and how they are used: optimize.cpp, RunLimit.
+// after it (0 for a step that does not run with these rules): the re-ordering search (step 3),
+// the entry refinement under the tip-up price (step 4) and the tip-up detours of the programs
+// (step 5). Why and how they are used: optimize.cpp, RunLimit.
 struct TimeShares {
   double search = 0.0;
+  double refine = 0.0;
   double detours = 0.0;
 };
 TimeShares time_shares(const ShopRules& r);
@@ -33,15 +35,11 @@ void restrict_candidates(model::CutJob& job, const model::Nest& nest, const Shop
 // Step 3 (sequencing): the solver's route re-ordered under the history-dependent rules (heat,
 // tip-up, sheet rigidity) by solve::history_search() from three starts: the solver's route, the
 // greedy route under the rules, and (with a clamp) the route sorted along the sweep. Returns the
-// route and writes what it did into report["search"].
+// route and writes what it did into report["search"], and the rules' effects on the returned
+// route (heat pairs, rapids over freed parts, steps behind the sweep front) into report["route"].
 std::vector<solve::NodeId> reorder(const model::Nest& nest, const model::CutJob& job, const cost::RouteProblem& rp,
                                    const std::vector<solve::NodeId>& route, const ShopRules& r, const StopToken& stop,
                                    nlohmann::json& report);
-
-// The rules' effects on a route (heat pairs, rapids over freed parts, steps behind the sweep
-// front), recomputed for the report.
-nlohmann::json route_effects(const model::Nest& nest, const model::CutJob& job, const cost::RouteProblem& rp,
-                             const std::vector<solve::NodeId>& route, const ShopRules& r);
 
 // Step 4 (entry refinement): with tip-up, the price of an entry's rapids that pass over parts
 // already cut free at that point of the sequence (tip_up_weight each, freed as the program's

@@ -1,6 +1,7 @@
 // cutroute estimate: cutting time (eq. 1 and eq. 10) and cost (eq. 3) of a G-code program.
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <numbers>
 #include <optional>
@@ -59,13 +60,28 @@ Result<nc::Dialect> dialect_named(const std::string& name) {
       "; post-processor dialects: " + joined(nc::post_dialect_names()) + "; or a dialect JSON file)");
 }
 
-// The profile's dialect (a built-in name, or explicit codes) as reader options.
+// The profile's dialect (a reader dialect name, a post-processor dialect's name or JSON file, or
+// explicit codes) as reader options. A relative file path is read from the profile's folder.
 Result<nc::Dialect> dialect_of(const cost::MachineProfile& p, const std::string& override_name) {
   if (!override_name.empty()) return dialect_named(override_name);
   const auto& d = p.dialect;
   if (d.beam_on.empty()) {
     auto b = nc::builtin_dialect(d.name);
-    if (!b) return make_error("field dialect: " + b.error().message, p.file);
+    if (!b) {
+      std::string name = d.name;
+      const std::filesystem::path beside = std::filesystem::path(p.file).parent_path() / name;
+      std::error_code ec;
+      if (!p.file.empty() && std::filesystem::path(name).is_relative() && std::filesystem::is_regular_file(beside, ec))
+        name = beside.string();
+      auto post = nc::find_post_dialect(name);
+      if (post) b = nc::reader_dialect(*post);
+      else if (!post.error().file.empty()) return post.error();  // a dialect file that does not load
+      else
+        return make_error("field dialect: unknown dialect '" + d.name + "' (reader dialects: " +
+                              joined(nc::builtin_dialect_names()) + "; post-processor dialects: " +
+                              joined(nc::post_dialect_names()) + "; or a dialect JSON file)",
+                          p.file);
+    }
     if (!d.dwell_p_unit.empty())
       b->dwell_p_unit = d.dwell_p_unit == "ms" ? nc::DwellUnit::milliseconds : nc::DwellUnit::seconds;
     return b;

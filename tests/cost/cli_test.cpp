@@ -130,7 +130,8 @@ TEST(CliEstimate, MachineProfileOptionAndErrors) {
   std::ofstream(path) << j.dump(1);
   const auto d = cli("estimate " + test::test_data("nc/square_abs_mm.nc") + " --machine " + path);
   EXPECT_EQ(d.exit_code, 2);
-  EXPECT_NE(d.err.find("field dialect: unknown G-code dialect 'sinumerik'"), std::string::npos) << d.err;
+  EXPECT_NE(d.err.find("field dialect: unknown dialect 'sinumerik'"), std::string::npos) << d.err;
+  EXPECT_NE(d.err.find("plasma-thc"), std::string::npos) << d.err;  // the post dialects are listed too
   std::filesystem::remove(path);
 }
 
@@ -166,6 +167,27 @@ TEST(CliEstimate, ReadsAProgramWithThePostDialectThatWroteIt) {
   const auto by_path = cli_json("estimate " + prog + " --dialect " + std::string(data_dir()) +
                                 "/dialects/plasma-thc.json --json");
   EXPECT_EQ(by_path["cut_length_mm"], j["cut_length_mm"]);
+  // A machine profile names the dialect the same way: by name, or by a file beside the profile.
+  json profile;
+  {
+    std::ifstream in(default_machine_profile_path());
+    profile = json::parse(in);
+  }
+  profile["speed_table"] =
+      std::filesystem::absolute(std::filesystem::path(default_machine_profile_path()).parent_path() /
+                                "../materials/bystar3015.json")
+          .string();
+  std::filesystem::copy_file(std::string(data_dir()) + "/dialects/plasma-thc.json", dir / "my-thc.json");
+  for (const char* named : {"plasma-thc", "my-thc.json"}) {
+    profile["dialect"] = named;
+    std::ofstream((dir / "machine.json").string()) << profile.dump(1);
+    const auto p = cli("estimate " + prog + " --machine " + (dir / "machine.json").string() + " --json");
+    ASSERT_EQ(p.exit_code, 0) << named << ": " << p.err;
+    const auto pj = json::parse(p.out);
+    EXPECT_EQ(pj["pierces"], torch_on) << named;
+    EXPECT_EQ(pj["cut_length_mm"], j["cut_length_mm"]) << named;
+    EXPECT_TRUE(pj["warnings"].empty()) << named << ": " << pj["warnings"];
+  }
 
   const auto bad = cli("estimate " + prog + " --dialect nosuch");
   EXPECT_EQ(bad.exit_code, 2);

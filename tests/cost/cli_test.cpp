@@ -20,6 +20,18 @@ namespace {
 
 using nlohmann::json;
 
+// The default machine profile, with its speed table as an absolute path (so that the copy
+// written elsewhere still finds it).
+json default_profile() {
+  std::ifstream in(default_machine_profile_path());
+  json j = json::parse(in);
+  j["speed_table"] =
+      std::filesystem::absolute(std::filesystem::path(default_machine_profile_path()).parent_path() /
+                                "../materials/bystar3015.json")
+          .string();
+  return j;
+}
+
 test::CommandOutput cli(const std::string& args) { return test::run_command(test::cli_path() + " " + args); }
 
 json cli_json(const std::string& args) {
@@ -101,17 +113,9 @@ TEST(CliEstimate, BrokenProgramExitsTwoWithLine) {
 }
 
 TEST(CliEstimate, MachineProfileOptionAndErrors) {
-  json j;
-  {
-    std::ifstream in(default_machine_profile_path());
-    j = json::parse(in);
-  }
+  json j = default_profile();
   j["rapid_speed_m_s"] = 0.5;
   j["dialect"] = "rs274-m7m9";
-  j["speed_table"] =
-      std::filesystem::absolute(std::filesystem::path(default_machine_profile_path()).parent_path() /
-                                "../materials/bystar3015.json")
-          .string();
   const auto path = (std::filesystem::temp_directory_path() / "cutroute-cli-profile.json").string();
   std::ofstream(path) << j.dump(1);
   const auto e =
@@ -168,15 +172,7 @@ TEST(CliEstimate, ReadsAProgramWithThePostDialectThatWroteIt) {
                                 "/dialects/plasma-thc.json --json");
   EXPECT_EQ(by_path["cut_length_mm"], j["cut_length_mm"]);
   // A machine profile names the dialect the same way: by name, or by a file beside the profile.
-  json profile;
-  {
-    std::ifstream in(default_machine_profile_path());
-    profile = json::parse(in);
-  }
-  profile["speed_table"] =
-      std::filesystem::absolute(std::filesystem::path(default_machine_profile_path()).parent_path() /
-                                "../materials/bystar3015.json")
-          .string();
+  json profile = default_profile();
   std::filesystem::copy_file(std::string(data_dir()) + "/dialects/plasma-thc.json", dir / "my-thc.json");
   for (const char* named : {"plasma-thc", "my-thc.json"}) {
     profile["dialect"] = named;
@@ -211,15 +207,7 @@ namespace cutroute::cost {
 namespace {
 
 TEST(CliEstimate, MotionModelWhenTheProfileHasAcceleration) {
-  json j;
-  {
-    std::ifstream in(default_machine_profile_path());
-    j = json::parse(in);
-  }
-  j["speed_table"] =
-      std::filesystem::absolute(std::filesystem::path(default_machine_profile_path()).parent_path() /
-                                "../materials/bystar3015.json")
-          .string();
+  json j = default_profile();
   j["motion"] = {{"accel_m_s2", 1.0}, {"junction_deviation_mm", 0.0}, {"block_time_s", 0.0}};
   const auto path = (std::filesystem::temp_directory_path() / "cutroute-cli-motion.json").string();
   std::ofstream(path) << j.dump(1);

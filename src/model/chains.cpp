@@ -152,7 +152,7 @@ class ChainBuilder {
     c.pieces.clear();
     const bool cw = entries_.outer_clockwise;
     const std::size_t last = run.size() - 1;
-    c.pieces.push_back({PieceKind::contour, run[0], planner_.whole_loop(run[0], first.s_mm, first.clockwise, last == 0)});
+    c.pieces.push_back({PieceKind::contour, run[0], planner_.whole_loop(run[0], first.s_mm, first.clockwise, last == 0), {}});
     Vec2 p = first.point;
     double s = first.s_mm;
     bool dir = first.clockwise;
@@ -164,8 +164,8 @@ class ChainBuilder {
       Contour bridge{{geometry::Vertex{p, 0}, geometry::Vertex{q, 0}}, false};
       if (!planner_.bridge_clear(bridge, run[i - 1], run[i])) return std::nullopt;
       bridges += d;
-      c.pieces.push_back({PieceKind::bridge, ContourId(), std::move(bridge)});
-      c.pieces.push_back({PieceKind::contour, run[i], planner_.whole_loop(run[i], s_next, cw, i == last)});
+      c.pieces.push_back({PieceKind::bridge, ContourId(), std::move(bridge), {}});
+      c.pieces.push_back({PieceKind::contour, run[i], planner_.whole_loop(run[i], s_next, cw, i == last), {}});
       p = q;
       s = s_next;
       dir = cw;

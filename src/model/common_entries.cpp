@@ -54,6 +54,7 @@ void set_pieces(EntryCandidate& c, const Nest& nest, const CommonSegment& seg, d
     SegmentPiece sp;
     sp.kind = p.connector() ? PieceKind::bridge : (p.stretch >= 0 ? PieceKind::common_edge : PieceKind::contour);
     sp.contour = p.contour;
+    sp.other = p.other;
     sp.path = p.path;
     c.pieces.push_back(std::move(sp));
   }

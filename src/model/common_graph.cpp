@@ -279,7 +279,7 @@ std::vector<CommonPiece> walk_pieces(const Graph& g, const Walk& w, const std::v
   std::vector<CommonPiece> out;
   Vec2 at = g.nodes[static_cast<std::size_t>(w.first)];
   const auto connect = [&](Vec2 to) {
-    if (geometry::distance(at, to) > tol::kSamePointMm) out.push_back({ContourId(), -1, Contour{{{at, 0}, {to, 0}}, false}});
+    if (geometry::distance(at, to) > tol::kSamePointMm) out.push_back({ContourId(), -1, Contour{{{at, 0}, {to, 0}}, false}, {}});
     at = to;
   };
   for (const auto& [e, fwd] : w.steps) {
@@ -287,6 +287,7 @@ std::vector<CommonPiece> walk_pieces(const Graph& g, const Walk& w, const std::v
     CommonPiece p;
     p.stretch = ed.stretch;
     p.contour = ed.stretch >= 0 ? stretches[static_cast<std::size_t>(ed.stretch)].first : ed.contour;
+    if (ed.stretch >= 0) p.other = stretches[static_cast<std::size_t>(ed.stretch)].second;
     p.path = fwd ? ed.path : geometry::reversed(ed.path);
     connect(p.path.vertices.front().p);
     at = p.path.vertices.back().p;
@@ -377,7 +378,7 @@ CommonLinePlan plan_common_lines(const Nest& nest, const CommonLineOptions& opti
     if (nest.contours[id].role == ContourRole::sheet || shares[i]) continue;
     CommonSegment s;
     s.path = nest.contours[id].source.contour;
-    s.pieces = {CommonPiece{id, -1, detail::sub_path(s.path, 0, geometry::length(s.path))}};
+    s.pieces = {CommonPiece{id, -1, detail::sub_path(s.path, 0, geometry::length(s.path)), {}}};
     s.contours = {id};
     plan.segments.push_back(std::move(s));
   }

@@ -441,7 +441,7 @@ struct EntryPlanner::Impl {
     const double lead_len = geometry::length(e.lead_in);
     if (!pierce_ok(e.pierce, id, std::min(clearance, 0.5 * lead_len))) return std::nullopt;
     if (!path_clear(e.lead_in, id, true)) return std::nullopt;
-    e.pieces = {SegmentPiece{PieceKind::contour, id, detail::sub_path(path, measured(id, clockwise), s_path, total_len + opt.lead.overcut_mm)}};
+    e.pieces = {SegmentPiece{PieceKind::contour, id, detail::sub_path(path, measured(id, clockwise), s_path, total_len + opt.lead.overcut_mm), {}}};
     e.lead_out = checked_lead_out(id, path, s_path, clockwise, scale, total_len, std::move(e.lead_out));
     // s along the stored contour: the oriented path runs backwards when it was reversed (the map
     // s -> total - s is its own inverse).
@@ -460,7 +460,7 @@ struct EntryPlanner::Impl {
     e.pierce = centre;
     e.lead_in.vertices = {Vertex{centre, 0}, Vertex{cp.point, 0}};
     if (!in_scrap(centre) || !path_clear(e.lead_in, id, true)) return std::nullopt;
-    e.pieces = {SegmentPiece{PieceKind::contour, id, detail::sub_path(path, measured(id, clockwise), cp.length_along, total + opt.lead.overcut_mm)}};
+    e.pieces = {SegmentPiece{PieceKind::contour, id, detail::sub_path(path, measured(id, clockwise), cp.length_along, total + opt.lead.overcut_mm), {}}};
     e.fallback = Fallback::centre_pierce;
     (void)total;
     e.s_mm = to_path_s(id, cp.length_along, clockwise);
@@ -580,7 +580,7 @@ std::vector<EntryCandidate> EntryPlanner::candidates(ContourId id, Diagnostics& 
   const auto at = detail::at_length(path, m, 0);
   e.point = at.point;
   e.pierce = at.point;
-  e.pieces = {SegmentPiece{PieceKind::contour, id, detail::sub_path(path, m, 0, total + impl_->opt.lead.overcut_mm)}};
+  e.pieces = {SegmentPiece{PieceKind::contour, id, detail::sub_path(path, m, 0, total + impl_->opt.lead.overcut_mm), {}}};
   e.fallback = Fallback::on_contour;
   e.s_mm = 0;
   diag("contour " + std::to_string(id.value() + 1) + ": no admissible lead-in; pierced on the contour");

@@ -100,7 +100,7 @@ std::vector<BasicSegment> split_segments(const Nest& nest, const EntryPlanner& p
     for (const auto& [from, to, cw] : {std::tuple{a, b, stored_cw}, std::tuple{b, a, !stored_cw}}) {
       auto e = entry_for(planner, all, c, from, cw);
       if (!e) continue;
-      e->pieces = {SegmentPiece{PieceKind::contour_part, c, detail::sub_path(planner.whole_loop(c, from, cw, true), 0, len + overcut)}};
+      e->pieces = {SegmentPiece{PieceKind::contour_part, c, detail::sub_path(planner.whole_loop(c, from, cw, true), 0, len + overcut), {}}};
       e->lead_out = planner.lead_out_at(c, to, cw);
       seg.candidates.push_back(std::move(*e));
     }

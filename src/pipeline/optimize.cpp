@@ -196,15 +196,21 @@ nlohmann::json sequence_json(const model::Nest& nest, const std::vector<model::E
     j["direction"] = e.clockwise ? "cw" : "ccw";
     if (e.fallback != model::Fallback::none) j["fallback"] = model::to_string(e.fallback);
     if (model::is_multi_piece(e)) {
-      // A chain or common-line segment: every contour it cuts, in cutting order, and its pieces.
+      // A chain or common-line segment: every contour it cuts, in cutting order (a common edge
+      // cuts two: its own contour, then the neighbour's), and its pieces.
       auto contours = nlohmann::json::array(), parts = nlohmann::json::array(), pieces = nlohmann::json::array();
+      const auto add = [&](model::ContourId id) {
+        if (!id.valid()) return;
+        for (const auto& listed : contours)
+          if (listed == id.value() + 1) return;
+        contours.push_back(id.value() + 1);
+        const auto& pc = nest.contours[id];
+        parts.push_back(pc.part.valid() ? pc.part.value() + 1 : 0);
+      };
       for (const auto& p : e.pieces) {
         pieces.push_back(model::to_string(p.kind));
-        if (!p.contour.valid()) continue;
-        if (!contours.empty() && contours.back() == p.contour.value() + 1) continue;
-        contours.push_back(p.contour.value() + 1);
-        const auto& pc = nest.contours[p.contour];
-        parts.push_back(pc.part.valid() ? pc.part.value() + 1 : 0);
+        add(p.contour);
+        add(p.other);
       }
       j["contours"] = contours;
       j["parts"] = parts;

@@ -2,10 +2,12 @@
 // (every edge cut, every part separated, holes first, shared stretches before the group's outline).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -112,8 +114,25 @@ TEST(CommonOptimize, CommonCutsSharedEdgesOnce) {
   const auto dir = fresh_temp_dir("common-common");
   const Layout l = grid(dir, 3, 2, 120, 80, 15);
   std::string program;
-  const auto check = optimize_and_check(l.dxf, dir, "--technique common", 0.005, &program);
+  const auto rep = dir / "out.json";
+  const auto check = optimize_and_check(l.dxf, dir, "--technique common --report " + rep.string(), 0.005, &program);
+  const auto report = nlohmann::json::parse(read_text(rep));
   EXPECT_NEAR(l.shared, 2 * 160 + 360, 1e-9);  // two vertical lines through both rows, one horizontal
+  // The report names every part a common line separates: the vertical lines 4 parts each (both
+  // sides, both rows), the horizontal one all 6.
+  std::vector<std::size_t> parts_per_line;
+  for (const auto& e : report.at("sequence")) {
+    if (!e.contains("pieces")) continue;
+    bool only_common = true;
+    for (const auto& k : e["pieces"]) only_common &= k == "common_edge" || k == "bridge";
+    if (!only_common) continue;
+    std::set<int> parts;
+    for (const auto& p : e["parts"]) parts.insert(p.get<int>());
+    EXPECT_EQ(parts.size(), e["parts"].size()) << e;  // each once
+    parts_per_line.push_back(parts.size());
+  }
+  std::sort(parts_per_line.begin(), parts_per_line.end());
+  EXPECT_EQ(parts_per_line, (std::vector<std::size_t>{4, 4, 6}));
   EXPECT_NEAR(check.boundary_cut_mm, l.perimeters - l.shared, 0.01);
   // 6 holes, the outline of the group, 2 vertical and 1 horizontal common line.
   EXPECT_EQ(check.runs, 6 + 1 + 3);

@@ -62,6 +62,7 @@ struct CommonPiece {
                             // contour; invalid for a connector across a kerf gap
   int stretch = -1;         // common stretch: index into CommonLinePlan::stretches; else -1
   geometry::Contour path;   // open, in the segment's direction [mm]
+  ContourId other;          // common stretch: its second contour; else invalid
   bool connector() const { return !contour.valid(); }
 };
 

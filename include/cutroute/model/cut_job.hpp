@@ -68,6 +68,7 @@ struct SegmentPiece {
   PieceKind kind = PieceKind::contour;
   ContourId contour;          // the nest contour cut by this piece; invalid for bridges
   geometry::Contour path;     // open, in the direction of travel [mm]
+  ContourId other;            // common_edge: the neighbouring contour that shares the stretch
 };
 
 // One way to cut one basic segment: where to pierce and enter, in which direction, with which

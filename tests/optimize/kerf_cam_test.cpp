@@ -277,6 +277,7 @@ TEST(KerfCam, LeadsKeepClearOfDrawnTipsTheToolpathCannotReach) {
   eo.drawn = &drawn;
   const model::EntryPlanner with_drawing(offset.nest, eo);
   EXPECT_GE(closest_to_wedge(with_drawing), need - 1e-6);
+  fs::remove_all(dir);
 }
 
 // The checker can fail: the drawn contours (controller mode) are not a cam cut, nor is a cam cut

@@ -10,6 +10,7 @@
 #include <cutroute/solve/solve.hpp>
 
 #include "commands.hpp"
+#include "progress_line.hpp"
 
 namespace cutroute::cli {
 
@@ -22,6 +23,7 @@ struct GtspOptions {
   int threads = 0;
   std::string solver = "auto";
   bool json = false;
+  bool quiet = false;
 };
 
 std::string seconds_text(double s) {
@@ -44,7 +46,10 @@ int run_gtsp(const GtspOptions& o) {
     std::cerr << "cutroute: error: " << problems.front() << '\n';
     return kUsageError;
   }
-  const solve::Solution s = solve::solve(inst->problem, params, StopToken::global());
+  // Runs take a minute by default: on a terminal the best cost so far is shown as it improves.
+  ProgressLine progress(show_progress(o.quiet), 0);
+  const solve::Solution s = solve::solve(inst->problem, params, StopToken::global(), progress.for_job(inst->name));
+  progress.done();
   if (o.json) {
     nlohmann::json j;
     j["instance"] = inst->name;
@@ -90,6 +95,7 @@ void add_gtsp(CLI::App& root, Commands& out) {
   app->add_option("--threads", opts->threads, "Search threads (default: all cores)")->check(CLI::Range(0, 256));
   app->add_option("--solver", opts->solver, "auto | exact | heuristic")->check(CLI::IsMember({"auto", "exact", "heuristic"}));
   app->add_flag("--json", opts->json, "Print one JSON object");
+  app->add_flag("-q,--quiet", opts->quiet, "No progress line on the terminal");
   out.push_back({app, [opts] { return run_gtsp(*opts); }});
 }
 

@@ -1,10 +1,8 @@
 // cutroute optimize: DXF nest(s) -> optimized cutting program, report, pictures (in parallel for several nests).
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <filesystem>
 #include <iostream>
-#include <mutex>
 #include <thread>
 
 #include <cutroute/core/number_format.hpp>
@@ -15,6 +13,7 @@
 
 #include "commands.hpp"
 #include "input_options.hpp"
+#include "progress_line.hpp"
 
 namespace cutroute::cli {
 namespace {
@@ -69,33 +68,6 @@ Result<geometry::Vec2> parse_point(const std::string& s, const char* what) {
     return make_error(std::string(what) + " wants X,Y in mm (got '" + s + "')");
   }
 }
-
-// Progress line on a terminal: one line per nest, rewritten in place, at most 5 times a second.
-class ProgressLine {
- public:
-  explicit ProgressLine(bool on) : on_(on), t0_(std::chrono::steady_clock::now()) {}
-  ProgressFn for_nest(const std::string& name) {
-    if (!on_) return {};
-    return [this, name](const ProgressEvent& e) {
-      std::lock_guard lock(mu_);
-      const auto now = std::chrono::steady_clock::now();
-      if (now - last_ < std::chrono::milliseconds(200)) return;
-      last_ = now;
-      std::string line = "\r" + name + ": " + std::string(e.stage);
-      if (e.best) line += "  best " + format_fixed(*e.best, 2);
-      line += "  " + format_fixed(std::chrono::duration<double>(now - t0_).count(), 1) + " s      ";
-      std::cerr << line << std::flush;
-    };
-  }
-  void done() {
-    if (on_) std::cerr << "\r" << std::string(79, ' ') << "\r" << std::flush;
-  }
-
- private:
-  bool on_;
-  std::mutex mu_;
-  std::chrono::steady_clock::time_point t0_, last_{};
-};
 
 int run(const Opts& o) {
   auto load_options = to_load_options(o.input);
@@ -188,7 +160,7 @@ int run(const Opts& o) {
       }
       pipeline::OptimizeOptions mine = po;
       mine.title = "cutroute " + std::filesystem::path(o.nests[i]).filename().string();
-      auto res = pipeline::optimize_nest(*loaded, mine, StopToken::global(), progress.for_nest(o.nests[i]));
+      auto res = pipeline::optimize_nest(*loaded, mine, StopToken::global(), progress.for_job(o.nests[i]));
       if (!res) {
         Diagnostic d = res.error();
         if (d.file.empty()) d.file = o.nests[i];

@@ -1,6 +1,7 @@
 // `cutroute gtsp`: JSON output, optimal status on small files, exit 2 with a line number on bad files.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -61,6 +62,23 @@ TEST(CliGtsp, TextOutput) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("objective: 14"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("status:    optimal"), std::string::npos) << r.out;
+}
+
+// On a terminal (script(1) from bsdutils, part of every Debian system, gives the command one) the
+// best cost so far is shown on a line rewritten in place; not with --quiet, never into a pipe.
+TEST(CliGtsp, ProgressOnATerminalOnly) {
+  ASSERT_EQ(std::system("command -v script >/dev/null 2>&1"), 0) << "script(1) (bsdutils) is missing";
+  const std::string cmd = test::cli_path() + " gtsp " + test::shared("data/sop/prob.100.sop") + " --threads 1 --time-limit 1";
+  const auto tty = test::run_command("script -qec '" + cmd + "' /dev/null");
+  ASSERT_EQ(tty.exit_code, 0) << tty.out << tty.err;
+  EXPECT_NE(tty.out.find("\rprob.100.sop: heuristic  best "), std::string::npos) << tty.out;
+  EXPECT_NE(tty.out.find("objective: "), std::string::npos) << tty.out;
+  const auto quiet = test::run_command("script -qec '" + cmd + " --quiet' /dev/null");
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.out << quiet.err;
+  EXPECT_EQ(quiet.out.find("heuristic  best"), std::string::npos) << quiet.out;
+  const auto pipe = test::run_command(cmd);
+  ASSERT_EQ(pipe.exit_code, 0) << pipe.err;
+  EXPECT_TRUE(pipe.err.empty()) << pipe.err;
 }
 
 }  // namespace

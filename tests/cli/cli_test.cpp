@@ -1,6 +1,7 @@
 // End-to-end tests of the cutroute executable: exit codes, messages, outputs.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -113,6 +114,28 @@ TEST(Cli, DemoThenInspectDescribesThePaperLikeSheet) {
   auto r2 = run_command(cli_path() + " inspect " + dxf.string() + " --json --svg " + svg2.string());
   EXPECT_EQ(r2.out, r.out);
   EXPECT_EQ(slurp(svg2), picture);
+  fs::remove_all(dir);
+}
+
+// Progress on a terminal only (script(1), bsdutils, gives the command one): a line per nest
+// rewritten in place, cleared before the summary; none with --quiet or into a pipe.
+TEST(Cli, OptimizeShowsProgressOnATerminalOnly) {
+  ASSERT_EQ(std::system("command -v script >/dev/null 2>&1"), 0) << "script(1) (bsdutils) is missing";
+  const auto dir = temp_dir("progress");
+  const auto dxf = dir / "demo.dxf";
+  ASSERT_EQ(run_command(cli_path() + " demo " + dxf.string()).exit_code, 0);
+  const std::string cmd = cli_path() + " optimize " + dxf.string() + " -o " + (dir / "demo.ngc").string() + " --time-limit 1";
+  std::string line = dxf.string() + ": ";
+  line.insert(line.begin(), '\r');
+  const auto tty = run_command("script -qec '" + cmd + "' /dev/null");
+  ASSERT_EQ(tty.exit_code, 0) << tty.out << tty.err;
+  EXPECT_NE(tty.out.find(line), std::string::npos) << tty.out;
+  const auto quiet = run_command("script -qec '" + cmd + " --quiet' /dev/null");
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.out << quiet.err;
+  EXPECT_EQ(quiet.out.find(line), std::string::npos) << quiet.out;
+  const auto pipe = run_command(cmd);
+  ASSERT_EQ(pipe.exit_code, 0) << pipe.err;
+  EXPECT_EQ(pipe.err.find('\r'), std::string::npos) << pipe.err;
   fs::remove_all(dir);
 }
 

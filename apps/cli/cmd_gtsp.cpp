@@ -10,6 +10,7 @@
 #include <cutroute/solve/solve.hpp>
 
 #include "commands.hpp"
+#include "input_options.hpp"
 #include "progress_line.hpp"
 
 namespace cutroute::cli {
@@ -24,6 +25,7 @@ struct GtspOptions {
   std::string solver = "auto";
   bool json = false;
   bool quiet = false;
+  double work_limit_m = 0.0;
 };
 
 std::string seconds_text(double s) {
@@ -39,6 +41,7 @@ int run_gtsp(const GtspOptions& o) {
   params.time_limit_s = o.time_limit_s;
   params.seed = o.seed;
   params.threads = o.threads;
+  params.work_budget = o.work_limit_m * 1e6;
   params.solver = o.solver == "exact" ? solve::SolverKind::exact
                   : o.solver == "heuristic" ? solve::SolverKind::heuristic
                                             : solve::SolverKind::automatic;
@@ -58,6 +61,7 @@ int run_gtsp(const GtspOptions& o) {
     j["solver"] = s.stats.solver;
     j["threads"] = s.stats.threads;
     j["iterations"] = s.stats.iterations;
+    j["work_m"] = s.stats.work / 1e6;
     if (!s.route.empty()) j["objective"] = s.cost;
     else j["objective"] = nullptr;
     auto tour = nlohmann::json::array();
@@ -94,6 +98,9 @@ void add_gtsp(CLI::App& root, Commands& out) {
   app->add_option("--seed", opts->seed, "Random seed (default 1)");
   app->add_option("--threads", opts->threads, "Search threads (default: all cores)")->check(CLI::Range(0, 256));
   app->add_option("--solver", opts->solver, "auto | exact | heuristic")->check(CLI::IsMember({"auto", "exact", "heuristic"}));
+  app->add_option("--work-limit", opts->work_limit_m,
+                  "Work budget of the heuristic [millions of units] (0: automatic); machine-independent, unlike the time limit")
+      ->check(finite_range(0.0, 1e9));
   app->add_flag("--json", opts->json, "Print one JSON object");
   app->add_flag("-q,--quiet", opts->quiet, "No progress line on the terminal");
   out.push_back({app, [opts] { return run_gtsp(*opts); }});

@@ -28,6 +28,7 @@ struct Opts {
   bool interpolate = false;
   std::string objective = "time";
   double time_limit = 10;
+  double work_limit_m = 0;
   std::uint64_t seed = 1;
   int threads = 0;
   std::string solver = "auto";
@@ -82,6 +83,7 @@ int run(const Opts& o) {
   po.interpolate = o.interpolate;
   po.objective = o.objective == "cost" ? cost::Objective::cost : cost::Objective::time;
   po.time_limit_s = o.time_limit;
+  po.work_limit = o.work_limit_m * 1e6;
   po.seed = o.seed;
   po.solver = o.solver == "exact" ? solve::SolverKind::exact
               : o.solver == "heuristic" ? solve::SolverKind::heuristic : solve::SolverKind::automatic;
@@ -257,6 +259,10 @@ void add_optimize(CLI::App& root, Commands& out) {
   app->add_flag("--interpolate", o->interpolate, "Interpolate speeds between Table 1 thicknesses");
   app->add_option("--objective", o->objective, "time (eq. 10) or cost (eq. 3)")->check(CLI::IsMember({"time", "cost"}));
   app->add_option("--time-limit", o->time_limit, "Time budget of the optimisation [s]: cut jobs, solver, refinement, technique and lead comparison (reading and writing come on top); 0 = stop on stagnation only")->check(finite_range(0.0, 86400.0))->capture_default_str();
+  app->add_option("--work-limit", o->work_limit_m,
+                  "Work budget of each route search [millions of units] (0: automatic); unlike time it does not depend on the "
+                  "machine: with --time-limit 0 a run is bounded and reproducible (report: solver.work_m)")
+      ->check(finite_range(0.0, 1e9));
   app->add_option("--seed", o->seed, "Random seed: same seed, input and options give identical outputs")->capture_default_str();
   app->add_option("--threads", o->threads, "Solver threads (0: all cores)")->check(CLI::Range(0, 64));
   app->add_option("--solver", o->solver, "auto, exact or heuristic")->check(CLI::IsMember({"auto", "exact", "heuristic"}));

@@ -346,6 +346,7 @@ Result<Alternative> solve_alternative(const model::Nest& nest, const model::CutJ
   params.seed = o.seed;
   params.threads = o.threads;
   params.time_limit_s = time_limit_s;
+  params.work_budget = o.work_limit;
   Alternative alt;
   alt.solution = solve::solve(rp->problem, params, stop, progress);
   if (alt.solution.route.empty()) return make_error("the route solver stopped before it found any route");
@@ -621,6 +622,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   solver["time_s"] = sol.stats.seconds;
   solver["threads"] = sol.stats.threads;
   solver["seed"] = o.seed;
+  solver["work_m"] = sol.stats.work / 1e6;  // millions of work units (--work-limit)
   r["solver"] = solver;
   r["timing_s"] = timing;  // wall times: with solver.time_s the only fields that vary run to run
   r["sequence"] = sequence_json(nest, seq);

@@ -4,6 +4,7 @@
 #include <barrier>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <thread>
 
 #include "node_sets.hpp"
@@ -148,7 +149,9 @@ class Worker {
   enum class Fresh { maybe, all, none };
 
   // `iterations` destroy/repair steps; returns early when `stop` fires or the target is reached.
-  void round(int iterations, const StopToken& stop, Fresh fresh) {
+  // `cap`: iterations after which this round ends early (an explicit work budget), the acceptance
+  // threshold still decaying over `iterations`.
+  void round(int iterations, const StopToken& stop, Fresh fresh, int cap) {
     const Problem& p = ops_.problem();
     // After a round without progress, some rounds (half on small instances, fewer on large ones,
     // where a fresh start rarely catches up within a round) start from a fresh random construction
@@ -160,7 +163,7 @@ class Worker {
       if (cur_.cost < best_.cost) best_ = cur_;
     }
     if (p.cluster_count() < 2) return;
-    for (int it = 0; it < iterations; ++it) {
+    for (int it = 0; it < std::min(iterations, cap); ++it) {
       if (stop.stop_requested() || stop.target_reached(best_.cost)) return;
       ++iterations_;
       trial_ = cur_;
@@ -189,11 +192,11 @@ class Worker {
 
   // Population mode: `iterations` children from parents drawn from `pop` (read-only during the
   // round), each the ordered crossover of two (with probability kCrossover) or a destroy/repair of
-  // one, then local search. They join the population between rounds.
-  void breed(int iterations, const StopToken& stop, const Population& pop) {
+  // one, then local search. They join the population between rounds. `cap`: as in round().
+  void breed(int iterations, const StopToken& stop, const Population& pop, int cap) {
     const Problem& p = ops_.problem();
     if (p.cluster_count() < 4 || pop.size() == 0) return;
-    for (int it = 0; it < iterations; ++it) {
+    for (int it = 0; it < std::min(iterations, cap); ++it) {
       if (stop.stop_requested() || stop.target_reached(best_.cost)) return;
       ++iterations_;
       const int a = pop.select(rng_);
@@ -376,6 +379,10 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
   // on left 207si1032 at 3-5 s and stopped others early). GTSPLIB 99-217 clusters, seeds 1-5, with
   // the 2-opt neighbour optimisation: mean gap 0.139 % -> 0.108 %, max wall 5.4 s -> 2.2 s.
   if (params.stagnation_rounds == 0) params.stagnation_rounds = wide ? 40 : large ? 20 : 6;
+  // A budget the caller gave is kept to the iteration (`round_cap`: rounds end early once their
+  // share of it is spent; on a large nest one round is ~20 s); the automatic one, tuned with
+  // whole rounds, to the round.
+  const bool exact_budget = params.work_budget > 0.0;
   if (params.work_budget == 0.0) params.work_budget = wide ? 9.0e6 : -1.0;
   int k_min = p.node_count();
   for (int c = 0; c < p.cluster_count(); ++c) k_min = std::min(k_min, p.cluster_size(ClusterId(c)));
@@ -457,6 +464,16 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
     if (!ns_start.seq.empty()) ops.init(ns_start);
   }
   Worker::Fresh fresh = Worker::Fresh::none;
+  // Iterations each thread may still do in the next round under an explicit work budget (rounds
+  // synchronise, so every thread's share is known at the barrier: deterministic).
+  int round_cap = std::numeric_limits<int>::max();
+  auto set_round_cap = [&](long long done_iterations) {
+    if (!exact_budget) return;
+    const double left = std::max(0.0, params.work_budget - static_cast<double>(done_iterations) * work_per_iteration);
+    const double per_thread = std::ceil(std::ceil(left / work_per_iteration) / threads);
+    round_cap = static_cast<int>(std::clamp(per_thread, 1.0, static_cast<double>(std::numeric_limits<int>::max())));
+  };
+  set_round_cap(0);
   // Runs between rounds on one thread: picks the best route (ties: lowest thread index), decides stop.
   auto combine = [&]() noexcept {
     if (pop_mu > 0) {
@@ -513,6 +530,7 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
     long long total_iterations = 0;
     for (const Worker& w : workers) total_iterations += w.iterations();
     const bool budget_spent = params.work_budget > 0.0 && static_cast<double>(total_iterations) * work_per_iteration >= params.work_budget;
+    set_round_cap(total_iterations);
     done = budget_spent || stop.stop_requested() || stop.target_reached(global.cost) ||
            (stagnant >= params.stagnation_rounds && stagnant_work >= params.min_stagnation_work);
     if (progress) progress({"heuristic", -1.0, static_cast<double>(global.cost)});
@@ -532,11 +550,11 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
     while (!done) {
       if (pop_mu == 0) {
         if (new_epoch) w.start();  // the worker's best restarts from a fresh route
-        w.round(round_iters, stop, fresh);
+        w.round(round_iters, stop, fresh, round_cap);
       } else if (new_epoch) {
         w.seed_population(seed_share, stop);  // combine() emptied the population
       } else {
-        w.breed(round_iters, stop, pop);
+        w.breed(round_iters, stop, pop, round_cap);
       }
       sync();
     }
@@ -561,6 +579,7 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
   s.stats.solver = "heuristic";
   s.stats.threads = threads;
   for (const Worker& w : workers) s.stats.iterations += w.iterations();
+  s.stats.work = static_cast<double>(s.stats.iterations) * work_per_iteration;
   s.stats.stopped_by_limit = stop.stop_requested();
   s.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return s;

@@ -12,6 +12,7 @@
 #include <cutroute/io/nest_loader.hpp>
 
 #include "optimize_run.hpp"
+#include "support/dxf_builder.hpp"
 #include "support/paths.hpp"
 #include "support/program_check.hpp"
 
@@ -136,6 +137,36 @@ TEST(OptimizeCli, SameSeedSameBytes) {
     outs[i] = read_text(base + ".ngc") + read_text(base + ".svg") + read_text(base + ".html") + rep.dump();
   }
   EXPECT_EQ(outs[0], outs[1]);
+  fs::remove_all(dir);
+}
+
+// A nest whose search would run on for many seconds without a limit (225 circles): with
+// --time-limit 0 --work-limit the route search stops after that much work, to the iteration, so
+// two runs write the same bytes however fast the machine is, and the report says how much it did.
+TEST(OptimizeCli, WorkLimitBoundsAndReproducesARun) {
+  const auto dir = temp_dir("work");
+  const auto dxf = (dir / "circles.dxf").string();
+  DxfBuilder b;
+  b.insunits(4);
+  for (int i = 0; i < 15; ++i)
+    for (int j = 0; j < 15; ++j) b.circle({10.0 + 12 * j, 10.0 + 12 * i}, 4);
+  std::ofstream(dxf) << b.str();
+  std::string outs[2];
+  for (int i = 0; i < 2; ++i) {
+    const auto base = (dir / ("run" + std::to_string(i))).string();
+    const auto r = run_command(cli_path() + " optimize " + dxf + " -o " + base + ".ngc --svg " + base + ".svg --report " +
+                               base + ".json --quiet --seed 3 --threads 2 --technique standard --time-limit 0 --work-limit 0.5");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    auto rep = nlohmann::json::parse(read_text(base + ".json"));
+    const double work = rep["solver"]["work_m"].get<double>();
+    EXPECT_GE(work, 0.5);
+    EXPECT_LT(work, 0.55);  // past the budget by less than one iteration of each thread
+    rep.erase("timing_s");
+    rep["solver"].erase("time_s");
+    outs[i] = read_text(base + ".ngc") + read_text(base + ".svg") + rep.dump();
+  }
+  EXPECT_EQ(outs[0], outs[1]);
+  EXPECT_EQ(run_command(cli_path() + " optimize " + dxf + " -o " + (dir / "x.ngc").string() + " --work-limit -1").exit_code, 1);
   fs::remove_all(dir);
 }
 

@@ -64,6 +64,23 @@ TEST(CliGtsp, TextOutput) {
   EXPECT_NE(r.out.find("status:    optimal"), std::string::npos) << r.out;
 }
 
+// --work-limit: the heuristic stops once that much work is done (millions of units: iterations x
+// nodes x (1 + smallest cluster) / 2, prob.100: 100 per iteration), to the iteration, whatever
+// the machine's speed: the same seed gives the same tour.
+TEST(CliGtsp, WorkLimitIsExactAndReproducible) {
+  const std::string cmd = test::cli_path() + " gtsp " + test::shared("data/sop/prob.100.sop") +
+                          " --threads 2 --seed 4 --time-limit 0 --work-limit 0.05 --json";
+  const auto a = test::run_command(cmd), b = test::run_command(cmd);
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  const auto ja = nlohmann::json::parse(a.out), jb = nlohmann::json::parse(b.out);
+  EXPECT_EQ(ja["iterations"], 500);  // 50 000 units / 100 per iteration, 250 per thread
+  EXPECT_DOUBLE_EQ(ja["work_m"].get<double>(), 0.05);
+  EXPECT_EQ(ja["tour"], jb["tour"]);
+  EXPECT_EQ(ja["objective"], jb["objective"]);
+  EXPECT_EQ(test::run_command(test::cli_path() + " gtsp " + instances_dir() + "tiny.sop --work-limit nan").exit_code, 1);
+}
+
 // On a terminal (script(1) from bsdutils, part of every Debian system, gives the command one) the
 // best cost so far is shown on a line rewritten in place; not with --quiet, never into a pipe.
 TEST(CliGtsp, ProgressOnATerminalOnly) {

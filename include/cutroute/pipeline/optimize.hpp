@@ -37,6 +37,10 @@ struct OptimizeOptions {
   bool interpolate = false;                  // thickness between Table 1 rows
   cost::Objective objective = cost::Objective::time;
   double time_limit_s = 10.0;                // wall-clock budget of optimize_nest [s] (0: none), see below
+  // Work budget of each route search (solve::SolveParams::work_budget; 0: automatic). Unlike the
+  // time limit it does not depend on the machine: with time_limit_s 0 a run is bounded and
+  // reproducible on large nests too.
+  double work_limit = 0.0;
   std::uint64_t seed = 1;
   int threads = 0;                           // 0: hardware threads (at most 8)
   solve::SolverKind solver = solve::SolverKind::automatic;

@@ -20,6 +20,7 @@ struct SolveStats {
   double seconds = 0.0;          // wall time of solve()
   std::string solver;            // "exact", "heuristic", "exact+heuristic"
   long long iterations = 0;      // heuristic: destroy/repair iterations over all threads; exact: states expanded
+  double work = 0.0;             // heuristic: work done, in the units of SolveParams::work_budget
   int threads = 1;
   bool stopped_by_limit = false; // time limit, memory limit or cancel cut the run
 };

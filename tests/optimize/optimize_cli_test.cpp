@@ -125,18 +125,10 @@ TEST(OptimizeCli, SameSeedSameBytes) {
   const auto dir = temp_dir("det");
   const auto dxf = (dir / "demo.dxf").string();
   ASSERT_EQ(run_command(cli_path() + " demo " + dxf).exit_code, 0);
-  std::string outs[2];
-  for (int i = 0; i < 2; ++i) {
-    const auto base = (dir / ("run" + std::to_string(i))).string();
-    const auto r = run_command(cli_path() + " optimize " + dxf + " -o " + base + ".ngc --svg " + base + ".svg --html " +
-                               base + ".html --report " + base + ".json --quiet --seed 7 --threads 2");
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    auto rep = nlohmann::json::parse(read_text(base + ".json"));
-    rep.erase("timing_s");
-    rep["solver"].erase("time_s");
-    outs[i] = read_text(base + ".ngc") + read_text(base + ".svg") + read_text(base + ".html") + rep.dump();
-  }
-  EXPECT_EQ(outs[0], outs[1]);
+  const std::string args = "--seed 7 --threads 2";
+  const std::string first = reproducible_outputs(dxf, (dir / "run0").string(), args);
+  ASSERT_FALSE(first.empty());
+  EXPECT_EQ(first, reproducible_outputs(dxf, (dir / "run1").string(), args));
   fs::remove_all(dir);
 }
 
@@ -151,19 +143,15 @@ TEST(OptimizeCli, WorkLimitBoundsAndReproducesARun) {
   for (int i = 0; i < 15; ++i)
     for (int j = 0; j < 15; ++j) b.circle({10.0 + 12 * j, 10.0 + 12 * i}, 4);
   std::ofstream(dxf) << b.str();
+  const std::string args = "--seed 3 --threads 2 --technique standard --time-limit 0 --work-limit 0.5";
   std::string outs[2];
   for (int i = 0; i < 2; ++i) {
     const auto base = (dir / ("run" + std::to_string(i))).string();
-    const auto r = run_command(cli_path() + " optimize " + dxf + " -o " + base + ".ngc --svg " + base + ".svg --report " +
-                               base + ".json --quiet --seed 3 --threads 2 --technique standard --time-limit 0 --work-limit 0.5");
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    auto rep = nlohmann::json::parse(read_text(base + ".json"));
-    const double work = rep["solver"]["work_m"].get<double>();
+    outs[i] = reproducible_outputs(dxf, base, args);
+    ASSERT_FALSE(outs[i].empty());
+    const double work = nlohmann::json::parse(read_text(base + ".json"))["solver"]["work_m"].get<double>();
     EXPECT_GE(work, 0.5);
     EXPECT_LT(work, 0.55);  // past the budget by less than one iteration of each thread
-    rep.erase("timing_s");
-    rep["solver"].erase("time_s");
-    outs[i] = read_text(base + ".ngc") + read_text(base + ".svg") + rep.dump();
   }
   EXPECT_EQ(outs[0], outs[1]);
   EXPECT_EQ(run_command(cli_path() + " optimize " + dxf + " -o " + (dir / "x.ngc").string() + " --work-limit -1").exit_code, 1);

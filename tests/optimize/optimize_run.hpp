@@ -105,6 +105,20 @@ inline void expect_admissible(const std::string& dxf, const OptRun& run, double 
   if (result) *result = check;
 }
 
+// Runs `optimize dxf` writing base.ngc, .svg, .html and .json with `args`, and returns what must
+// be the same from run to run with the same seed: all four, the report without its wall times
+// (timing_s, solver.time_s). "" after a failed run (reported as a test failure).
+inline std::string reproducible_outputs(const std::string& dxf, const std::string& base, const std::string& args) {
+  const auto r = run_command(cli_path() + " optimize " + dxf + " -o " + base + ".ngc --svg " + base + ".svg --html " + base +
+                             ".html --report " + base + ".json --quiet " + args);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  if (r.exit_code != 0) return {};
+  auto rep = nlohmann::json::parse(read_text(base + ".json"));
+  rep.erase("timing_s");
+  rep["solver"].erase("time_s");
+  return read_text(base + ".ngc") + read_text(base + ".svg") + read_text(base + ".html") + rep.dump();
+}
+
 // The generic dialect with 4 decimals (0.1 µm), written to `dir`: with 3 the written end points
 // and arc centres (I, J) are rounded by up to 0.7 µm each, too coarse to measure kerf/2 ± 1 µm.
 inline std::string fine_dialect(const std::filesystem::path& dir) {

@@ -256,9 +256,9 @@ class Laps {
 //    cut free can catch it tipped up), and a deadline already spent by an earlier step (a cut job
 //    that took long on a big nest) should not cost an ordinary nest the few milliseconds they
 //    take there. The detours of an alternative's programs (its lead types) share one deadline.
-// Rapids whose detour was not found in time are left straight, counted in the report and warned about. Without a limit nothing
-// changes; without these rules the solver gets what it got before. A stop request
-// (SIGINT/SIGTERM) ends both at once, like the solver and the refinement.
+// Rapids whose detour was not found in time are left straight, counted in the report and warned
+// about. Without a limit nothing changes; without these rules the solver gets what it got before.
+// A stop request (SIGINT/SIGTERM) ends them all at once, like the solver.
 class RunLimit {
  public:
   RunLimit(const OptimizeOptions& o, Clock::time_point begin) : limit_s_(o.time_limit_s), shares_(rules::time_shares(o.rules)) {

@@ -57,9 +57,9 @@ bool segment_exchange_pass(const Problem& p, std::vector<NodeId>& r) {
 bool reversing_exchange_pass(const Problem& p, std::vector<NodeId>& r) {
   return on_route(p, r, [](const Ops& o, Tour& t) { return o.reversing_exchange_pass(t); });
 }
-bool lk_pass(const Problem& p, std::vector<NodeId>& r, Cost* tracked_cost) {
-  return on_route(p, r, [tracked_cost](const Ops& o, Tour& t) {
-    const bool improved = o.lk_pass(t);
+bool lk_pass(const Problem& p, std::vector<NodeId>& r, Cost* tracked_cost, std::span<const int> breadth) {
+  return on_route(p, r, [tracked_cost, breadth](const Ops& o, Tour& t) {
+    const bool improved = o.lk_pass(t, breadth);
     if (tracked_cost) *tracked_cost = t.cost;
     return improved;
   });

@@ -1,5 +1,6 @@
 // Lin–Kernighan chains of 2-opt moves on nearly symmetric matrices, with or without precedence.
 #include <algorithm>
+#include <span>
 #include <vector>
 
 #include "tour.hpp"
@@ -8,20 +9,32 @@ namespace cutroute::solve::detail {
 
 namespace {
 constexpr int kMaxDepth = 10;     // 2-opt moves in one chain (6: prob.100 worse; 20: no better)
-constexpr int kFirstBreadth = 5;  // alternatives for the first added arc; deeper levels are greedy
+// Alternatives tried for the arc added at each step of a chain, from the first; the steps beyond
+// the list are greedy. Only the first step branches where every closing is priced from scratch
+// (asymmetric matrices: SOP kro124p.3 fell from 5/5 to 1/5 runs at its best known with the deeper
+// list) or already in O(1) (GTSPLIB 99-217, tuned with it). On matrices symmetric but for the arcs
+// precedence forbids (`checked_gain`: SOP prob.100, prob.42) four steps branch: a chain there must
+// often pass through routes that break pairs to reach a feasible better one, which the greedy chain
+// rarely finds, and its closings are priced in O(1) until one would improve. SOP prob.100, 2
+// threads, 10 s, runs above 1174 of seeds 1-30 / mean: {5} 12 / 1176.4, {5,3} 14 / 1174.5,
+// {5,5,3} 13 / 1169.0, {5,5,3,2} 5 / 1157.5 (seeds 31-60: 6 / 1162.1), {5,5,3,3} 7 / 1164.3,
+// {5,5,2,2} 10 / 1165.3, {5,5,3,2,2} 11 / 1170.8; {5,5,3,2} makes 4-6 times fewer iterations.
+constexpr int kBreadth[] = {5};
+constexpr int kCheckedBreadth[] = {5, 5, 3, 2};
 }  // namespace
 
 // Lin & Kernighan (1973) in the 2-opt-move form of Johnson & McGeoch's implementation: from t1 and a
 // route neighbour t2, each step adds (t2, t3) with t3 next to t2's candidate clusters and removes
 // (t3, t4), t4 the neighbour of t3 that keeps one cycle; the route is then t1 ... t4 closed by
 // (t4, t1), and the chain goes on from t2 := t4 while the partial gain (removed minus added, before
-// closing) stays positive. The best closed route along the chain is kept, the rest undone.
+// closing) stays positive. The best closed route along the chain is kept, the rest undone; when no
+// closing improved, the chain backs up to try the next alternatives of its first steps (kBreadth).
 // 2-opt, Or-opt and the exchanges stop at three changed arcs; a chain reaches up to kMaxDepth + 1,
 // the deeper moves that separate 2-opt/3-opt local optima from LK's on Euclidean tours (Johnson &
 // McGeoch 1997: about 5 % against 2 % above the Held–Karp bound). Only the chosen nodes' arcs are
 // priced: cluster optimisation re-picks the nodes afterwards. Arcs added by the chain are not removed
 // again in it, removed ones not added back (LK's rule), so a chain ends.
-bool Ops::lk_pass(Tour& t) const {
+bool Ops::lk_pass(Tour& t, std::span<const int> breadth) const {
   const int L = static_cast<int>(t.seq.size());
   if (!lk_ || L < 8) return false;
   auto P = [&](NodeId v) { return t.pos[cl(v).index()]; };
@@ -101,10 +114,10 @@ bool Ops::lk_pass(Tour& t) const {
   };
   std::vector<Choice> choices;
   // Candidates for the next step from t2 with partial gain g, best first by g - c(t2,t3) + c(t3,t4);
-  // `all` = false: only the best is wanted (the chain is greedy below its first level), moved to the
-  // front. This scan is LK's hot loop (40 % of a prob.100 run), so t3's index and the side of t4 are
-  // used directly instead of looking them up again through succ()/pred(). The best is the first
-  // maximum, as std::sort puts it in front: on at most 16 elements it is a stable insertion sort.
+  // `all` = false: only the best is wanted (a greedy step), moved to the front. This scan is LK's
+  // hot loop (40 % of a prob.100 run), so t3's index and the side of t4 are used directly instead
+  // of looking them up again through succ()/pred(). The best is the first maximum, as std::sort
+  // puts it in front: on at most 16 elements it is a stable insertion sort.
   auto candidates = [&](NodeId t1, NodeId t2, Cost g, bool all) {
     choices.clear();
     const bool before_t3 = succ(t1) == t2;  // t4 = pred(t3) when t2 follows t1, else succ(t3)
@@ -132,53 +145,55 @@ bool Ops::lk_pass(Tour& t) const {
 
   bool improved = false;
   std::vector<NodeId> ends;
-  std::vector<Choice> first;
+  if (breadth.empty()) breadth = checked_gain ? std::span<const int>(kCheckedBreadth) : std::span<const int>(kBreadth);
+  auto breadth_at = [&](int d) { return d < std::ssize(breadth) ? breadth[static_cast<std::size_t>(d)] : 1; };
+  std::vector<std::vector<Choice>> level(static_cast<std::size_t>(kMaxDepth));
+  Cost best_gain = 0;
+  std::size_t best_len = 0;
+  NodeId t1;
+  // Depth-first over the chain's steps, breadth_at(d) alternatives at step d; returns true once a
+  // closing improved (the chain then goes on greedily below it, as at breadth 1, and stops there).
+  auto step = [&](auto&& self, int depth, NodeId t2, Cost g) -> bool {
+    const int B = breadth_at(depth);
+    candidates(t1, t2, g, B > 1);
+    auto& mine = level[static_cast<std::size_t>(depth)];
+    mine.assign(choices.begin(), choices.begin() + std::min<std::ptrdiff_t>(B, std::ssize(choices)));
+    for (const Choice& c : mine) {
+      const std::size_t f0 = flips.size(), a0 = added.size(), r0 = removed.size(), e0 = ends.size();
+      apply(t1, t2, c.t4);
+      added.push_back({t2, c.t3});
+      removed.push_back({c.t3, c.t4});
+      ends.push_back(c.t3), ends.push_back(c.t4);
+      Cost closing = sym_gain || checked_gain ? c.rank - arc(c.t4, t1) : 0;
+      if (!sym_gain && (!checked_gain || closing > best_gain))
+        closing = feasible() ? t.cost - full_cost(t.seq) : 0;
+      if (closing > best_gain) best_gain = closing, best_len = flips.size();
+      if (depth + 1 < kMaxDepth) self(self, depth + 1, c.t4, c.rank);
+      if (best_gain > 0) return true;
+      undo_to(f0);
+      added.resize(a0), removed.resize(r0), ends.resize(e0);
+    }
+    return false;
+  };
   for (int base = 0; base < L; ++base) {
-    const NodeId t1 = t.seq[static_cast<std::size_t>(base)];
+    t1 = t.seq[static_cast<std::size_t>(base)];
     if (!touched(t, cl(t1).index())) continue;
-    for (int side = 0; side < 2; ++side) {
+    bool done = false;
+    for (int side = 0; side < 2 && !done; ++side) {
       const NodeId t2_0 = side == 0 ? succ(t1) : pred(t1);
       if (dummy(t1, t2_0)) continue;
-      auto reset = [&] {
-        flips.clear();
-        added.clear();
-        removed.assign(1, {t1, t2_0});
-        ends.assign({t1, t2_0});  // then t3, t4 of each step: 2 + 2 * (steps kept) ends changed
-      };
-      reset();
-      candidates(t1, t2_0, arc(t1, t2_0), true);
-      first.assign(choices.begin(), choices.begin() + std::min<std::ptrdiff_t>(kFirstBreadth, std::ssize(choices)));
-      bool done = false;
-      for (const Choice& c0 : first) {
-        reset();
-        Cost best_gain = 0;
-        std::size_t best_len = 0;
-        NodeId t2 = t2_0;
-        Choice c = c0;
-        for (int depth = 0;; ++depth) {
-          apply(t1, t2, c.t4);
-          added.push_back({t2, c.t3});
-          removed.push_back({c.t3, c.t4});
-          ends.push_back(c.t3), ends.push_back(c.t4);
-          Cost closing = sym_gain || checked_gain ? c.rank - arc(c.t4, t1) : 0;
-          if (!sym_gain && (!checked_gain || closing > best_gain))
-            closing = feasible() ? t.cost - full_cost(t.seq) : 0;
-          if (closing > best_gain) best_gain = closing, best_len = flips.size();
-          t2 = c.t4;
-          if (depth + 1 >= kMaxDepth) break;
-          candidates(t1, t2, c.rank, false);  // partial gain so far: g - c(t2, t3) + c(t3, t4)
-          if (choices.empty()) break;
-          c = choices.front();
-        }
+      flips.clear();
+      added.clear();
+      removed.assign(1, {t1, t2_0});
+      ends.assign({t1, t2_0});  // then t3, t4 of each step: 2 + 2 * (steps kept) ends changed
+      best_gain = 0;
+      best_len = 0;
+      if (step(step, 0, t2_0, arc(t1, t2_0))) {
         undo_to(best_len);
-        if (best_gain > 0) {
-          t.cost -= best_gain;
-          for (std::size_t e = 0; e < 2 + 2 * best_len; ++e) mark_around(t, P(ends[e]));
-          improved = done = true;
-          break;
-        }
+        t.cost -= best_gain;
+        for (std::size_t e = 0; e < 2 + 2 * best_len; ++e) mark_around(t, P(ends[e]));
+        improved = done = true;
       }
-      if (done) break;
     }
   }
   return improved;

@@ -139,7 +139,8 @@ class Ops {
   bool swap_pass(Tour& t) const;
   bool segment_exchange_pass(Tour& t) const;  // segment_exchange.cpp
   bool reversing_exchange_pass(Tour& t) const;  // reversing_exchange.cpp (nearly symmetric matrices)
-  bool lk_pass(Tour& t) const;  // lin_kernighan.cpp (symmetric closed tours without precedence)
+  // lin_kernighan.cpp (nearly symmetric plain matrices); `breadth` empty: kBreadth or kCheckedBreadth.
+  bool lk_pass(Tour& t, std::span<const int> breadth = {}) const;
   // Removes (into `removed`) every cluster but position 0 next to an arc of t that route e lacks
   // (cluster level, either direction when symmetric); returns how many (elite_destroy.cpp).
   int remove_differences(Tour& t, const std::vector<NodeId>& e, std::vector<ClusterId>& removed) const;

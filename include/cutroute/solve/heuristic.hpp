@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -40,8 +41,9 @@ std::vector<NodeId> construct_route(const Problem& p, Rng& rng);
 //   two_opt on such matrices prices every arc of the reversed segment (prefix sums, O(1) a move).
 //   lk: Lin-Kernighan chains of up to 10 2-opt moves from every examined cluster (the same matrices,
 //     and symmetric ones of >= 96 clusters without precedence; without inner costs; no-op
-//     elsewhere); intermediate routes may break precedence, the kept one does not. O(L) per chain
-//     step. `tracked_cost`, when given, receives the cost the pass tracked (priced incrementally on
+//     elsewhere); intermediate routes may break precedence, the kept one does not. The first step
+//     tries 5 alternatives, on matrices symmetric but for forbidden arcs the first four steps 5, 5,
+//     3 and 2 (backtracking when a chain finds nothing). O(L) per chain step. `tracked_cost`, when given, receives the cost the pass tracked (priced incrementally on
 //     symmetric closed tours).
 //   cluster_optimise: for the fixed cluster order, the best node of every cluster (shortest path
 //     through the layered graph, all nodes of the smallest cluster tried as the cyclic start when
@@ -52,7 +54,9 @@ bool or_opt_pass(const Problem& p, std::vector<NodeId>& route);
 bool swap_pass(const Problem& p, std::vector<NodeId>& route);
 bool segment_exchange_pass(const Problem& p, std::vector<NodeId>& route);
 bool reversing_exchange_pass(const Problem& p, std::vector<NodeId>& route);
-bool lk_pass(const Problem& p, std::vector<NodeId>& route, Cost* tracked_cost = nullptr);
+// `breadth`: alternatives tried at each step of a chain (empty: the solver's own, which depend on
+// the matrix; see lin_kernighan.cpp).
+bool lk_pass(const Problem& p, std::vector<NodeId>& route, Cost* tracked_cost = nullptr, std::span<const int> breadth = {});
 bool cluster_optimise(const Problem& p, std::vector<NodeId>& route, double max_work = 2.0e6);
 // All of the above until none improves.
 void local_search(const Problem& p, std::vector<NodeId>& route);

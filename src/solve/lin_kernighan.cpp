@@ -147,7 +147,7 @@ bool Ops::lk_pass(Tour& t, std::span<const int> breadth) const {
   std::vector<NodeId> ends;
   if (breadth.empty()) breadth = checked_gain ? std::span<const int>(kCheckedBreadth) : std::span<const int>(kBreadth);
   auto breadth_at = [&](int d) { return d < std::ssize(breadth) ? breadth[static_cast<std::size_t>(d)] : 1; };
-  std::vector<std::vector<Choice>> level(static_cast<std::size_t>(kMaxDepth));
+  std::vector<std::vector<Choice>> level(breadth.size());
   Cost best_gain = 0;
   std::size_t best_len = 0;
   NodeId t1;
@@ -156,9 +156,17 @@ bool Ops::lk_pass(Tour& t, std::span<const int> breadth) const {
   auto step = [&](auto&& self, int depth, NodeId t2, Cost g) -> bool {
     const int B = breadth_at(depth);
     candidates(t1, t2, g, B > 1);
-    auto& mine = level[static_cast<std::size_t>(depth)];
-    mine.assign(choices.begin(), choices.begin() + std::min<std::ptrdiff_t>(B, std::ssize(choices)));
-    for (const Choice& c : mine) {
+    if (choices.empty()) return false;
+    // Deeper steps overwrite `choices`: a branching step keeps its alternatives in level[depth],
+    // a greedy one (most steps) only its best.
+    Choice only = choices.front();
+    std::span<const Choice> alternatives(&only, 1);
+    if (B > 1) {
+      auto& mine = level[static_cast<std::size_t>(depth)];
+      mine.assign(choices.begin(), choices.begin() + std::min<std::ptrdiff_t>(B, std::ssize(choices)));
+      alternatives = mine;
+    }
+    for (const Choice& c : alternatives) {
       const std::size_t f0 = flips.size(), a0 = added.size(), r0 = removed.size(), e0 = ends.size();
       apply(t1, t2, c.t4);
       added.push_back({t2, c.t3});

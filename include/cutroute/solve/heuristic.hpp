@@ -43,8 +43,8 @@ std::vector<NodeId> construct_route(const Problem& p, Rng& rng);
 //     and symmetric ones of >= 96 clusters without precedence; without inner costs; no-op
 //     elsewhere); intermediate routes may break precedence, the kept one does not. The first step
 //     tries 5 alternatives, on matrices symmetric but for forbidden arcs the first four steps 5, 5,
-//     3 and 2 (backtracking when a chain finds nothing). O(L) per chain step. `tracked_cost`, when given, receives the cost the pass tracked (priced incrementally on
-//     symmetric closed tours).
+//     3 and 2 (backtracking when a chain finds nothing). O(L) per chain step. `tracked_cost`, when
+//     given, receives the cost the pass tracked (priced incrementally on symmetric closed tours).
 //   cluster_optimise: for the fixed cluster order, the best node of every cluster (shortest path
 //     through the layered graph, all nodes of the smallest cluster tried as the cyclic start when
 //     the work fits `max_work`, else only its current node). O(k_min * sum |C_i||C_i+1|).

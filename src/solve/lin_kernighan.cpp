@@ -105,8 +105,18 @@ bool Ops::lk_pass(Tour& t, std::span<const int> breadth) const {
     bool is(NodeId x, NodeId y) const { return (a == x && b == y) || (a == y && b == x); }
   };
   std::vector<Arc> added, removed;
-  auto in = [](const std::vector<Arc>& v, NodeId x, NodeId y) {
-    return std::any_of(v.begin(), v.end(), [&](const Arc& e) { return e.is(x, y); });
+  // Arcs of the chain ending at each cluster (added, removed): a candidate is looked up in the
+  // lists only when both its ends have one. The scans ran for all ~8 candidates a step passes to
+  // it, each over up to 2 * kMaxDepth arcs (most of LK's time on prob.100).
+  std::vector<int> n_added(static_cast<std::size_t>(p_.cluster_count()), 0), n_removed(n_added);
+  auto count = [&](std::vector<int>& n, const Arc& e, int d) { n[cl(e.a).index()] += d, n[cl(e.b).index()] += d; };
+  auto push = [&](std::vector<Arc>& v, std::vector<int>& n, Arc e) { v.push_back(e), count(n, e, 1); };
+  auto cut = [&](std::vector<Arc>& v, std::vector<int>& n, std::size_t keep) {
+    while (v.size() > keep) count(n, v.back(), -1), v.pop_back();
+  };
+  auto in = [&](const std::vector<Arc>& v, const std::vector<int>& n, NodeId x, NodeId y) {
+    return n[cl(x).index()] > 0 && n[cl(y).index()] > 0 &&
+           std::any_of(v.begin(), v.end(), [&](const Arc& e) { return e.is(x, y); });
   };
   struct Choice {
     Cost rank;
@@ -114,12 +124,14 @@ bool Ops::lk_pass(Tour& t, std::span<const int> breadth) const {
   };
   std::vector<Choice> choices;
   // Candidates for the next step from t2 with partial gain g, best first by g - c(t2,t3) + c(t3,t4);
-  // `all` = false: only the best is wanted (a greedy step), moved to the front. This scan is LK's
-  // hot loop (40 % of a prob.100 run), so t3's index and the side of t4 are used directly instead
-  // of looking them up again through succ()/pred(). The best is the first maximum, as std::sort
-  // puts it in front: on at most 16 elements it is a stable insertion sort.
+  // `all` = false: only the best is wanted (a greedy step, most steps), kept alone. This scan is
+  // LK's hot loop (40 % of a prob.100 run), so t3's index and the side of t4 are used directly
+  // instead of looking them up again through succ()/pred(). The best is the first maximum, as
+  // std::sort puts it in front: on at most 12 elements (kNeighbours) it is a stable insertion sort.
   auto candidates = [&](NodeId t1, NodeId t2, Cost g, bool all) {
     choices.clear();
+    Choice best{0, NodeId(), NodeId()};
+    bool any = false;
     const bool before_t3 = succ(t1) == t2;  // t4 = pred(t3) when t2 follows t1, else succ(t3)
     for (ClusterId x : succs(cl(t2))) {
       const int q = t.pos[x.index()];
@@ -127,20 +139,20 @@ bool Ops::lk_pass(Tour& t, std::span<const int> breadth) const {
       const NodeId t3 = t.seq[static_cast<std::size_t>(q)];
       if (t3 == t1 || t3 == t2) continue;
       const Cost g1 = g - arc(t2, t3);
-      if (g1 <= 0) continue;
+      // Lists in ascending arc order (SOP): every later candidate fails the gain criterion too.
+      if (g1 <= 0) {
+        if (exact_succs_) break;
+        continue;
+      }
       const int q4 = wrap(before_t3 ? q - 1 : q + 1);
       const NodeId t4 = t.seq[static_cast<std::size_t>(q4)];
-      if (t4 == t2 || t4 == t1 || dummy_at(q, q4) || in(added, t3, t4) || in(removed, t2, t3)) continue;
-      choices.push_back({g1 + arc(t3, t4), t3, t4});
+      if (t4 == t2 || t4 == t1 || dummy_at(q, q4) || in(added, n_added, t3, t4) || in(removed, n_removed, t2, t3)) continue;
+      const Choice c{g1 + arc(t3, t4), t3, t4};
+      if (all) choices.push_back(c);
+      else if (!any || c.rank > best.rank) best = c, any = true;
     }
-    if (all || choices.size() > 16) {
-      std::sort(choices.begin(), choices.end(), [](const Choice& a, const Choice& b) { return a.rank > b.rank; });
-    } else if (!choices.empty()) {
-      auto best = choices.begin();
-      for (auto it = choices.begin() + 1; it != choices.end(); ++it)
-        if (it->rank > best->rank) best = it;
-      std::swap(choices.front(), *best);
-    }
+    if (all) std::sort(choices.begin(), choices.end(), [](const Choice& a, const Choice& b) { return a.rank > b.rank; });
+    else if (any) choices.push_back(best);
   };
 
   bool improved = false;
@@ -169,8 +181,8 @@ bool Ops::lk_pass(Tour& t, std::span<const int> breadth) const {
     for (const Choice& c : alternatives) {
       const std::size_t f0 = flips.size(), a0 = added.size(), r0 = removed.size(), e0 = ends.size();
       apply(t1, t2, c.t4);
-      added.push_back({t2, c.t3});
-      removed.push_back({c.t3, c.t4});
+      push(added, n_added, {t2, c.t3});
+      push(removed, n_removed, {c.t3, c.t4});
       ends.push_back(c.t3), ends.push_back(c.t4);
       Cost closing = sym_gain || checked_gain ? c.rank - arc(c.t4, t1) : 0;
       if (!sym_gain && (!checked_gain || closing > best_gain))
@@ -179,7 +191,7 @@ bool Ops::lk_pass(Tour& t, std::span<const int> breadth) const {
       if (depth + 1 < kMaxDepth) self(self, depth + 1, c.t4, c.rank);
       if (best_gain > 0) return true;
       undo_to(f0);
-      added.resize(a0), removed.resize(r0), ends.resize(e0);
+      cut(added, n_added, a0), cut(removed, n_removed, r0), ends.resize(e0);
     }
     return false;
   };
@@ -191,8 +203,8 @@ bool Ops::lk_pass(Tour& t, std::span<const int> breadth) const {
       const NodeId t2_0 = side == 0 ? succ(t1) : pred(t1);
       if (dummy(t1, t2_0)) continue;
       flips.clear();
-      added.clear();
-      removed.assign(1, {t1, t2_0});
+      cut(added, n_added, 0), cut(removed, n_removed, 0);
+      push(removed, n_removed, {t1, t2_0});
       ends.assign({t1, t2_0});  // then t3, t4 of each step: 2 + 2 * (steps kept) ends changed
       best_gain = 0;
       best_len = 0;

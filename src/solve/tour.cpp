@@ -165,6 +165,7 @@ Ops::Ops(const Problem& p, const StopToken* stop)
   build(pred_, true);
   if (p.symmetric()) succ_ = pred_;
   else build(succ_, false);
+  exact_succs_ = n_ == static_cast<std::size_t>(m_);
 }
 
 Cost Ops::full_cost(const std::vector<NodeId>& seq) const {

@@ -196,6 +196,8 @@ class Ops {
   std::vector<Cost> nmin_, cmin_;  // cheapest arc node -> cluster, cluster -> cluster (neighbour_opt.cpp)
   bool near_symmetric_ = false;  // asymmetric matrix within 10 % of symmetric (asym_two_opt.cpp)
   bool finite_symmetric_ = false;  // c(a,b) == c(b,a) wherever both arcs are allowed (SOP prob.100)
+  // One node per cluster and lists built from the matrix: succs(c) are in ascending order of arc(c's node, x's node).
+  bool exact_succs_ = false;
   bool lk_ = false;              // Lin-Kernighan chains apply (lin_kernighan.cpp)
   // The precedence pairs LK's chains can break: those not starting at the start cluster, which stays
   // first: 139 of the 238 of SOP prob.100, checked once per improving closing.

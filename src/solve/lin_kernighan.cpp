@@ -53,6 +53,11 @@ bool Ops::lk_pass(Tour& t, std::span<const int> breadth) const {
   // (SOP prob.100) the same O(1) gain is exact unless the route now uses a forbidden arc or breaks
   // precedence, so only a chain about to become the best is checked and priced from scratch: the
   // same chains as pricing every step, 3 % more iterations on prob.100.
+  // A reversal can leave a pair's clusters next to each other the wrong way round; removing that arc
+  // adds kForbiddenCost to the partial gain, and the chain then runs to its full depth and breadth
+  // (40 % of prob.100's chain steps). Kept on purpose: pricing such arcs at their reverse cost made
+  // LK three times cheaper per iteration and the 10-s runs no better (15 against 16 of 90 above
+  // 1174; docs/solver-bench-2026-11-27-session25.md).
   const bool sym_gain = p_.symmetric() && closed_ && !prec_;
   const bool checked_gain = !sym_gain && finite_symmetric_;
   const auto& pairs = lk_pairs_;

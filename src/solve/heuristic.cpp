@@ -432,9 +432,12 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
   bool done = false;
   bool first = true;
   bool new_epoch = false;
-  // Automatic epochs: short ones on small problems without precedence, long ones on precedence
+  // Automatic epochs: short ones on small problems without precedence, longer ones on precedence
   // problems below 200 clusters (SOP: kro124p.3 ended 1.35 % above its best known in 1 seed of 5
-  // without them, 5/5 at it with epochs of 15 rounds); none on the rest (a fresh large route
+  // without them, 5/5 at it with epochs of 15 rounds; 8 rounds, about 2.4 s on prob.100, since
+  // session 26: a prob.100 run's hits below 1174 all came from its first trajectory, the restarts
+  // after 15 rounds came too late to catch up, and with 8 runs above 1174 fell from 16 to 9 of 90,
+  // every other SOP instance still 5/5 at its best known); none on the rest (a fresh large route
   // rarely catches up with the best within a run) nor on large clusters (a fresh start costs a
   // full cluster optimisation: 31C3k.0, 100-node clusters, 3-10 % more CPU with epochs, always at
   // its optimum without). In the population mode on wide problems an epoch of 10 rounds replaces
@@ -444,7 +447,7 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
   // seeds 1-5 / 6-15: mean gap 0.029 / 0.020 % -> 0.021 / 0.013 %. Not on 100C10k.0 (0.02 % ->
   // 0.07 %: a fresh population of 100-node clusters takes too long to catch up).
   const int epoch_patience = params.epoch_rounds != 0 ? std::max(0, params.epoch_rounds)
-                             : p.has_precedence() ? (p.cluster_count() < 200 ? 15 : 0)
+                             : p.has_precedence() ? (p.cluster_count() < 200 ? 8 : 0)
                              : pop_mu > 0 ? (wide ? 10 : 0)
                              : !large && avg_k <= 8.0 ? 3 : 0;
   // Small problems without precedence (those with epochs) take the fresh-start decision for all

@@ -241,9 +241,9 @@ TEST(Chains, ProgramCheckJudgesBridgesOnTheWrittenProgram) {
     const double s_b = planner.closest(ContourId(1), {60, y}).first;
     auto e = planner.entry_at(ContourId(0), s_a, true);
     if (!e) throw std::runtime_error("no entry at (50, 30)");
-    e->pieces = {SegmentPiece{PieceKind::contour, ContourId(0), planner.whole_loop(ContourId(0), s_a, true, false)},
-                 SegmentPiece{PieceKind::bridge, ContourId(), Contour{{Vertex{{50, 30}, 0}, Vertex{{60, y}, 0}}, false}},
-                 SegmentPiece{PieceKind::contour, ContourId(1), planner.whole_loop(ContourId(1), s_b, true, true)}};
+    e->pieces = {SegmentPiece{PieceKind::contour, ContourId(0), planner.whole_loop(ContourId(0), s_a, true, false), ContourId()},
+                 SegmentPiece{PieceKind::bridge, ContourId(), Contour{{Vertex{{50, 30}, 0}, Vertex{{60, y}, 0}}, false}, ContourId()},
+                 SegmentPiece{PieceKind::contour, ContourId(1), planner.whole_loop(ContourId(1), s_b, true, true), ContourId()}};
     e->lead_out = planner.lead_out_at(ContourId(1), s_b, true);
     Diagnostics diagnostics;
     auto c = planner.candidates(ContourId(2), diagnostics);

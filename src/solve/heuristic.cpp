@@ -434,10 +434,9 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
   bool new_epoch = false;
   // Automatic epochs: short ones on small problems without precedence, longer ones on precedence
   // problems below 200 clusters (SOP: kro124p.3 ended 1.35 % above its best known in 1 seed of 5
-  // without them, 5/5 at it with epochs of 15 rounds; 8 rounds, about 2.4 s on prob.100, since
-  // session 26: a prob.100 run's hits below 1174 all came from its first trajectory, the restarts
-  // after 15 rounds came too late to catch up, and with 8 runs above 1174 fell from 16 to 9 of 90,
-  // every other SOP instance still 5/5 at its best known); none on the rest (a fresh large route
+  // without them); 8 rounds rather than 15 because prob.100's good routes all come from a run's
+  // first trajectories and later restarts come too late to catch up (figures at
+  // SolveParams::epoch_rounds); none on the rest (a fresh large route
   // rarely catches up with the best within a run) nor on large clusters (a fresh start costs a
   // full cluster optimisation: 31C3k.0, 100-node clusters, 3-10 % more CPU with epochs, always at
   // its optimum without). In the population mode on wide problems an epoch of 10 rounds replaces

@@ -65,6 +65,8 @@ class Problem {
   int node_count() const { return static_cast<int>(cluster_of_.size()); }
   int cluster_count() const { return static_cast<int>(cluster_begin_.size()) - 1; }
   ClusterId cluster_of(NodeId v) const { return cluster_of_[v]; }
+  // cluster_of() of every node, indexed by node: for hot loops that keep the pointer in a local.
+  std::span<const ClusterId> cluster_of_nodes() const { return cluster_of_; }
   // The nodes of a cluster, in the order given to the builder.
   std::span<const NodeId> nodes_of(ClusterId c) const {
     return {members_.data() + cluster_begin_[c.index()], members_.data() + cluster_begin_[c.index() + 1]};

@@ -378,7 +378,14 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
   // long: a work budget bounds them instead of a short stagnation count (10 rounds from 150 clusters
   // on left 207si1032 at 3-5 s and stopped others early). GTSPLIB 99-217 clusters, seeds 1-5, with
   // the 2-opt neighbour optimisation: mean gap 0.139 % -> 0.108 %, max wall 5.4 s -> 2.2 s.
-  if (params.stagnation_rounds == 0) params.stagnation_rounds = wide ? 40 : large ? 20 : 6;
+  // Since the population mode (and its epochs of 10 rounds) a wide run that stalls either gets out
+  // within an epoch restart and the 10-12 rounds a fresh population takes to catch up, or not at
+  // all: the stagnation count is 22, not 40. Traces of seeds 1-15 on the 99-217 cluster set (300
+  // runs): the longest stall before a later improvement was 20 rounds but for one of 30 (132d657,
+  // 0.013 %). 40 -> 22 rounds, seeds 1-15 / held-out seeds 16-20: mean gap 0.0059 / 0.0085 % ->
+  // 0.0059 / 0.0086 %, at the best known 256 / 87 -> 255 / 86 runs, mean wall 2.47 / 2.87 s ->
+  // 2.01 / 2.33 s (docs/solver-bench-2026-11-28-session28.md).
+  if (params.stagnation_rounds == 0) params.stagnation_rounds = wide ? 22 : large ? 20 : 6;
   // A budget the caller gave is kept to the iteration (`round_cap`: rounds end early once their
   // share of it is spent; on a large nest one round is ~20 s); the automatic one, tuned with
   // whole rounds, to the round.

@@ -30,9 +30,10 @@ struct SolveParams {
   // restart from the best route (lowest cost, lowest thread index on ties): deterministic.
   int round_iterations = 0;            // 0: automatic, 40 + m/2 (x 8/avg cluster size when above 8, >= 10)
   // Stop after this many rounds in a row without improving the best route. 0: automatic,
-  // 6 below kLargeClusters clusters, 20 from there on, 40 on "wide" problems (see
-  // max_removal_fraction), which work_budget bounds instead (tuned on GTSPLIB for the time
-  // targets: small instances converge in few rounds, large ones keep improving slowly).
+  // 6 below kLargeClusters clusters, 20 from there on, 22 on "wide" problems (see
+  // max_removal_fraction), which work_budget also bounds (tuned on GTSPLIB for the time
+  // targets: small instances converge in few rounds, large ones keep improving slowly; 22 lets a
+  // wide run's epoch restart after 10 rounds catch up).
   int stagnation_rounds = 0;
   // Stop once the search has done this much work: iterations of all threads x node count x
   // (1 + size of the smallest cluster) / 2 (each iteration's cluster optimisation tries every node of

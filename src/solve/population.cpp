@@ -43,10 +43,15 @@ void Population::add(const Ops& ops, const Tour& t) {
   }
   const std::size_t k = members_.size();
   std::vector<double> row(k + 1, 0.0);
+  nm.near.reserve(static_cast<std::size_t>(mu_ + lambda_));
   for (std::size_t i = 0; i < k; ++i) {
     row[i] = compute_distance(nm, members_[i]);
     dist_[i].push_back(row[i]);
+    std::vector<double>& near = members_[i].near;
+    near.insert(std::upper_bound(near.begin(), near.end(), row[i]), row[i]);
+    nm.near.push_back(row[i]);
   }
+  std::sort(nm.near.begin(), nm.near.end());
   dist_.push_back(std::move(row));
   members_.push_back(std::move(nm));
   if (size() < mu_ + lambda_) return;
@@ -57,19 +62,32 @@ void Population::add(const Ops& ops, const Tour& t) {
     int worst = -1;
     bool worst_clone = false;
     for (int i = 0; i < size(); ++i) {
-      bool clone = false;
-      for (int j = 0; j < size() && !clone; ++j)
-        clone = j != i && distance(i, j) == 0.0 && (at(j).cost < at(i).cost || (at(j).cost == at(i).cost && j < i));
-      if (worst < 0 || (clone && !worst_clone) || (clone == worst_clone && fitness(i) > fitness(worst))) {
+      const bool c = clone(i);
+      if (worst < 0 || (c && !worst_clone) || (c == worst_clone && fitness(i) > fitness(worst))) {
         worst = i;
-        worst_clone = clone;
+        worst_clone = c;
       }
     }
     remove(worst);
   }
 }
 
+bool Population::clone(int i) const {
+  // Most members are at a positive distance from all others: their nearest tells at once.
+  const std::vector<double>& near = members_[static_cast<std::size_t>(i)].near;
+  if (near.empty() || near.front() > 0.0) return false;
+  for (int j = 0; j < size(); ++j)
+    if (j != i && distance(i, j) == 0.0 && (at(j).cost < at(i).cost || (at(j).cost == at(i).cost && j < i))) return true;
+  return false;
+}
+
 void Population::remove(int i) {
+  for (int j = 0; j < size(); ++j) {
+    if (j == i) continue;
+    // Equal distances are equal doubles, so which copy goes does not matter.
+    std::vector<double>& near = members_[static_cast<std::size_t>(j)].near;
+    near.erase(std::lower_bound(near.begin(), near.end(), distance(i, j)));
+  }
   members_.erase(members_.begin() + i);
   dist_.erase(dist_.begin() + i);
   for (auto& row : dist_) row.erase(row.begin() + i);
@@ -83,14 +101,10 @@ void Population::refresh() {
   }
   const auto un = static_cast<std::size_t>(n);
   std::vector<double> div(un);
-  std::vector<double> d;
+  const int c = std::min(close_, n - 1);
   for (int i = 0; i < n; ++i) {
-    d.clear();
-    for (int j = 0; j < n; ++j)
-      if (j != i) d.push_back(distance(i, j));
-    const int c = std::min(close_, n - 1);
-    std::partial_sort(d.begin(), d.begin() + c, d.end());
-    div[static_cast<std::size_t>(i)] = std::accumulate(d.begin(), d.begin() + c, 0.0) / c;
+    const std::vector<double>& near = members_[static_cast<std::size_t>(i)].near;
+    div[static_cast<std::size_t>(i)] = std::accumulate(near.begin(), near.begin() + c, 0.0) / c;
   }
   std::vector<int> by_cost(un), by_div(un);
   std::iota(by_cost.begin(), by_cost.end(), 0);

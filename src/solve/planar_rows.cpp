@@ -19,6 +19,13 @@ constexpr std::size_t kChunk = 64;
 
 // out[j] = the planar price of the arc between (qx, qy) and (xs[j], ys[j]), rounded as
 // Problem::planar_arc rounds it, plus add[j] (or nothing when add is null) plus add_all.
+// Built three times, the loader picking the widest the processor runs: baseline x86-64 (SSE2, 2
+// lanes), x86-64-v3 (AVX2, 4 lanes) and x86-64-v4 (AVX-512, 8 lanes, and a vector conversion to
+// int64 where AVX2 converts lane by lane). Subtraction, multiplication, addition, sqrt and min are
+// correctly rounded lane by lane at any width and no FMA is formed (-ffp-contract=off), so every
+// clone gives the same bits. 100C10k.0 at a fixed budget: 0.90 -> 0.63 s (v3) -> 0.53 s (v4) of
+// CPU, the same route (docs/solver-bench-2026-11-28-session29.md).
+[[gnu::target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")]]
 void price_row(const PlanarCosts& pc, double qx, double qy, const double* xs, const double* ys, std::size_t k,
                const Cost* add, Cost add_all, Cost* out) {
   const double base = pc.base, per = pc.per_unit, scale = pc.scale;

@@ -103,8 +103,10 @@ class Problem {
   // arc_cost() is exactly the planar formula (planar costs and no forbidden arc), so a solver may
   // evaluate many arcs at once from the points.
   bool plain_planar() const { return planar_ && forbidden_keys_.empty(); }
-  // The arc's planar price (planar() only; arc_cost() without the forbidden-arc look-up).
-  Cost planar_arc(NodeId from, NodeId to) const {
+  // The arc's planar price (planar() only; arc_cost() without the forbidden-arc look-up). Always
+  // inlined: GCC kept it out of line in Or-opt and swap, 31 % of a d2g_DRAAK run as calls; inlined,
+  // the same program with 8 % less CPU.
+  [[gnu::always_inline]] Cost planar_arc(NodeId from, NodeId to) const {
     const PlanarPoint a = planar_->out[from.index()], b = planar_->in[to.index()];
     const double dx = b.x - a.x, dy = b.y - a.y;
     const double t = (planar_->base + planar_->per_unit * std::sqrt(dx * dx + dy * dy)) * planar_->scale;

@@ -117,18 +117,13 @@ TEST(Population, SurvivorSelectionKeepsTheCheapestAndDropsClones) {
 std::vector<std::vector<NodeId>> reference_survivors(const Problem& p, const std::vector<std::vector<NodeId>>& routes, int mu,
                                                      int lambda) {
   const int close = 5, elite = 4;
-  auto arcs = [&](const std::vector<NodeId>& r) {
-    std::vector<std::pair<int, int>> a;
-    for (std::size_t q = 0; q < r.size(); ++q)
-      a.push_back({p.cluster_of(r[q]).value(), p.cluster_of(r[(q + 1) % r.size()]).value()});
-    return a;
-  };
+  // Symmetric problems: the share of x's cluster-level edges that y lacks (routes of 8+ clusters,
+  // so a route's edges are distinct).
   auto dist = [&](const std::vector<NodeId>& x, const std::vector<NodeId>& y) {
-    const auto ax = arcs(x), ay = arcs(y);
-    std::set<std::pair<int, int>> in_y(ay.begin(), ay.end());
+    const auto ex = edges_of(p, x), ey = edges_of(p, y);
     int broken = 0;
-    for (auto [u, v] : ax) broken += in_y.count({u, v}) == 0 && in_y.count({v, u}) == 0;
-    return static_cast<double>(broken) / static_cast<double>(ax.size());
+    for (const auto& e : ex) broken += ey.count(e) == 0;
+    return static_cast<double>(broken) / static_cast<double>(ex.size());
   };
   std::vector<std::vector<NodeId>> pop;
   for (const auto& r : routes) {

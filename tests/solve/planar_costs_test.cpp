@@ -225,5 +225,106 @@ TEST(PlanarCosts, BatchedPricesGiveTheSameRoutesAsSingleArcs) {
   }
 }
 
+// The batched prices are built for baseline x86-64, AVX2 and AVX-512, and the solver runs the widest
+// the processor supports, so a machine without AVX-512 runs other code than this one. Every build
+// this processor runs must give p.step()'s value to the tick: on integer points (GTSPLIB's EUC_2D,
+// many distances exactly halfway between two integers), on real points with a cutting machine's
+// base, speed and scale, with inner costs, rows longer than the 64-price chunk, and huge distances
+// capped at kMaxCost.
+TEST(PlanarCosts, EveryInstructionSetGivesTheSamePricesAsSingleArcs) {
+  Rng rng(30);
+  int levels_run = 0;
+  for (int k = 0; k < 3; ++k) {
+    SCOPED_TRACE("instance " + std::to_string(k));
+    PlanarCosts pc;
+    const int n = 300;
+    for (int v = 0; v < n; ++v) {
+      PlanarPoint a, b;
+      if (k == 0) {
+        // Small integer coordinates: distances like 2.5 (1.5, 2) are halfway cases of the rounding.
+        a = {std::round(rng.uniform01() * 20) / 2, std::round(rng.uniform01() * 20) / 2};
+        b = {std::round(rng.uniform01() * 20) / 2, std::round(rng.uniform01() * 20) / 2};
+      } else {
+        a = {rng.uniform01() * 3000, rng.uniform01() * 1500};
+        b = {a.x + rng.uniform01() * 4 - 2, a.y + rng.uniform01() * 4 - 2};
+      }
+      if (k == 2 && v % 50 == 0) a = {1e11, -1e11};  // beyond kMaxCost once scaled: capped
+      pc.out.push_back(a), pc.in.push_back(b);
+    }
+    if (k == 0) pc.base = 0, pc.per_unit = 1, pc.scale = 1;
+    else pc.base = 0.75 * k, pc.per_unit = 1.0 / (0.3 + k), pc.scale = 1000.0 / 7;
+    ProblemBuilder b(n);
+    b.set_planar_costs(pc);
+    for (int c = 0; c < n / 10; ++c) {
+      std::vector<NodeId> nodes;
+      for (int v = 10 * c; v < 10 * c + 10; ++v) nodes.push_back(NodeId(v));
+      b.add_cluster(nodes);
+    }
+    if (k != 0)
+      for (int v = 0; v < n; ++v) b.set_inner_cost(NodeId(v), 37 * (v % 11));
+    auto built = b.build();
+    ASSERT_TRUE(built.ok()) << built.error().message;
+    const Problem p = std::move(built).value();
+    ASSERT_TRUE(p.plain_planar());
+    for (int from = 0; from < n; from += 7) {
+      std::vector<NodeId> to;
+      std::vector<Cost> expected;
+      for (int v = 0; v < n; ++v)
+        if (v != from) to.push_back(NodeId(v)), expected.push_back(p.step(NodeId(from), NodeId(v)));
+      for (PriceLevel level : {PriceLevel::baseline, PriceLevel::x86_64_v3, PriceLevel::x86_64_v4}) {
+        if (!price_level_supported(level)) continue;
+        SCOPED_TRACE("level " + std::to_string(static_cast<int>(level)) + ", from " + std::to_string(from));
+        ASSERT_EQ(planar_prices(p, level, NodeId(from), to), expected);
+        ++levels_run;
+      }
+    }
+    if (k == 2) {
+      EXPECT_EQ(p.step(NodeId(0), NodeId(1)), kMaxCost + p.inner_cost(NodeId(1)));
+    }
+  }
+  EXPECT_GE(levels_run, 3 * 43);  // at least the baseline build, for every row
+}
+
+// A build that fused dx * dx + dy * dy into one FMA would round the squared length once instead of
+// twice: one ulp of difference in the distance, which changes the price only when the rounding to
+// a whole tick is decided by that ulp. Such cases are made here: points whose length changes under
+// either fused form, and a base that puts base + length exactly halfway between two ticks. Every
+// build the processor runs must price them as Problem::step does (built without FMA).
+TEST(PlanarCosts, EveryInstructionSetRoundsHalfwayPricesWithoutFusedMultiplyAdd) {
+  Rng rng(31);
+  int cases = 0;
+  for (int tries = 0; tries < 100000 && cases < 40; ++tries) {
+    const double dx = 1 + rng.uniform01() * 999, dy = 1 + rng.uniform01() * 999;
+    const double r = std::sqrt(dx * dx + dy * dy);
+    const double rx = std::sqrt(std::fma(dx, dx, dy * dy)), ry = std::sqrt(std::fma(dy, dy, dx * dx));
+    if (rx == r || ry == r) continue;
+    // base + r = target exactly (Sterbenz: target and r within a factor 2), target = k + 0.5.
+    double target = std::floor(r) + 0.5;
+    if (target < r) target += 1;
+    PlanarCosts pc;
+    pc.out = {{0, 0}, {0, 0}};
+    pc.in = {{0, 0}, {dx, dy}};
+    pc.base = target - r, pc.per_unit = 1, pc.scale = 1;
+    ASSERT_EQ(pc.base + r, target);
+    ProblemBuilder b(2);
+    b.set_planar_costs(pc);
+    b.add_cluster({NodeId(0)});
+    b.add_cluster({NodeId(1)});
+    auto built = b.build();
+    ASSERT_TRUE(built.ok()) << built.error().message;
+    const Problem p = std::move(built).value();
+    const std::vector<NodeId> to = {NodeId(1)};
+    const Cost expected = p.step(NodeId(0), NodeId(1));
+    ASSERT_EQ(expected, static_cast<Cost>(target + 0.5));
+    for (PriceLevel level : {PriceLevel::baseline, PriceLevel::x86_64_v3, PriceLevel::x86_64_v4}) {
+      if (!price_level_supported(level)) continue;
+      SCOPED_TRACE("level " + std::to_string(static_cast<int>(level)) + ", dx " + std::to_string(dx) + ", dy " + std::to_string(dy));
+      EXPECT_EQ(planar_prices(p, level, NodeId(0), to), std::vector<Cost>{expected});
+    }
+    ++cases;
+  }
+  EXPECT_EQ(cases, 40);
+}
+
 }  // namespace
 }  // namespace cutroute::solve

@@ -86,6 +86,15 @@ std::vector<NodeId> order_crossover(const Problem& p, const std::vector<NodeId>&
 std::vector<std::vector<NodeId>> population_survivors(const Problem& p, const std::vector<std::vector<NodeId>>& routes,
                                                       int mu, int lambda);
 
+// The batched planar prices that cluster optimisation and insertion use on plain planar problems
+// (one node against many), built for several instruction sets: the solver runs the widest this
+// processor supports, and every build gives the same bits. planar_prices(p, level, from, to)[j] =
+// p.step(from, to[j]) computed by the `level` build, which must be supported; for tests, which
+// compare the builds the processor runs.
+enum class PriceLevel { baseline, x86_64_v3, x86_64_v4 };
+bool price_level_supported(PriceLevel level);
+std::vector<Cost> planar_prices(const Problem& p, PriceLevel level, NodeId from, std::span<const NodeId> to);
+
 // The node-set search on its own (docs/SOLVER.md "Node sets"), for closed tours on asymmetric
 // matrices without precedence or inner costs: from `route`'s nodes, an iterated descent over the
 // choice of one node per cluster that lowers the assignment bound of the chosen nodes, until

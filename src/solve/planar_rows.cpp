@@ -70,12 +70,16 @@ PriceRow kernel(PriceLevel level) {
   return price_row_baseline;
 }
 
-// The widest build this processor runs, chosen once.
-const PriceRow price_row = [] {
-  if (solve::price_level_supported(PriceLevel::x86_64_v4)) return kernel(PriceLevel::x86_64_v4);
-  if (solve::price_level_supported(PriceLevel::x86_64_v3)) return kernel(PriceLevel::x86_64_v3);
-  return kernel(PriceLevel::baseline);
-}();
+// The widest build this processor runs, chosen at the first call (a function-local static, so
+// that no other file's static initialiser can find it unset).
+PriceRow widest() {
+  static const PriceRow f = [] {
+    if (solve::price_level_supported(PriceLevel::x86_64_v4)) return kernel(PriceLevel::x86_64_v4);
+    if (solve::price_level_supported(PriceLevel::x86_64_v3)) return kernel(PriceLevel::x86_64_v3);
+    return kernel(PriceLevel::baseline);
+  }();
+  return f;
+}
 
 }  // namespace
 
@@ -85,14 +89,14 @@ void Ops::planar_into(NodeId b, ClusterId a, Cost* out) const {
   const std::size_t s = blk_off_[a.index()], k = blk_off_[a.index() + 1] - s;
   // planar_arc(from, to) takes in[to] - out[from]; squaring makes the operand order irrelevant,
   // and IEEE subtraction is exact under negation, so x - q here gives the same bits.
-  price_row(pc, q.x, q.y, pox_.data() + s, poy_.data() + s, k, nullptr, p_.inner_cost(b), out);
+  widest()(pc, q.x, q.y, pox_.data() + s, poy_.data() + s, k, nullptr, p_.inner_cost(b), out);
 }
 
 void Ops::planar_from(NodeId u, ClusterId c, Cost* out) const {
   const PlanarCosts& pc = *p_.planar();
   const PlanarPoint q = pc.out[u.index()];
   const std::size_t s = blk_off_[c.index()], k = blk_off_[c.index() + 1] - s;
-  price_row(pc, q.x, q.y, pix_.data() + s, piy_.data() + s, k, pinner_.empty() ? nullptr : pinner_.data() + s, 0, out);
+  widest()(pc, q.x, q.y, pix_.data() + s, piy_.data() + s, k, pinner_.empty() ? nullptr : pinner_.data() + s, 0, out);
 }
 
 }  // namespace cutroute::solve::detail

@@ -8,6 +8,8 @@
 #include <limits>
 #include <vector>
 
+#include <cutroute/solve/lower_bound.hpp>
+
 namespace cutroute::solve {
 namespace {
 
@@ -88,6 +90,17 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
     out.status = SolveStatus::feasible;
     ub = incumbent->cost;
   }
+  // The cluster-graph bound (lower_bound.hpp) proves the incumbent optimal when it reaches it (the
+  // stacker-crane instances' assignment bound often does), and stands in for the DP's own bound when
+  // the DP cannot run or stops: beyond the DP's limits that bound is only the cheapest entries.
+  const std::optional<Cost> global_lb =
+      p.cluster_count() > 1 ? route_lower_bound(p, stop, ub < kInf ? ub : kMaxCost) : std::nullopt;
+  if (global_lb && ub < kInf && *global_lb >= ub) {
+    out.status = SolveStatus::optimal;
+    out.lower_bound = out.cost;
+    return out;
+  }
+  auto with_global = [&](Cost lb) { return global_lb ? std::max(lb, *global_lb) : lb; };
   const Layout L = make_layout(p);
   const int mp = L.mp;
   const int np = L.np;
@@ -111,6 +124,7 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
   auto fail_to_run = [&](bool limit) {
     Cost lb = kInf;
     for (NodeId s : start_nodes) lb = std::min(lb, p.inner_cost(s) + min_in_all + closing_lb(s));
+    lb = with_global(lb);
     if (lb < kInf) out.lower_bound = std::min(lb, out.route.empty() ? lb : out.cost);
     out.stats.stopped_by_limit = limit;
     return out;
@@ -287,7 +301,7 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
   for (std::size_t k = si + 1; k < start_nodes.size(); ++k)
     lower_bound = std::min(lower_bound, p.inner_cost(start_nodes[k]) + lb_rest(0, closing_lb(start_nodes[k])));
   lower_bound = std::min(lower_bound, ub);  // finished start nodes: nothing below ub
-  if (lower_bound < kInf) out.lower_bound = lower_bound;
+  if (lower_bound < kInf) out.lower_bound = std::min(with_global(lower_bound), ub);
   out.stats.stopped_by_limit = true;
   return out;
 }

@@ -17,14 +17,7 @@ TEST(ExactVsBruteForce, ThreeHundredRandomInstances) {
   int heuristic_equal = 0, feasible = 0, infeasible = 0;
   constexpr int kInstances = 300;
   for (int k = 0; k < kInstances; ++k) {
-    test::RandomSpec spec;
-    spec.clusters = 2 + static_cast<int>(rng.below(7));  // 2..8
-    spec.max_nodes = 1 + static_cast<int>(rng.below(5));  // 1..5
-    spec.symmetric = k % 2 == 0;
-    spec.closed = k % 3 != 0;
-    spec.precedence_pairs = (k / 2) % 2 == 0 ? 0 : 1 + static_cast<int>(rng.below(6));
-    spec.inner_costs = k % 5 == 0;
-    spec.forbidden_arcs = k % 7 == 0 ? 3 : 0;
+    const test::RandomSpec spec = test::mixed_spec(k, rng);
     const Problem p = test::random_problem(spec, rng);
     SCOPED_TRACE("instance " + std::to_string(k) + ": " + std::to_string(p.cluster_count()) + " clusters, " +
                  std::to_string(p.node_count()) + " nodes");

@@ -80,6 +80,21 @@ inline solve::Problem random_problem(const RandomSpec& s, Rng& rng) {
   return std::move(b.build()).value();
 }
 
+// The k-th spec of the mixed 300-instance sets (exact_vs_brute_test, lower_bound_test): 2-8
+// clusters of 1-5 nodes, symmetric or not, closed or open, with or without precedence, inner costs
+// and forbidden arcs, each kind on its own period of k.
+inline RandomSpec mixed_spec(int k, Rng& rng) {
+  RandomSpec spec;
+  spec.clusters = 2 + static_cast<int>(rng.below(7));  // 2..8
+  spec.max_nodes = 1 + static_cast<int>(rng.below(5));  // 1..5
+  spec.symmetric = k % 2 == 0;
+  spec.closed = k % 3 != 0;
+  spec.precedence_pairs = (k / 2) % 2 == 0 ? 0 : 1 + static_cast<int>(rng.below(6));
+  spec.inner_costs = k % 5 == 0;
+  spec.forbidden_arcs = k % 7 == 0 ? 3 : 0;
+  return spec;
+}
+
 // Exhaustive optimum: every permutation of the non-start clusters that keeps precedence, with the
 // best node choice for that order by a shortest path over (layer, node). Returns max() if infeasible.
 inline solve::Cost brute_force(const solve::Problem& p) {

@@ -38,7 +38,9 @@
 // Anytime. When stopped (time limit, cancel), the lower bound is the minimum over start nodes of:
 // UB for finished start nodes; for the interrupted one, the minimum of F(S, v) + LB(S) over its last
 // completed layer (every route passes through exactly one state of each layer); for start nodes not
-// yet begun, inner(s) + LB(empty set).
+// yet begun, inner(s) + LB(empty set). The larger of that and the cluster-graph bound of
+// lower_bound.hpp is reported; that bound is computed before the DP, and when it reaches the
+// incumbent the incumbent is returned as optimal without running the DP.
 #pragma once
 
 #include <cstddef>

@@ -1,0 +1,34 @@
+// Route-independent lower bounds on a problem's optimum, from the cheapest steps between clusters.
+//
+// Cluster graph. D(A, B) = min over u in A, v in B of step(u, v): every route is a cycle over the
+// clusters (an open path closed by a free arc back to the start) that costs at least the sum of D
+// over its arcs. The arc into the start cluster is the closing arc plus the start node's inner cost
+// (closed tours) or that inner cost alone (open paths). Precedence forbids cluster arcs no route can
+// use: A -> B when B must precede A, or when some C must lie between them (A before C before B);
+// the start cluster -> B when B has another predecessor; A -> the start cluster (the last step)
+// when something must follow A.
+//
+// Bounds on that graph, the larger one counts:
+// - assignment (every cluster entered and left once; Jonker & Volgenant's shortest augmenting
+//   paths, O(m^3)): strong on asymmetric matrices (stacker-crane GTSPLIB, SOP);
+// - Held–Karp 1-tree with subgradient ascent (Held & Karp 1971, Polyak steps towards the incumbent;
+//   O(m^2) per step, at most a few hundred steps) on symmetric closed tours without precedence, where
+//   the assignment pairs clusters into 2-cycles and is weak. Arcs are the cheapest between the
+//   clusters' nodes, plus every cluster's cheapest inner cost.
+// The optimum of the original problem is an integer no smaller than either.
+#pragma once
+
+#include <optional>
+
+#include <cutroute/core/stop.hpp>
+#include <cutroute/solve/problem.hpp>
+
+namespace cutroute::solve {
+
+// A lower bound on every route's cost, or nothing when the problem is beyond the size limits
+// (more than 1 000 clusters or 6 000 nodes: the O(n^2) cluster graph and O(m^3) assignment) or
+// `stop` fires first. `upper`: the cost of a known route (or kMaxCost when none), the target of the
+// ascent's steps; a bound that reaches it proves that route optimal.
+std::optional<Cost> route_lower_bound(const Problem& p, const StopToken& stop, Cost upper = kMaxCost);
+
+}  // namespace cutroute::solve

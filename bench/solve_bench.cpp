@@ -68,6 +68,34 @@ void BM_ExactDp_16x8_10Precedence(benchmark::State& state) {
 }
 BENCHMARK(BM_ExactDp_16x8_10Precedence)->Args({1, 1})->Args({2, 1})->Args({3, 0})->Unit(benchmark::kSecond)->Iterations(1);
 
+// The DP over precedence ideals (solve_exact_ideals) on TSPLIB SOP instances beyond the dense table,
+// through the exact solver (its short heuristic run included): time, peak memory, proven or not.
+void BM_ExactIdeals_Sop(benchmark::State& state, const char* name) {
+  auto inst = io::read_instance(std::string(CUTROUTE_SHARED_DIR) + "/data/sop/" + name + ".sop");
+  if (!inst) {
+    state.SkipWithError(inst.error().message.c_str());
+    return;
+  }
+  solve::SolveParams params;
+  params.solver = solve::SolverKind::exact;
+  params.threads = 1;
+  params.time_limit_s = 60;
+  solve::Solution s;
+  for (auto _ : state) s = solve::solve(inst->problem, params);
+  rusage ru{};
+  getrusage(RUSAGE_SELF, &ru);
+  state.counters["optimal"] = s.status == solve::SolveStatus::optimal ? 1 : 0;
+  state.counters["cost"] = static_cast<double>(s.cost);
+  state.counters["lower_bound"] = s.lower_bound ? static_cast<double>(*s.lower_bound) : 0.0;
+  state.counters["max_rss_MB"] = static_cast<double>(ru.ru_maxrss) / 1024.0;
+}
+BENCHMARK_CAPTURE(BM_ExactIdeals_Sop, p43_4, "p43.4")->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_ExactIdeals_Sop, ry48p_4, "ry48p.4")->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_ExactIdeals_Sop, ft53_4, "ft53.4")->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_ExactIdeals_Sop, rbg109a, "rbg109a")->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_ExactIdeals_Sop, ft70_4, "ft70.4")->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK_CAPTURE(BM_ExactIdeals_Sop, esc25, "esc25")->Unit(benchmark::kSecond)->Iterations(1);
+
 void BM_Heuristic_Gtsplib(benchmark::State& state, const char* name) {
   auto inst = io::read_instance(std::string(CUTROUTE_SHARED_DIR) + "/data/gtsplib/" + name + ".gtsp");
   if (!inst) {

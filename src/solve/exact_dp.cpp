@@ -10,10 +10,12 @@
 
 #include <cutroute/solve/lower_bound.hpp>
 
+#include "exact_common.hpp"
+
 namespace cutroute::solve {
 namespace {
 
-constexpr Cost kInf = std::numeric_limits<Cost>::max() / 4;
+constexpr Cost kInf = detail::kDpInf;
 constexpr int kMaxDpClusters = 30;
 
 // The start cluster the DP enumerates: the problem's own, or for a closed tour without precedence
@@ -26,38 +28,19 @@ ClusterId dp_start_cluster(const Problem& p) {
   return best;
 }
 
-struct Layout {
-  ClusterId start;
-  int mp = 0;                       // non-start clusters
-  int np = 0;                       // non-start nodes
-  std::vector<ClusterId> cluster;   // bit -> cluster
-  std::vector<int> first, size;     // bit -> local node range
-  std::vector<NodeId> node;         // local -> node
-  std::vector<int> bit_of_local;    // local -> bit
+// The dense DP's layout: the shared one plus the predecessors of each bit as a 32-bit mask.
+struct Layout : detail::DpLayout {
   std::vector<std::uint32_t> pred;  // bit -> mask of bits that must come earlier
 };
 
 Layout make_layout(const Problem& p) {
   Layout L;
-  L.start = dp_start_cluster(p);
-  std::vector<int> bit_of(static_cast<std::size_t>(p.cluster_count()), -1);
-  for (int c = 0; c < p.cluster_count(); ++c) {
-    if (ClusterId(c) == L.start) continue;
-    bit_of[c] = L.mp++;
-    L.cluster.push_back(ClusterId(c));
-    L.first.push_back(L.np);
-    L.size.push_back(p.cluster_size(ClusterId(c)));
-    for (NodeId v : p.nodes_of(ClusterId(c))) {
-      L.node.push_back(v);
-      L.bit_of_local.push_back(bit_of[c]);
-      ++L.np;
-    }
-  }
+  static_cast<detail::DpLayout&>(L) = detail::dp_layout(p, dp_start_cluster(p));
   if (L.mp > kMaxDpClusters) return L;
   L.pred.assign(static_cast<std::size_t>(L.mp), 0);
   for (int b = 0; b < L.mp; ++b)
     for (ClusterId a : p.all_before(L.cluster[b]))
-      if (bit_of[a.index()] >= 0) L.pred[b] |= std::uint32_t{1} << bit_of[a.index()];
+      if (L.bit_of[a.index()] >= 0) L.pred[b] |= std::uint32_t{1} << L.bit_of[a.index()];
   return L;
 }
 
@@ -82,14 +65,7 @@ std::size_t estimate_exact_memory(const Problem& p) {
 
 Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const StopToken& stop, const Solution* incumbent) {
   Solution out;
-  out.stats.solver = "exact";
-  Cost ub = kInf;
-  if (incumbent && !incumbent->route.empty() && !uses_forbidden_arc(p, incumbent->route)) {
-    out.route = incumbent->route;
-    out.cost = incumbent->cost;
-    out.status = SolveStatus::feasible;
-    ub = incumbent->cost;
-  }
+  Cost ub = detail::dp_take_incumbent(p, incumbent, out);
   // The cluster-graph bound (lower_bound.hpp) proves the incumbent optimal when it reaches it (the
   // stacker-crane instances' assignment bound often does), and stands in for the DP's own bound when
   // the DP cannot run or stops: beyond the DP's limits that bound is only the cheapest entries.
@@ -107,19 +83,9 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
   const auto start_nodes = p.nodes_of(L.start);
 
   // Cheapest step into each cluster from anywhere outside it (the LB(S) terms).
-  std::vector<Cost> min_in(static_cast<std::size_t>(mp), kInf);
-  for (int b = 0; b < mp; ++b)
-    for (int j = L.first[b]; j < L.first[b] + L.size[b]; ++j)
-      for (NodeId u = NodeId(0); u.value() < p.node_count(); u = NodeId(u.value() + 1))
-        if (p.cluster_of(u) != L.cluster[b]) min_in[b] = std::min(min_in[b], p.step(u, L.node[j]));
-  Cost min_in_all = 0;
-  for (Cost c : min_in) min_in_all = std::min(kInf, min_in_all + c);
-  auto closing_lb = [&](NodeId s) {
-    if (!p.closed() || mp == 0) return Cost{0};
-    Cost best = kInf;
-    for (int j = 0; j < np; ++j) best = std::min(best, p.arc_cost(L.node[j], s));
-    return best >= kForbiddenCost ? kInf : best;
-  };
+  const std::vector<Cost> min_in = detail::dp_min_in(p, L);
+  const Cost min_in_all = detail::dp_sum(min_in);
+  auto closing_lb = [&](NodeId s) { return detail::dp_closing_lb(p, L, s); };
 
   auto fail_to_run = [&](bool limit) {
     Cost lb = kInf;
@@ -129,7 +95,12 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
     out.stats.stopped_by_limit = limit;
     return out;
   };
-  if (mp > kMaxDpClusters || estimate_exact_memory(p) > memory_limit_bytes) return fail_to_run(true);
+  if (mp > kMaxDpClusters || estimate_exact_memory(p) > memory_limit_bytes) {
+    if (!p.has_precedence() || mp > kMaxIdealClusters) return fail_to_run(true);
+    Solution s = solve_exact_ideals(p, memory_limit_bytes, stop, out.route.empty() ? nullptr : &out);
+    if (s.lower_bound && global_lb) s.lower_bound = std::min(with_global(*s.lower_bound), s.route.empty() ? kInf : s.cost);
+    return s;
+  }
 
   // Trivial case: a single cluster.
   if (mp == 0) {
@@ -148,12 +119,7 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
   const std::uint32_t full = static_cast<std::uint32_t>(subsets - 1);
   const auto unp = static_cast<std::size_t>(np);
   // Local step matrix: the DP's inner loop reads it sequentially.
-  std::vector<Cost> w(unp * unp);
-  for (int i = 0; i < np; ++i)
-    for (int j = 0; j < np; ++j) {
-      const Cost c = L.bit_of_local[i] == L.bit_of_local[j] ? kForbiddenCost : p.step(L.node[i], L.node[j]);
-      w[static_cast<std::size_t>(i) * unp + static_cast<std::size_t>(j)] = c >= kForbiddenCost ? kInf : c;
-    }
+  const std::vector<Cost> w = detail::dp_local_steps(p, L);
   std::vector<Cost> F(subsets * unp);
   std::vector<std::uint8_t> seen(subsets);
   std::vector<std::uint32_t> layer, next;
@@ -288,15 +254,7 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
     auto it = std::find_if(out.route.begin(), out.route.end(), [&](NodeId v) { return p.cluster_of(v) == p.start_cluster(); });
     std::rotate(out.route.begin(), it, out.route.end());
   }
-  if (!stopped) {
-    if (out.route.empty()) {
-      out.status = SolveStatus::infeasible;
-    } else {
-      out.status = SolveStatus::optimal;
-      out.lower_bound = out.cost;
-    }
-    return out;
-  }
+  if (!stopped) return detail::dp_proven(out);
   // Start nodes not begun: their trivial bound.
   for (std::size_t k = si + 1; k < start_nodes.size(); ++k)
     lower_bound = std::min(lower_bound, p.inner_cost(start_nodes[k]) + lb_rest(0, closing_lb(start_nodes[k])));

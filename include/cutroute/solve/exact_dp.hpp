@@ -63,4 +63,22 @@ std::size_t estimate_exact_memory(const Problem& p);
 Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const StopToken& stop,
                      const Solution* incumbent = nullptr);
 
+// Ideals. The same recurrence over the ideals alone (exact_ideals.cpp), for precedence problems
+// beyond the dense table (more than 30 non-start clusters, or a table over the memory limit), where
+// the ideals are often few although 2^m' is not: TSPLIB SOP p43.4 (43 clusters) has 37 921 ideals,
+// ry48p.4 68 657, ft53.4 154 689. Each layer (ideals of one size) is a hash map from the 128-bit set to
+// its row, which holds F(S, v) only for the nodes of clusters that may come last in S (those with no
+// successor in S): memory about (sum over ideals of those nodes) * 8 bytes + 100 bytes per ideal,
+// checked against the limit as the layers grow. Ideals are created when a state first survives the
+// bound, so pruned ones cost nothing. Up to kMaxIdealClusters non-start clusters. solve_exact() calls
+// it for precedence problems beyond its own limits; the returns are as solve_exact()'s (a memory stop
+// reports the bound of the last complete layer).
+inline constexpr int kMaxIdealClusters = 128;
+// Relaxations of solve_exact_ideals() before pruning, from an enumeration of the ideals; infinity
+// when there are more than `max_ideals` (or kMaxIdealClusters clusters), most often found in O(m) from
+// the clusters free of precedence.
+double estimate_ideal_work(const Problem& p, std::size_t max_ideals);
+Solution solve_exact_ideals(const Problem& p, std::size_t memory_limit_bytes, const StopToken& stop,
+                            const Solution* incumbent = nullptr);
+
 }  // namespace cutroute::solve

@@ -1,0 +1,42 @@
+// Private: what the dense DP (exact_dp.cpp) and the DP over ideals (exact_ideals.cpp) share: the
+// numbering of the non-start clusters and their nodes, the local step matrix, the cheapest-entry
+// bound terms and the incumbent.
+#pragma once
+
+#include <limits>
+#include <vector>
+
+#include <cutroute/solve/problem.hpp>
+#include <cutroute/solve/solution.hpp>
+
+namespace cutroute::solve::detail {
+
+inline constexpr Cost kDpInf = std::numeric_limits<Cost>::max() / 4;
+
+// Non-start clusters as bits 0..mp-1 (in cluster order), their nodes as contiguous local ids.
+struct DpLayout {
+  ClusterId start;
+  int mp = 0;                      // non-start clusters
+  int np = 0;                      // non-start nodes
+  std::vector<ClusterId> cluster;  // bit -> cluster
+  std::vector<int> first, size;    // bit -> local node range
+  std::vector<NodeId> node;        // local -> node
+  std::vector<int> bit_of_local;   // local -> bit
+  std::vector<int> bit_of;         // cluster -> bit (-1: the start cluster)
+};
+DpLayout dp_layout(const Problem& p, ClusterId start);
+
+// np x np steps between local nodes; kDpInf for forbidden arcs and within a cluster.
+std::vector<Cost> dp_local_steps(const Problem& p, const DpLayout& L);
+// By bit: the cheapest step into the cluster from any node outside it (the terms of LB(S)).
+std::vector<Cost> dp_min_in(const Problem& p, const DpLayout& L);
+// Their sum, kDpInf when a cluster cannot be entered.
+Cost dp_sum(const std::vector<Cost>& min_in);
+// The cheapest arc from a non-start node back to s on a closed tour (0 on a path), kDpInf if none.
+Cost dp_closing_lb(const Problem& p, const DpLayout& L, NodeId s);
+// Starts `out` (solver "exact") from a valid incumbent; returns its cost, or kDpInf without one.
+Cost dp_take_incumbent(const Problem& p, const Solution* incumbent, Solution& out);
+// A DP that ran to the end: its best route (or the incumbent) is optimal, or no route exists.
+Solution dp_proven(Solution& out);
+
+}  // namespace cutroute::solve::detail

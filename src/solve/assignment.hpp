@@ -30,6 +30,9 @@ class Assignment {
   }
   void solve();  // assigns every free row, O(m^2) each
   Cost value() const { return value_; }
+  // Row and column potentials after solve(): c(i, j) - row(i) - col(j) >= 0 on every entry.
+  Cost row_potential(int i) const { return u_[static_cast<std::size_t>(i)]; }
+  Cost col_potential(int j) const { return v_[static_cast<std::size_t>(j)]; }
 
   // Sets row k and column k to row[] and col[] (row[k], col[k] ignored: the diagonal stays) and
   // re-solves from the current matching, O(m^2). With a limit, gives up (false, state undefined

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <cutroute/solve/lower_bound.hpp>
+
 namespace cutroute::solve::detail {
 
 DpLayout dp_layout(const Problem& p, ClusterId start) {
@@ -63,6 +65,25 @@ Cost dp_take_incumbent(const Problem& p, const Solution* incumbent, Solution& ou
   out.cost = incumbent->cost;
   out.status = SolveStatus::feasible;
   return incumbent->cost;
+}
+
+DpPotentials dp_potentials(const Problem& p, const DpLayout& L, const StopToken& stop) {
+  DpPotentials d;
+  const auto pot = assignment_potentials(p, stop);
+  if (!pot) return d;
+  d.ok = true;
+  d.row.resize(static_cast<std::size_t>(L.mp));
+  d.rc.resize(static_cast<std::size_t>(L.mp));
+  for (std::size_t b = 0; b < d.row.size(); ++b) {
+    const auto c = L.cluster[b].index();
+    d.row[b] = pot->row[c];
+    d.rc[b] = pot->row[c] + pot->col[c];
+    d.all += d.rc[b];
+  }
+  d.all += pot->col[L.start.index()];
+  d.min_inner_start = kDpInf;
+  for (NodeId s : p.nodes_of(L.start)) d.min_inner_start = std::min(d.min_inner_start, p.inner_cost(s));
+  return d;
 }
 
 Solution dp_proven(Solution& out) {

@@ -129,6 +129,14 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
     const Cost rest = min_in_all - in_s;
     return rest >= kInf || close_lb >= kInf ? kInf : rest + close_lb;
   };
+  // The larger of lb_rest(T) and the potentials' bound once the route has reached cluster b.
+  const detail::DpPotentials pot = detail::dp_potentials(p, L, stop);
+  auto rest_after = [&](std::uint32_t T, int b, Cost close_lb, Cost apr0) {
+    if (!pot.ok) return lb_rest(T, close_lb);
+    Cost rc_t = 0;
+    for (std::uint32_t r = T; r; r &= r - 1) rc_t += pot.rc[static_cast<std::size_t>(std::countr_zero(r))];
+    return pot.remaining(lb_rest(T, close_lb), b, apr0 - rc_t);
+  };
 
   Cost lower_bound = kInf;  // min over start nodes handled so far (finished ones contribute ub later)
   bool stopped = false;
@@ -137,13 +145,14 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
   for (; si < start_nodes.size() && !stopped; ++si) {
     const NodeId s = start_nodes[si];
     const Cost close_lb = closing_lb(s);
+    const Cost apr0 = pot.ok ? pot.apr0(p, s) : 0;
     std::fill(F.begin(), F.end(), kInf);
     std::fill(seen.begin(), seen.end(), 0);
     layer.clear();
     for (int b = 0; b < mp; ++b) {
       if (L.pred[b] != 0) continue;
       const std::uint32_t T = std::uint32_t{1} << b;
-      const Cost rest = lb_rest(T, close_lb);
+      const Cost rest = rest_after(T, b, close_lb, apr0);
       for (int j = L.first[b]; j < L.first[b] + L.size[b]; ++j) {
         const Cost st = p.step(s, L.node[j]);
         if (st >= kForbiddenCost) continue;
@@ -167,7 +176,7 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
           const int b = std::countr_zero(avail);
           if ((L.pred[b] & ~S) != 0) continue;
           const std::uint32_t T = S | (std::uint32_t{1} << b);
-          const Cost rest = lb_rest(T, close_lb);
+          const Cost rest = rest_after(T, b, close_lb, apr0);
           if (rest >= kInf) continue;
           Cost* FT = &F[T * unp];
           const int jb = L.first[b], je = L.first[b] + L.size[b];

@@ -43,7 +43,8 @@ struct MaskHash {
 // F(S, v) per node v of the `last` clusters, by cluster bit then node.
 struct Ideal {
   Mask set, last;
-  Cost rest = 0;
+  Cost rest = 0;  // the cheapest entries of the clusters outside, plus the closing arc
+  Cost apr = 0;   // the assignment potentials' share of the clusters outside (see below)
   std::size_t row = 0;
 };
 
@@ -189,6 +190,8 @@ Solution solve_exact_ideals(const Problem& p, std::size_t memory_limit_bytes, co
   const std::vector<Cost> min_in = detail::dp_min_in(p, lay);
   const Cost min_in_all = detail::dp_sum(min_in);
   auto closing_lb = [&](NodeId s) { return detail::dp_closing_lb(p, lay, s); };
+  const detail::DpPotentials pot = detail::dp_potentials(p, lay, stop);
+  auto remaining = [&](Cost rest, int b, Cost apr) { return pot.remaining(rest, b, apr); };
   // Offset of cluster b's nodes in the row of an ideal whose `last` clusters are `last`.
   auto offset_in = [&](const Mask& last, int b) {
     std::size_t off = 0;
@@ -217,15 +220,16 @@ Solution solve_exact_ideals(const Problem& p, std::size_t memory_limit_bytes, co
     layers.assign(static_cast<std::size_t>(mp) + 1, {});
     index.assign(static_cast<std::size_t>(mp) + 1, {});
     vals.clear();
+    const Cost apr0 = pot.ok ? pot.apr0(p, s) : 0;
     ideals = 0;
     // Adds (or finds) T in layer k; returns its index, or -1 when memory runs out.
-    auto ideal_at = [&](int k, const Mask& set, const Mask& last, Cost rest) -> long long {
+    auto ideal_at = [&](int k, const Mask& set, const Mask& last, Cost rest, Cost apr) -> long long {
       auto& idx = index[static_cast<std::size_t>(k)];
       if (auto it = idx.find(set); it != idx.end()) return it->second;
       const std::size_t rs = row_size(last);
       if (rs > RowPool::kBlock || vals.bytes_with(rs) + (ideals + 1) * kIdealBytes > memory_limit_bytes) return -1;
       auto& L = layers[static_cast<std::size_t>(k)];
-      L.push_back({set, last, rest, vals.alloc(rs)});
+      L.push_back({set, last, rest, apr, vals.alloc(rs)});
       ++ideals;
       idx.emplace(set, static_cast<std::uint32_t>(L.size() - 1));
       return static_cast<long long>(L.size() - 1);
@@ -235,15 +239,17 @@ Solution solve_exact_ideals(const Problem& p, std::size_t memory_limit_bytes, co
       if (pred[static_cast<std::size_t>(b)] != Mask{}) continue;
       Mask T;
       T.set(b);
-      const Cost rest = min_in_all >= kInf || close_lb >= kInf ? kInf : min_in_all - min_in[static_cast<std::size_t>(b)] + close_lb;
-      if (rest >= kInf) continue;
+      const Cost rest_in = min_in_all >= kInf || close_lb >= kInf ? kInf : min_in_all - min_in[static_cast<std::size_t>(b)] + close_lb;
+      if (rest_in >= kInf) continue;
+      const Cost apr = pot.ok ? apr0 - pot.rc[static_cast<std::size_t>(b)] : 0;
+      const Cost rest = remaining(rest_in, b, apr);
       long long id = -2;
       for (int j = first[static_cast<std::size_t>(b)]; j < first[static_cast<std::size_t>(b)] + size[static_cast<std::size_t>(b)]; ++j) {
         const Cost st = p.step(s, node[static_cast<std::size_t>(j)]);
         if (st >= kForbiddenCost) continue;
         const Cost val = p.inner_cost(s) + st;
         if (val + rest >= ub) continue;
-        if (id == -2) id = ideal_at(1, T, T, rest);
+        if (id == -2) id = ideal_at(1, T, T, rest_in, apr);
         if (id < 0) {
           over_memory = true;
           break;
@@ -263,7 +269,9 @@ Solution solve_exact_ideals(const Problem& p, std::size_t memory_limit_bytes, co
         const Ideal S = layers[static_cast<std::size_t>(k)][li];
         for (int b = 0; b < mp && !over_memory; ++b) {
           if (S.set.test(b) || !pred[static_cast<std::size_t>(b)].subset_of(S.set)) continue;
-          const Cost rest = S.rest - min_in[static_cast<std::size_t>(b)];
+          const Cost rest_in = S.rest - min_in[static_cast<std::size_t>(b)];
+          const Cost apr = pot.ok ? S.apr - pot.rc[static_cast<std::size_t>(b)] : 0;
+          const Cost rest = remaining(rest_in, b, apr);
           const int jb = first[static_cast<std::size_t>(b)], nb = size[static_cast<std::size_t>(b)];
           best_j.assign(static_cast<std::size_t>(nb), kInf);
           bool any = false;
@@ -285,7 +293,7 @@ Solution solve_exact_ideals(const Problem& p, std::size_t memory_limit_bytes, co
           T.set(b);
           Mask last = S.last.without(pred[static_cast<std::size_t>(b)]);
           last.set(b);
-          const long long id = ideal_at(k + 1, T, last, rest);
+          const long long id = ideal_at(k + 1, T, last, rest_in, apr);
           if (id < 0) {
             over_memory = true;
             break;
@@ -304,9 +312,12 @@ Solution solve_exact_ideals(const Problem& p, std::size_t memory_limit_bytes, co
       Cost lb_s = ub;
       if (done_layer == 0 && min_in_all < kInf && close_lb < kInf) lb_s = std::min(lb_s, p.inner_cost(s) + min_in_all + close_lb);
       for (const Ideal& S : layers[static_cast<std::size_t>(done_layer)]) {
-        const std::size_t n = row_size(S.last);
-        for (std::size_t i = 0; i < n; ++i)
-          if (vals[S.row + i] < kInf) lb_s = std::min(lb_s, vals[S.row + i] + S.rest);
+        std::size_t off = S.row;
+        S.last.each([&](int a) {
+          const Cost rest = remaining(S.rest, a, S.apr);
+          for (int i = 0; i < size[static_cast<std::size_t>(a)]; ++i, ++off)
+            if (vals[off] < kInf) lb_s = std::min(lb_s, vals[off] + rest);
+        });
       }
       lower_bound = std::min(lower_bound, lb_s);
       stopped = true;

@@ -85,8 +85,8 @@ bool build_graph(const Problem& p, const StopToken& stop, ClusterGraph& g) {
   return true;
 }
 
-std::optional<Cost> assignment_bound(const ClusterGraph& g) {
-  detail::Assignment ap;
+// The assignment on the cluster graph's steps; false when it needs an unusable arc (no cycle cover).
+bool solve_assignment(const ClusterGraph& g, detail::Assignment& ap) {
   ap.reset(g.m);
   for (int a = 0; a < g.m; ++a)
     for (int b = 0; b < g.m; ++b) {
@@ -94,7 +94,12 @@ std::optional<Cost> assignment_bound(const ClusterGraph& g) {
       ap.at(a, b) = a == b || c >= kNo ? detail::Assignment::kBig : c;
     }
   ap.solve();
-  if (ap.value() >= kForbiddenCost) return std::nullopt;  // no cycle cover of usable arcs
+  return ap.value() < kForbiddenCost;
+}
+
+std::optional<Cost> assignment_bound(const ClusterGraph& g) {
+  detail::Assignment ap;
+  if (!solve_assignment(g, ap)) return std::nullopt;
   return ap.value();
 }
 
@@ -205,6 +210,30 @@ std::optional<Cost> held_karp_bound(const ClusterGraph& g, int root, Cost upper,
 }
 
 }  // namespace
+
+std::optional<ClusterPotentials> assignment_potentials(const Problem& p, const StopToken& stop) {
+  if (p.cluster_count() > kMaxClusters || p.node_count() > kMaxNodes || p.cluster_count() < 2) return std::nullopt;
+  ClusterGraph g;
+  if (!build_graph(p, stop, g) || stop.stop_requested()) return std::nullopt;
+  detail::Assignment ap;
+  if (!solve_assignment(g, ap)) return std::nullopt;
+  const int m = g.m;
+  ClusterPotentials pot;
+  pot.col.resize(static_cast<std::size_t>(m));
+  for (int b = 0; b < m; ++b) pot.col[static_cast<std::size_t>(b)] = ap.col_potential(b);
+  // Each row's potential recomputed as the tightest one the columns allow, over the usable arcs only:
+  // the inequality then holds by construction, whatever the solver's own potentials on the
+  // unusable entries.
+  pot.row.assign(static_cast<std::size_t>(m), kNo);
+  for (int a = 0; a < m; ++a)
+    for (int b = 0; b < m; ++b) {
+      const Cost c = g.at(g.step, a, b);
+      if (a != b && c < kNo) pot.row[static_cast<std::size_t>(a)] = std::min(pot.row[static_cast<std::size_t>(a)], c - pot.col[static_cast<std::size_t>(b)]);
+    }
+  for (Cost r : pot.row)
+    if (r >= kNo) return std::nullopt;  // a cluster no route can leave
+  return pot;
+}
 
 std::optional<Cost> route_lower_bound(const Problem& p, const StopToken& stop, Cost upper) {
   if (p.cluster_count() > kMaxClusters || p.node_count() > kMaxNodes || p.cluster_count() < 2) return std::nullopt;

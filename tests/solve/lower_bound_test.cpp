@@ -55,6 +55,38 @@ TEST(LowerBound, NeverAboveTheBruteForceOptimum) {
   EXPECT_GE(tsp_tight * 2, tsp) << tsp_tight << " of " << tsp;
 }
 
+// The potentials' bound on what remains after every prefix of an optimal route (what the exact DPs
+// prune with) never exceeds what the route actually pays for the rest.
+TEST(LowerBound, PotentialsBoundTheRestOfEveryOptimalRoute) {
+  Rng rng(20261129);
+  int checked = 0;
+  for (int k = 0; k < 300; ++k) {
+    test::RandomSpec spec = test::mixed_spec(k, rng);
+    const Problem p = test::random_problem(spec, rng);
+    SCOPED_TRACE("instance " + std::to_string(k));
+    const Solution opt = solve_exact(p, std::size_t{1} << 30, StopToken{});
+    if (opt.status != SolveStatus::optimal || p.cluster_count() < 2) continue;
+    const auto pot = assignment_potentials(p, StopToken{});
+    if (!pot) continue;
+    const auto& r = opt.route;
+    const ClusterId s0 = p.start_cluster();
+    Cost min_inner = kMaxCost;
+    for (NodeId v : p.nodes_of(s0)) min_inner = std::min(min_inner, p.inner_cost(v));
+    Cost outside = pot->col[s0.index()];  // row + col of the clusters not yet visited, + col[start]
+    for (int c = 0; c < p.cluster_count(); ++c)
+      if (ClusterId(c) != s0) outside += pot->row[static_cast<std::size_t>(c)] + pot->col[static_cast<std::size_t>(c)];
+    Cost prefix = p.inner_cost(r[0]);
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      const ClusterId c = p.cluster_of(r[i]);
+      if (i > 0) prefix += p.step(r[i - 1], r[i]), outside -= pot->row[c.index()] + pot->col[c.index()];
+      const Cost bound = pot->row[c.index()] + outside - (p.closed() ? p.inner_cost(r[0]) : min_inner);
+      EXPECT_LE(prefix + bound, opt.cost) << "prefix " << i;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 1000);
+}
+
 // A route of cheap arcs hidden in a dear matrix: the assignment bound equals it, so the exact solver
 // proves it optimal at 60 clusters, twice what the DP can hold.
 TEST(LowerBound, ProvesAPlantedRouteOptimalBeyondTheDpLimit) {

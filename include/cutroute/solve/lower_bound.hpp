@@ -19,6 +19,7 @@
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include <cutroute/core/stop.hpp>
 #include <cutroute/solve/problem.hpp>
@@ -30,5 +31,17 @@ namespace cutroute::solve {
 // `stop` fires first. `upper`: the cost of a known route (or kMaxCost when none), the target of the
 // ascent's steps; a bound that reaches it proves that route optimal.
 std::optional<Cost> route_lower_bound(const Problem& p, const StopToken& stop, Cost upper = kMaxCost);
+
+// Potentials of the assignment bound, by cluster: every arc (a, b) of the cluster graph that a route
+// can use costs at least row[a] + col[b], and sum(row) + sum(col) is the assignment bound. A route's
+// arcs after any prefix ending in cluster c, through the set R of clusters not yet visited and back to
+// the start cluster s, thus cost at least row[c] + sum over R of (row + col) + col[s], less the start
+// node's inner cost (closed tours) or the start cluster's cheapest inner cost (open paths), which the
+// arc into s carries. The exact DPs prune their states with it. Nothing beyond the size limits above,
+// when stopped, or when no cycle cover of usable arcs exists.
+struct ClusterPotentials {
+  std::vector<Cost> row, col;
+};
+std::optional<ClusterPotentials> assignment_potentials(const Problem& p, const StopToken& stop);
 
 }  // namespace cutroute::solve

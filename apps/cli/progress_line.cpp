@@ -14,6 +14,11 @@ ProgressFn ProgressLine::for_job(const std::string& name) {
     if (now - last_ < std::chrono::milliseconds(200)) return;
     last_ = now;
     std::string line = "\r" + name + ": " + std::string(e.stage);
+    if (e.fraction >= 0.0) {
+      line += ' ';
+      line += format_fixed(100.0 * e.fraction, 0);
+      line += " %";
+    }
     if (e.best) line += "  best " + format_fixed(*e.best, decimals_);
     line += "  " + format_fixed(std::chrono::duration<double>(now - t0_).count(), 1) + " s      ";
     std::cerr << line << std::flush;

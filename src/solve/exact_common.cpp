@@ -86,6 +86,13 @@ DpPotentials dp_potentials(const Problem& p, const DpLayout& L, const StopToken&
   return d;
 }
 
+void dp_progress(const ProgressFn& progress, double done, std::size_t start_nodes, Cost ub) {
+  if (!progress) return;
+  ProgressEvent e{"exact", std::min(1.0, done / static_cast<double>(std::max<std::size_t>(1, start_nodes))), std::nullopt};
+  if (ub < kDpInf) e.best = static_cast<double>(ub);
+  progress(e);
+}
+
 Solution dp_proven(Solution& out) {
   if (out.route.empty()) {
     out.status = SolveStatus::infeasible;

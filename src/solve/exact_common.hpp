@@ -54,6 +54,9 @@ struct DpPotentials {
   }
 };
 DpPotentials dp_potentials(const Problem& p, const DpLayout& L, const StopToken& stop);
+// Reports a finished layer: stage "exact", fraction `done` (start nodes finished plus the share of
+// layers of the current one) over the start nodes; the incumbent's cost when below kDpInf.
+void dp_progress(const ProgressFn& progress, double done, std::size_t start_nodes, Cost ub);
 // A DP that ran to the end: its best route (or the incumbent) is optimal, or no route exists.
 Solution dp_proven(Solution& out);
 

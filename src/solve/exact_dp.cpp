@@ -63,7 +63,8 @@ std::size_t estimate_exact_memory(const Problem& p) {
   return subsets * np * sizeof(Cost) + subsets + subsets * sizeof(std::uint32_t);
 }
 
-Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const StopToken& stop, const Solution* incumbent) {
+Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const StopToken& stop, const Solution* incumbent,
+                     const ProgressFn& progress) {
   Solution out;
   Cost ub = detail::dp_take_incumbent(p, incumbent, out);
   // The cluster-graph bound (lower_bound.hpp) proves the incumbent optimal when it reaches it (the
@@ -97,7 +98,7 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
   };
   if (mp > kMaxDpClusters || estimate_exact_memory(p) > memory_limit_bytes) {
     if (!p.has_precedence() || mp > kMaxIdealClusters) return fail_to_run(true);
-    Solution s = solve_exact_ideals(p, memory_limit_bytes, stop, out.route.empty() ? nullptr : &out);
+    Solution s = solve_exact_ideals(p, memory_limit_bytes, stop, out.route.empty() ? nullptr : &out, progress);
     if (s.lower_bound && global_lb) s.lower_bound = std::min(with_global(*s.lower_bound), s.route.empty() ? kInf : s.cost);
     return s;
   }
@@ -170,6 +171,8 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
           stopped = true;
           break;
         }
+        if ((li & 16383) == 16383)
+          detail::dp_progress(progress, static_cast<double>(si) + (k + static_cast<double>(li) / static_cast<double>(layer.size())) / mp, start_nodes.size(), ub);
         const std::uint32_t S = layer[li];
         const Cost* FS = &F[S * unp];
         for (std::uint32_t avail = full & ~S; avail; avail &= avail - 1) {
@@ -212,6 +215,7 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
         break;
       }
       layer.swap(next);
+      detail::dp_progress(progress, static_cast<double>(si) + static_cast<double>(k + 1) / mp, start_nodes.size(), ub);
     }
     if (stopped) break;
     // Close the routes of the full layer.

@@ -33,8 +33,13 @@ struct Mask {
   }
 };
 struct MaskHash {
+  // Every bit reaches the low bits (the open-addressing index masks them): multiply, fold, multiply.
   std::size_t operator()(const Mask& m) const {
-    return static_cast<std::size_t>((m.w[0] * 0x9E3779B97F4A7C15ull) ^ (m.w[1] + 0x632BE59BD9B4E019ull + (m.w[0] >> 29)));
+    std::uint64_t x = m.w[0] * 0x9E3779B97F4A7C15ull ^ std::rotl(m.w[1] * 0xC2B2AE3D27D4EB4Full, 31);
+    x ^= x >> 32;
+    x *= 0xD6E8FEB86659FD93ull;
+    x ^= x >> 29;
+    return static_cast<std::size_t>(x);
   }
 };
 
@@ -48,9 +53,44 @@ struct Ideal {
   std::size_t row = 0;
 };
 
-// Bytes an ideal costs besides its values: its place in a layer (twice: a vector may double) and its
-// hash-map node and bucket.
-constexpr std::size_t kIdealBytes = 2 * sizeof(Ideal) + 72;
+// Bytes an ideal costs besides its values: its place in a layer and its index slots (twice each: both
+// may double).
+constexpr std::size_t kIdealBytes = 2 * sizeof(Ideal) + 16;
+
+// A layer's index from set to position: open addressing with linear probing over positions + 1 in one
+// flat array, the sets read from the layer itself. A node-based hash map took a second to free after an
+// 8-s ry48p.1 run (millions of nodes) and 64 bytes an ideal.
+class LayerIndex {
+ public:
+  void clear() { slot_.assign(16, 0), size_ = 0; }
+  // The position of `set` in `layer`, or -1.
+  long long find(const std::vector<Ideal>& layer, const Mask& set) const {
+    for (std::size_t i = MaskHash{}(set) & (slot_.size() - 1);; i = (i + 1) & (slot_.size() - 1)) {
+      if (slot_[i] == 0) return -1;
+      if (layer[slot_[i] - 1].set == set) return static_cast<long long>(slot_[i] - 1);
+    }
+  }
+  // Records layer.back() (not in the index yet).
+  void add(const std::vector<Ideal>& layer) {
+    if (2 * (size_ + 1) > slot_.size()) {
+      std::vector<std::uint32_t> old(slot_.size() * 2, 0);
+      old.swap(slot_);
+      for (std::uint32_t v : old)
+        if (v != 0) place(layer, v);
+    }
+    place(layer, static_cast<std::uint32_t>(layer.size()));
+    ++size_;
+  }
+
+ private:
+  void place(const std::vector<Ideal>& layer, std::uint32_t v) {
+    std::size_t i = MaskHash{}(layer[v - 1].set) & (slot_.size() - 1);
+    while (slot_[i] != 0) i = (i + 1) & (slot_.size() - 1);
+    slot_[i] = v;
+  }
+  std::vector<std::uint32_t> slot_ = std::vector<std::uint32_t>(16, 0);
+  std::size_t size_ = 0;
+};
 
 // The rows, in blocks of 2^20 costs that never move (a growing vector would copy the whole table and
 // briefly hold it twice, over the memory limit); a row never straddles two blocks.
@@ -153,7 +193,8 @@ double estimate_ideal_work(const Problem& p, std::size_t max_ideals) {
   return work;
 }
 
-Solution solve_exact_ideals(const Problem& p, std::size_t memory_limit_bytes, const StopToken& stop, const Solution* incumbent) {
+Solution solve_exact_ideals(const Problem& p, std::size_t memory_limit_bytes, const StopToken& stop, const Solution* incumbent,
+                            const ProgressFn& progress) {
   Solution out;
   Cost ub = detail::dp_take_incumbent(p, incumbent, out);
   const detail::DpLayout lay = detail::dp_layout(p, p.start_cluster());
@@ -211,27 +252,27 @@ Solution solve_exact_ideals(const Problem& p, std::size_t memory_limit_bytes, co
   long long expanded = 0;
   std::size_t si = 0;
   std::vector<std::vector<Ideal>> layers;
-  std::vector<std::unordered_map<Mask, std::uint32_t, MaskHash>> index;
+  std::vector<LayerIndex> index;
   RowPool vals;
   std::size_t ideals = 0;
   for (; si < start_nodes.size() && !stopped; ++si) {
     const NodeId s = start_nodes[si];
     const Cost close_lb = closing_lb(s);
     layers.assign(static_cast<std::size_t>(mp) + 1, {});
-    index.assign(static_cast<std::size_t>(mp) + 1, {});
+    index.assign(static_cast<std::size_t>(mp) + 1, LayerIndex{});
     vals.clear();
     const Cost apr0 = pot.ok ? pot.apr0(p, s) : 0;
     ideals = 0;
     // Adds (or finds) T in layer k; returns its index, or -1 when memory runs out.
     auto ideal_at = [&](int k, const Mask& set, const Mask& last, Cost rest, Cost apr) -> long long {
       auto& idx = index[static_cast<std::size_t>(k)];
-      if (auto it = idx.find(set); it != idx.end()) return it->second;
+      auto& L = layers[static_cast<std::size_t>(k)];
+      if (const long long at = idx.find(L, set); at >= 0) return at;
       const std::size_t rs = row_size(last);
       if (rs > RowPool::kBlock || vals.bytes_with(rs) + (ideals + 1) * kIdealBytes > memory_limit_bytes) return -1;
-      auto& L = layers[static_cast<std::size_t>(k)];
       L.push_back({set, last, rest, apr, vals.alloc(rs)});
       ++ideals;
-      idx.emplace(set, static_cast<std::uint32_t>(L.size() - 1));
+      idx.add(L);
       return static_cast<long long>(L.size() - 1);
     };
     // Layer 1: a first cluster with no predecessor but the start.
@@ -266,6 +307,9 @@ Solution solve_exact_ideals(const Problem& p, std::size_t memory_limit_bytes, co
           stopped = true;
           break;
         }
+        // Middle layers of a large poset take seconds each: report within them too.
+        if ((li & 16383) == 16383)
+          detail::dp_progress(progress, static_cast<double>(si) + (k + static_cast<double>(li) / static_cast<double>(count)) / mp, start_nodes.size(), ub);
         const Ideal S = layers[static_cast<std::size_t>(k)][li];
         for (int b = 0; b < mp && !over_memory; ++b) {
           if (S.set.test(b) || !pred[static_cast<std::size_t>(b)].subset_of(S.set)) continue;
@@ -306,6 +350,7 @@ Solution solve_exact_ideals(const Problem& p, std::size_t memory_limit_bytes, co
       }
       if (stopped || over_memory) break;
       done_layer = k + 1;
+      detail::dp_progress(progress, static_cast<double>(si) + static_cast<double>(done_layer) / mp, start_nodes.size(), ub);
     }
     if (stopped || over_memory) {
       // Every route from s passes through one state of the last complete layer.
@@ -360,9 +405,10 @@ Solution solve_exact_ideals(const Problem& p, std::size_t memory_limit_bytes, co
       if (k == 1) break;
       Mask R = T;
       R.w[static_cast<std::size_t>(bit_of_local[static_cast<std::size_t>(v)] >> 6)] &= ~(std::uint64_t{1} << (bit_of_local[static_cast<std::size_t>(v)] & 63));
-      const auto it = index[static_cast<std::size_t>(k - 1)].find(R);
-      assert(it != index[static_cast<std::size_t>(k - 1)].end() && "DP table inconsistent");
-      const Ideal& S = layers[static_cast<std::size_t>(k - 1)][it->second];
+      const long long at = index[static_cast<std::size_t>(k - 1)].find(layers[static_cast<std::size_t>(k - 1)], R);
+      assert(at >= 0 && "DP table inconsistent");
+      if (at < 0) break;
+      const Ideal& S = layers[static_cast<std::size_t>(k - 1)][static_cast<std::size_t>(at)];
       int found = -1;
       Cost found_val = kInf;
       std::size_t off = S.row;

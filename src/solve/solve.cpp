@@ -36,7 +36,7 @@ Solution run_exact(const Problem& p, const SolveParams& params, const StopToken&
   h.threads = 1;
   h.time_limit_s = 0.0;
   Solution incumbent = solve_heuristic(p, h, stop, progress);
-  Solution s = solve_exact(p, params.exact_memory_limit_bytes, stop, incumbent.route.empty() ? nullptr : &incumbent);
+  Solution s = solve_exact(p, params.exact_memory_limit_bytes, stop, incumbent.route.empty() ? nullptr : &incumbent, progress);
   s.stats.solver = "exact";
   s.stats.iterations += incumbent.stats.iterations;
   return s;

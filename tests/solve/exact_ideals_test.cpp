@@ -94,5 +94,36 @@ TEST(ExactIdeals, LimitsGiveAValidBound) {
   EXPECT_LE(*s.lower_bound, kOptimum);
 }
 
+// A long exact run tells the progress line how far it is: one event a layer, for both DPs.
+TEST(ExactIdeals, BothDpsReportEachLayer) {
+  auto r = io::read_instance(test::shared("data/sop/p43.4.sop"));
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  Rng rng(3);
+  test::RandomSpec spec;
+  spec.clusters = 12;
+  spec.max_nodes = 3;
+  spec.precedence_pairs = 4;
+  const Problem dense = test::random_problem(spec, rng);
+  const Problem* const problems[] = {&r->problem, &dense};
+  for (const Problem* p : problems) {
+    std::vector<ProgressEvent> events;
+    std::vector<std::string> stages;
+    const Solution s = solve_exact(*p, std::size_t{1} << 30, StopToken{}, nullptr, [&](const ProgressEvent& e) {
+      events.push_back(e);
+      stages.emplace_back(e.stage);
+    });
+    ASSERT_EQ(s.status, SolveStatus::optimal);
+    ASSERT_GE(events.size(), static_cast<std::size_t>(p->cluster_count() / 2));
+    for (std::size_t i = 0; i < events.size(); ++i) {
+      EXPECT_EQ(stages[i], "exact");
+      EXPECT_GT(events[i].fraction, 0.0);
+      EXPECT_LE(events[i].fraction, 1.0);
+      if (i > 0) {
+        EXPECT_GE(events[i].fraction, events[i - 1].fraction);
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace cutroute::solve

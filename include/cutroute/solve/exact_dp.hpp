@@ -60,8 +60,10 @@ std::size_t estimate_exact_memory(const Problem& p);
 // Runs the DP. `incumbent` (optional, must be valid) is the initial upper bound. Returns status
 // optimal with the optimum; infeasible when no route exists; or, when stopped or over the memory
 // limit, the incumbent (status feasible, or no_solution without one) with lower_bound set.
+// `progress` hears of each finished layer: stage "exact", fraction = (start nodes done + layers done /
+// clusters) / start nodes, best = the best route's cost when there is one.
 Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const StopToken& stop,
-                     const Solution* incumbent = nullptr);
+                     const Solution* incumbent = nullptr, const ProgressFn& progress = {});
 
 // Ideals. The same recurrence over the ideals alone (exact_ideals.cpp), for precedence problems
 // beyond the dense table (more than 30 non-start clusters, or a table over the memory limit), where
@@ -79,6 +81,6 @@ inline constexpr int kMaxIdealClusters = 128;
 // the clusters free of precedence.
 double estimate_ideal_work(const Problem& p, std::size_t max_ideals);
 Solution solve_exact_ideals(const Problem& p, std::size_t memory_limit_bytes, const StopToken& stop,
-                            const Solution* incumbent = nullptr);
+                            const Solution* incumbent = nullptr, const ProgressFn& progress = {});
 
 }  // namespace cutroute::solve

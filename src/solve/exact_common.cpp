@@ -93,6 +93,26 @@ void dp_progress(const ProgressFn& progress, double done, std::size_t start_node
   progress(e);
 }
 
+Solution dp_single_cluster(const Problem& p, ClusterId start, Solution& out) {
+  const auto nodes = p.nodes_of(start);
+  NodeId arg = nodes[0];
+  for (NodeId s : nodes)
+    if (p.inner_cost(s) < p.inner_cost(arg)) arg = s;
+  out.route = {arg};
+  out.cost = p.inner_cost(arg);
+  out.status = SolveStatus::optimal;
+  out.lower_bound = out.cost;
+  return out;
+}
+
+Cost dp_keep_route(Solution& out, std::vector<NodeId>& rev, NodeId s, Cost cost) {
+  rev.push_back(s);
+  out.route.assign(rev.rbegin(), rev.rend());
+  out.cost = cost;
+  out.status = SolveStatus::feasible;
+  return cost;
+}
+
 Solution dp_proven(Solution& out) {
   if (out.route.empty()) {
     out.status = SolveStatus::infeasible;

@@ -57,6 +57,12 @@ DpPotentials dp_potentials(const Problem& p, const DpLayout& L, const StopToken&
 // Reports a finished layer: stage "exact", fraction `done` (start nodes finished plus the share of
 // layers of the current one) over the start nodes; the incumbent's cost when below kDpInf.
 void dp_progress(const ProgressFn& progress, double done, std::size_t start_nodes, Cost ub);
+// One cluster only: its node of least inner cost (the first of equals) is the optimal route.
+Solution dp_single_cluster(const Problem& p, ClusterId start, Solution& out);
+// A better route found by a walk back from the last node: `rev` holds its nodes from the last back to
+// the one after the start s. Sets `out` to the route (status feasible) and returns its cost, the new
+// upper bound.
+Cost dp_keep_route(Solution& out, std::vector<NodeId>& rev, NodeId s, Cost cost);
 // A DP that ran to the end: its best route (or the incumbent) is optimal, or no route exists.
 Solution dp_proven(Solution& out);
 

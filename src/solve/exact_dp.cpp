@@ -103,18 +103,7 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
     return s;
   }
 
-  // Trivial case: a single cluster.
-  if (mp == 0) {
-    Cost best = kInf;
-    NodeId arg;
-    for (NodeId s : start_nodes)
-      if (p.inner_cost(s) < best) best = p.inner_cost(s), arg = s;
-    out.route = {arg};
-    out.cost = best;
-    out.status = SolveStatus::optimal;
-    out.lower_bound = best;
-    return out;
-  }
+  if (mp == 0) return detail::dp_single_cluster(p, L.start, out);
 
   const auto subsets = std::size_t{1} << mp;
   const std::uint32_t full = static_cast<std::uint32_t>(subsets - 1);
@@ -124,19 +113,22 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
   std::vector<Cost> F(subsets * unp);
   std::vector<std::uint8_t> seen(subsets);
   std::vector<std::uint32_t> layer, next;
-  auto lb_rest = [&](std::uint32_t S, Cost close_lb) {
-    Cost in_s = 0;
-    for (std::uint32_t r = S; r; r &= r - 1) in_s += min_in[std::countr_zero(r)];
+  // LB(S) from in_s, the sum of min_in over S.
+  auto rest_from = [&](Cost in_s, Cost close_lb) {
     const Cost rest = min_in_all - in_s;
     return rest >= kInf || close_lb >= kInf ? kInf : rest + close_lb;
   };
-  // The larger of lb_rest(T) and the potentials' bound once the route has reached cluster b.
+  auto lb_rest = [&](std::uint32_t S, Cost close_lb) {
+    Cost in_s = 0;
+    for (std::uint32_t r = S; r; r &= r - 1) in_s += min_in[std::countr_zero(r)];
+    return rest_from(in_s, close_lb);
+  };
+  // The larger of LB(T) and the potentials' bound once the route has reached cluster b, T = S + b,
+  // from the sums over S of min_in (in_s) and of row + col (rc_s): computed once per S, not per T.
   const detail::DpPotentials pot = detail::dp_potentials(p, L, stop);
-  auto rest_after = [&](std::uint32_t T, int b, Cost close_lb, Cost apr0) {
-    if (!pot.ok) return lb_rest(T, close_lb);
-    Cost rc_t = 0;
-    for (std::uint32_t r = T; r; r &= r - 1) rc_t += pot.rc[static_cast<std::size_t>(std::countr_zero(r))];
-    return pot.remaining(lb_rest(T, close_lb), b, apr0 - rc_t);
+  auto rest_after = [&](Cost in_s, Cost rc_s, int b, Cost close_lb, Cost apr0) {
+    const Cost rest = rest_from(in_s + min_in[b], close_lb);
+    return pot.ok ? pot.remaining(rest, b, apr0 - rc_s - pot.rc[static_cast<std::size_t>(b)]) : rest;
   };
 
   Cost lower_bound = kInf;  // min over start nodes handled so far (finished ones contribute ub later)
@@ -153,7 +145,7 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
     for (int b = 0; b < mp; ++b) {
       if (L.pred[b] != 0) continue;
       const std::uint32_t T = std::uint32_t{1} << b;
-      const Cost rest = rest_after(T, b, close_lb, apr0);
+      const Cost rest = rest_after(0, 0, b, close_lb, apr0);
       for (int j = L.first[b]; j < L.first[b] + L.size[b]; ++j) {
         const Cost st = p.step(s, L.node[j]);
         if (st >= kForbiddenCost) continue;
@@ -175,11 +167,17 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
           detail::dp_progress(progress, static_cast<double>(si) + (k + static_cast<double>(li) / static_cast<double>(layer.size())) / mp, start_nodes.size(), ub);
         const std::uint32_t S = layer[li];
         const Cost* FS = &F[S * unp];
+        Cost in_s = 0, rc_s = 0;
+        for (std::uint32_t r = S; r; r &= r - 1) {
+          const int a = std::countr_zero(r);
+          in_s += min_in[a];
+          if (pot.ok) rc_s += pot.rc[static_cast<std::size_t>(a)];
+        }
         for (std::uint32_t avail = full & ~S; avail; avail &= avail - 1) {
           const int b = std::countr_zero(avail);
           if ((L.pred[b] & ~S) != 0) continue;
           const std::uint32_t T = S | (std::uint32_t{1} << b);
-          const Cost rest = rest_after(T, b, close_lb, apr0);
+          const Cost rest = rest_after(in_s, rc_s, b, close_lb, apr0);
           if (rest >= kInf) continue;
           Cost* FT = &F[T * unp];
           const int jb = L.first[b], je = L.first[b] + L.size[b];
@@ -253,11 +251,7 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
           S = R;
           v = found;
         }
-        rev.push_back(s);
-        out.route.assign(rev.rbegin(), rev.rend());
-        out.cost = best;
-        out.status = SolveStatus::feasible;
-        ub = best;
+        ub = detail::dp_keep_route(out, rev, s, best);
       }
     }
   }

@@ -208,17 +208,9 @@ Solution solve_exact_ideals(const Problem& p, std::size_t memory_limit_bytes, co
   const int mp = lay.mp;
   const int np = lay.np;
   const auto start_nodes = p.nodes_of(start);
-  if (mp > kMaxIdealClusters || mp == 0) {
-    out.stats.stopped_by_limit = mp > 0;
-    if (mp == 0) {  // one cluster: its cheapest node
-      NodeId arg = start_nodes[0];
-      for (NodeId s : start_nodes)
-        if (p.inner_cost(s) < p.inner_cost(arg)) arg = s;
-      out.route = {arg};
-      out.cost = p.inner_cost(arg);
-      out.status = SolveStatus::optimal;
-      out.lower_bound = out.cost;
-    }
+  if (mp == 0) return detail::dp_single_cluster(p, start, out);
+  if (mp > kMaxIdealClusters) {
+    out.stats.stopped_by_limit = true;
     return out;
   }
   std::vector<Mask> pred(static_cast<std::size_t>(mp));
@@ -423,11 +415,7 @@ Solution solve_exact_ideals(const Problem& p, std::size_t memory_limit_bytes, co
       v = found;
       target = found_val;
     }
-    rev.push_back(s);
-    out.route.assign(rev.rbegin(), rev.rend());
-    out.cost = best;
-    out.status = SolveStatus::feasible;
-    ub = best;
+    ub = detail::dp_keep_route(out, rev, s, best);
   }
   out.stats.iterations = expanded;
   if (!stopped) return detail::dp_proven(out);

@@ -158,6 +158,35 @@ TEST(OptimizeCli, WorkLimitBoundsAndReproducesARun) {
   fs::remove_all(dir);
 }
 
+// 30 plates with a hole each (60 contours, holes before plates): beyond the exact DP, so the route
+// comes from the heuristic, and `auto` reports the cluster-graph bound with it. The bound is a bound
+// on that objective: positive, at most the route's, equal to it only when the run says optimal.
+TEST(OptimizeCli, ReportsALowerBoundForHeuristicRoutes) {
+  const auto dir = temp_dir("bound");
+  const auto dxf = (dir / "plates.dxf").string();
+  DxfBuilder b;
+  b.insunits(4);
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 5; ++j) {
+      const double x = 10.0 + 40 * i, y = 10.0 + 40 * j;
+      b.lwpolyline({{{x, y}}, {{x + 30, y}}, {{x + 30, y + 30}}, {{x, y + 30}}}, true);
+      b.circle({x + 15, y + 15}, 5);
+    }
+  std::ofstream(dxf) << b.str();
+  for (const char* technique : {"standard", "auto"}) {
+    const OptRun run = optimize(dxf, dir, std::string("--threads 2 --technique ") + technique);
+    ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
+    const auto& solver = run.report["solver"];
+    EXPECT_EQ(solver["name"], "heuristic") << technique;
+    ASSERT_TRUE(solver["lower_bound"].is_number()) << technique << ": " << solver.dump();
+    const double lb = solver["lower_bound"].get<double>(), objective = solver["objective"].get<double>();
+    EXPECT_GT(lb, 0.0) << technique;
+    EXPECT_LE(lb, objective + 1e-9) << technique;
+    EXPECT_EQ(solver["status"] == "optimal", lb >= objective - 1e-9) << technique << ": " << solver.dump();
+  }
+  fs::remove_all(dir);
+}
+
 TEST(OptimizeCli, BadInputsFailCleanlyAndLeaveNothing) {
   const auto dir = temp_dir("bad");
   const auto dxf = (dir / "demo.dxf").string();

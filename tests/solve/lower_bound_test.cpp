@@ -87,36 +87,112 @@ TEST(LowerBound, PotentialsBoundTheRestOfEveryOptimalRoute) {
   EXPECT_GT(checked, 1000);
 }
 
-// A route of cheap arcs hidden in a dear matrix: the assignment bound equals it, so the exact solver
-// proves it optimal at 60 clusters, twice what the DP can hold.
-TEST(LowerBound, ProvesAPlantedRouteOptimalBeyondTheDpLimit) {
-  const int n = 60;
-  Rng rng(7);
-  std::vector<int> order(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) order[static_cast<std::size_t>(i)] = i;
-  rng.shuffle(order.begin() + 1, order.end());
-  std::vector<Cost> m(static_cast<std::size_t>(n * n));
-  for (auto& c : m) c = 100 + static_cast<Cost>(rng.below(900));
-  for (int i = 0; i < n; ++i) {
-    const int a = order[static_cast<std::size_t>(i)], b = order[static_cast<std::size_t>((i + 1) % n)];
-    m[static_cast<std::size_t>(a * n + b)] = 1 + static_cast<Cost>(rng.below(9));
+// A route of cheap arcs (1-9) hidden in a dear matrix (100-999): single-node clusters, the route
+// `order` (order[0] = 0, the start), its cost `planted`. Its assignment bound is that route's cost.
+struct Planted {
+  std::vector<int> order;
+  std::vector<Cost> matrix;
+  Cost planted = 0;
+  ProblemBuilder builder() const {
+    const int n = static_cast<int>(order.size());
+    ProblemBuilder b(n);
+    b.set_cost_matrix(matrix);
+    for (int i = 0; i < n; ++i) b.add_cluster({NodeId(i)});
+    return b;
   }
-  ProblemBuilder b(n);
-  b.set_cost_matrix(m);
-  for (int i = 0; i < n; ++i) b.add_cluster({NodeId(i)});
-  auto built = b.build();
+};
+
+Planted planted_route(int n, std::uint64_t seed) {
+  Rng rng(seed);
+  Planted r;
+  r.order.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) r.order[static_cast<std::size_t>(i)] = i;
+  rng.shuffle(r.order.begin() + 1, r.order.end());
+  r.matrix.resize(static_cast<std::size_t>(n * n));
+  for (auto& c : r.matrix) c = 100 + static_cast<Cost>(rng.below(900));
+  for (int i = 0; i < n; ++i) {
+    const int a = r.order[static_cast<std::size_t>(i)], b = r.order[static_cast<std::size_t>((i + 1) % n)];
+    r.matrix[static_cast<std::size_t>(a * n + b)] = 1 + static_cast<Cost>(rng.below(9));
+    r.planted += r.matrix[static_cast<std::size_t>(a * n + b)];
+  }
+  return r;
+}
+
+// The exact solver proves a planted route optimal at 60 clusters, twice what the DP can hold.
+TEST(LowerBound, ProvesAPlantedRouteOptimalBeyondTheDpLimit) {
+  const Planted r = planted_route(60, 7);
+  auto built = r.builder().build();
   ASSERT_TRUE(built.ok()) << built.error().message;
-  const Problem& p = *built;
   SolveParams sp;
   sp.solver = SolverKind::exact;
   sp.threads = 1;
-  const Solution s = solve(p, sp);
+  const Solution s = solve(*built, sp);
   ASSERT_EQ(s.status, SolveStatus::optimal);
   EXPECT_EQ(s.lower_bound, s.cost);
-  Cost planted = 0;
-  for (int i = 0; i < n; ++i)
-    planted += m[static_cast<std::size_t>(order[static_cast<std::size_t>(i)] * n + order[static_cast<std::size_t>((i + 1) % n)])];
-  EXPECT_EQ(s.cost, planted);
+  EXPECT_EQ(s.cost, r.planted);
+}
+
+// A planted route with precedence, beyond both DPs (no exact solver in `auto`): the heuristic finds
+// it, and the bound that `auto` computes first equals it, so the run stops there with a proof. The
+// heuristic alone, same seed and thread, returns the same cost as merely feasible and searches on
+// until it stagnates.
+TEST(LowerBound, AutoHeuristicRunStopsWithAProofAtTheBound) {
+  const int n = 80;
+  const Planted r = planted_route(n, 11);
+  ProblemBuilder b = r.builder();
+  // Pairs the planted route keeps, spread along it (precedence selects the bound for `auto`).
+  for (int i = 1; i + 7 < n; i += 9)
+    b.add_precedence(ClusterId(r.order[static_cast<std::size_t>(i)]), ClusterId(r.order[static_cast<std::size_t>(i + 7)]));
+  auto built = b.build();
+  ASSERT_TRUE(built.ok()) << built.error().message;
+  const Problem& p = *built;
+  ASSERT_GT(estimate_exact_work(p), SolveParams{}.exact_auto_max_work);
+  SolveParams sp;
+  sp.threads = 1;
+  sp.time_limit_s = 0.0;
+  const Solution s = solve(p, sp);
+  ASSERT_EQ(s.status, SolveStatus::optimal);
+  EXPECT_EQ(s.stats.solver, "heuristic");
+  EXPECT_EQ(s.cost, r.planted);
+  EXPECT_EQ(s.lower_bound, s.cost);
+  sp.solver = SolverKind::heuristic;
+  const Solution h = solve(p, sp);
+  EXPECT_EQ(h.status, SolveStatus::feasible);
+  EXPECT_FALSE(h.lower_bound.has_value());
+  EXPECT_EQ(h.cost, r.planted);
+  EXPECT_LT(s.stats.iterations, h.stats.iterations);
+}
+
+// `auto` on benchmarks its heuristic solves. TSPLIB SOP esc63: the assignment bound is the optimum (62),
+// so the run is proven optimal. ry48p.1: the bound stays below (12 531 against 15 805) and is
+// reported with a feasible route. GTSPLIB 40d198, a symmetric closed tour without precedence: no bound
+// (its Held-Karp ascent is not worth its time there), as before.
+TEST(LowerBound, AutoReportsTheBoundOfItsHeuristicRuns) {
+  SolveParams sp;
+  sp.threads = 1;
+  sp.time_limit_s = 1.0;
+  auto esc63 = io::read_instance(test::shared("data/sop/esc63.sop"));
+  ASSERT_TRUE(esc63.ok()) << esc63.error().message;
+  const Solution a = solve(esc63->problem, sp);
+  EXPECT_EQ(a.stats.solver, "heuristic");
+  EXPECT_EQ(a.status, SolveStatus::optimal);
+  EXPECT_EQ(a.cost, 62);
+  EXPECT_EQ(a.lower_bound, 62);
+
+  auto ry48 = io::read_instance(test::shared("data/sop/ry48p.1.sop"));
+  ASSERT_TRUE(ry48.ok()) << ry48.error().message;
+  const Solution b = solve(ry48->problem, sp);
+  EXPECT_EQ(b.stats.solver, "heuristic");
+  EXPECT_EQ(b.status, SolveStatus::feasible);
+  ASSERT_TRUE(b.lower_bound.has_value());
+  EXPECT_EQ(*b.lower_bound, *route_lower_bound(ry48->problem, StopToken{}));
+  EXPECT_LE(*b.lower_bound, 15805);
+
+  auto d198 = io::read_instance(test::shared("data/gtsplib/40d198.gtsp"));
+  ASSERT_TRUE(d198.ok()) << d198.error().message;
+  const Solution c = solve(d198->problem, sp);
+  EXPECT_EQ(c.stats.solver, "heuristic");
+  EXPECT_FALSE(c.lower_bound.has_value());
 }
 
 // Benchmarks beyond the DP: at most the best known value (../shared/data/*/README.md), and at least

@@ -31,22 +31,37 @@ bool build_graph(const Problem& p, const StopToken& stop, ClusterGraph& g) {
   g.step.assign(mm, kNo);
   g.arc.assign(mm, kNo);
   const int s0 = p.start_cluster().value();
-  for (int ui = 0; ui < n; ++ui) {
-    if ((ui & 63) == 0 && stop.stop_requested()) return false;
-    const NodeId u(ui);
-    const int cu = p.cluster_of(u).value();
-    for (int vi = 0; vi < n; ++vi) {
-      const NodeId v(vi);
-      const int cv = p.cluster_of(v).value();
-      if (cu == cv) continue;
-      const Cost a = p.arc_cost(u, v);
-      if (a >= kForbiddenCost) continue;
-      Cost& st = g.at(g.step, cu, cv);
-      st = std::min(st, a + p.inner_cost(v));
-      Cost& ar = g.at(g.arc, cu, cv);
-      ar = std::min(ar, a);
+  // Each node's cheapest arc and step into every other cluster, a cluster's nodes at a time so the
+  // minima stay in registers, with matrix and planar prices read inline: through arc_cost()'s
+  // dispatch and an update of both tables per arc, a cutting nest of 4 300 nodes with planar costs
+  // (vrs_Lv10_SHEET_004) took 0.13 s.
+  auto rows = [&](auto arc) {
+    for (int ui = 0; ui < n; ++ui) {
+      if ((ui & 63) == 0 && stop.stop_requested()) return false;
+      const NodeId u(ui);
+      const int cu = p.cluster_of(u).value();
+      for (int cv = 0; cv < m; ++cv) {
+        if (cv == cu) continue;
+        Cost best_step = kNo, best_arc = kNo;
+        for (NodeId v : p.nodes_of(ClusterId(cv))) {
+          const Cost a = arc(u, v);
+          if (a >= kForbiddenCost) continue;
+          best_step = std::min(best_step, a + p.inner_cost(v));
+          best_arc = std::min(best_arc, a);
+        }
+        Cost& st = g.at(g.step, cu, cv);
+        st = std::min(st, best_step);
+        Cost& ar = g.at(g.arc, cu, cv);
+        ar = std::min(ar, best_arc);
+      }
     }
-  }
+    return true;
+  };
+  const Cost* const mat = p.matrix_data();
+  const bool built = mat ? rows([mat, n](NodeId u, NodeId v) { return mat[u.index() * static_cast<std::size_t>(n) + v.index()]; })
+                     : p.plain_planar() ? rows([&p](NodeId u, NodeId v) { return p.planar_arc(u, v); })
+                                        : rows([&p](NodeId u, NodeId v) { return p.arc_cost(u, v); });
+  if (!built) return false;
   if (!p.closed()) {
     // The free closing arc of an open path: entering the start cluster costs its cheapest inner cost.
     Cost inner = kNo;

@@ -16,8 +16,8 @@ namespace {
 constexpr std::size_t kAutoMaxIdeals = 200'000;
 // Sizes up to which `auto` computes the cluster-graph bound before a heuristic run: the cluster
 // graph prices every arc once (n^2), the assignment is O(m^3). Cutting nests, per solve: deepnest
-// TopsNest (216 clusters, 1 151 nodes, matrix) 7.5 ms; vrs_Lv10_SHEET_004 (378 clusters, 4 300
-// nodes, planar costs) 0.13 s, 40 % of its search at the 2-million work budget, so not there. A cost
+// TopsNest (216 clusters, 1 151 nodes, matrix) 6.4 ms; vrs_Lv10_SHEET_004 (378 clusters, 4 300
+// nodes, planar costs) 0.09 s, 30 % of its search at the 2-million work budget, so not there. A cost
 // callback is slower per arc (0.8 s at 6 000 nodes).
 constexpr int kAutoBoundMaxClusters = 1000;
 constexpr int kAutoBoundMaxNodes = 3000;

@@ -157,7 +157,16 @@ std::vector<std::pair<std::string, std::string>> report_summary(const nlohmann::
   }
   if (r.contains("solver")) {
     const auto& sv = r["solver"];
-    rows.emplace_back("solver", sv.value("name", std::string("-")) + ", " + sv.value("status", std::string("-")));
+    const std::string status = sv.value("status", std::string("-"));
+    std::string text = sv.value("name", std::string("-")) + ", " + status;
+    // The route search's bound, so a feasible route shows how far from the best it can be at most.
+    if (sv.contains("objective") && sv["objective"].is_number() && sv.contains("lower_bound") && sv["lower_bound"].is_number()) {
+      const double objective = sv["objective"].get<double>(), bound = sv["lower_bound"].get<double>();
+      const std::string unit = r.contains("cost_unit") && r["cost_unit"].is_string() ? " " + r["cost_unit"].get<std::string>() : "";
+      text += "; route " + format_fixed(objective, 2) + unit + ", lower bound " + format_fixed(bound, 2) + unit;
+      if (status != "optimal" && objective > 0.0) text += " (gap " + format_fixed(100.0 * (objective - bound) / objective, 2) + " %)";
+    }
+    rows.emplace_back("solver", text);
   }
   return rows;
 }

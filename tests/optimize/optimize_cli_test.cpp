@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cutroute/core/number_format.hpp>
 #include <cutroute/io/nest_loader.hpp>
 
 #include "optimize_run.hpp"
@@ -174,7 +175,8 @@ TEST(OptimizeCli, ReportsALowerBoundForHeuristicRoutes) {
     }
   std::ofstream(dxf) << b.str();
   for (const char* technique : {"standard", "auto"}) {
-    const OptRun run = optimize(dxf, dir, std::string("--threads 2 --technique ") + technique);
+    const auto html = dir / "route.html";
+    const OptRun run = optimize(dxf, dir, std::string("--threads 2 --technique ") + technique + " --html " + html.string());
     ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
     const auto& solver = run.report["solver"];
     EXPECT_EQ(solver["name"], "heuristic") << technique;
@@ -183,6 +185,10 @@ TEST(OptimizeCli, ReportsALowerBoundForHeuristicRoutes) {
     EXPECT_GT(lb, 0.0) << technique;
     EXPECT_LE(lb, objective + 1e-9) << technique;
     EXPECT_EQ(solver["status"] == "optimal", lb >= objective - 1e-9) << technique << ": " << solver.dump();
+    // The picture's summary shows both, as the report rounds them.
+    const std::string page = read_text(html);
+    EXPECT_NE(page.find("lower bound " + format_fixed(lb, 2) + " s"), std::string::npos) << technique;
+    EXPECT_NE(page.find("route " + format_fixed(objective, 2) + " s"), std::string::npos) << technique;
   }
   fs::remove_all(dir);
 }

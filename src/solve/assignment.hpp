@@ -33,6 +33,8 @@ class Assignment {
   // Row and column potentials after solve(): c(i, j) - row(i) - col(j) >= 0 on every entry.
   Cost row_potential(int i) const { return u_[static_cast<std::size_t>(i)]; }
   Cost col_potential(int j) const { return v_[static_cast<std::size_t>(j)]; }
+  // The column assigned to row i after solve() (-1 while free).
+  int col_of(int i) const { return col_of_[static_cast<std::size_t>(i)]; }
 
   // Sets row k and column k to row[] and col[] (row[k], col[k] ignored: the diagonal stays) and
   // re-solves from the current matching, O(m^2). With a limit, gives up (false, state undefined

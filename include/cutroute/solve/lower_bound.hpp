@@ -12,9 +12,10 @@
 // - assignment (every cluster entered and left once; Jonker & Volgenant's shortest augmenting
 //   paths, O(m^3)): strong on asymmetric matrices (stacker-crane GTSPLIB, SOP);
 // - Held–Karp 1-tree with subgradient ascent (Held & Karp 1971, Polyak steps towards the incumbent;
-//   O(m^2) per step, at most a few hundred steps) on symmetric closed tours without precedence, where
-//   the assignment pairs clusters into 2-cycles and is weak. Arcs are the cheapest between the
-//   clusters' nodes, plus every cluster's cheapest inner cost.
+//   O(m^2) per step, at most a few hundred steps) on the symmetric relaxation (each edge at the
+//   cheaper of its usable directions), where the assignment is weak: symmetric closed tours without
+//   precedence, and any problem whose assignment puts at least a fifth of the clusters in 2-cycles.
+//   Arcs are the cheapest between the clusters' nodes, plus every cluster's cheapest inner cost.
 // The optimum of the original problem is an integer no smaller than either.
 #pragma once
 

@@ -234,5 +234,21 @@ TEST(LowerBound, ExactSolverBeyondItsLimitsReportsIt) {
   EXPECT_LE(*s.lower_bound, s.cost);
 }
 
+// The exact solver's first heuristic run can take the whole time limit (SOP prob.100: 4-11 s); the
+// bound computed before it still counts (the DP's own, the cheapest entries, was 547 of 1 163).
+TEST(LowerBound, ExactSolverKeepsItWhenItsFirstRunTakesTheWholeLimit) {
+  auto r = io::read_instance(test::shared("data/sop/prob.100.sop"));
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  SolveParams sp;
+  sp.solver = SolverKind::exact;
+  sp.threads = 1;
+  sp.time_limit_s = 1.0;
+  const Solution s = solve(r->problem, sp);
+  ASSERT_EQ(s.status, SolveStatus::feasible);
+  ASSERT_TRUE(s.lower_bound.has_value());
+  EXPECT_EQ(*s.lower_bound, *route_lower_bound(r->problem, StopToken{}));
+  EXPECT_GE(*s.lower_bound, 990);
+}
+
 }  // namespace
 }  // namespace cutroute::solve

@@ -9,7 +9,8 @@
 namespace cutroute::solve {
 
 // Steps: 1. automatic -> exact when estimate_exact_work() is small, else heuristic;
-// 2. exact: a short heuristic run gives the upper bound the DP prunes with, then the DP;
+// 2. exact: the cluster-graph bound when cheap (as in 3), a short heuristic run that gives the upper
+//    bound the DP prunes with (stopped at that bound), then the DP; the larger bound is reported;
 // 3. heuristic: multi-start ALNS until time limit, target, stagnation or cancel; in automatic mode
 //    on precedence or asymmetric problems of at most 1 000 clusters and 3 000 nodes (1 500 with a
 //    cost callback) the cluster-graph bound (lower_bound.hpp) is computed first: the run stops when

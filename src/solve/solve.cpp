@@ -14,11 +14,11 @@ namespace cutroute::solve {
 namespace {
 
 constexpr std::size_t kAutoMaxIdeals = 200'000;
-// Sizes up to which `auto` computes the cluster-graph bound before a heuristic run: the cluster
-// graph prices every arc once (n^2), the assignment is O(m^3). Cutting nests, per solve: deepnest
-// TopsNest (216 clusters, 1 151 nodes, matrix) 6.4 ms; vrs_Lv10_SHEET_004 (378 clusters, 4 300
-// nodes, planar costs) 0.09 s, 30 % of its search at the 2-million work budget, so not there. A cost
-// callback is slower per arc (0.8 s at 6 000 nodes).
+// Sizes up to which the cluster-graph bound is computed before a heuristic run (in `auto`, and the
+// exact solver's short first run): the cluster graph prices every arc once (n^2), the assignment is
+// O(m^3). Cutting nests, per solve: deepnest TopsNest (216 clusters, 1 151 nodes, matrix) 6.4 ms;
+// vrs_Lv10_SHEET_004 (378 clusters, 4 300 nodes, planar costs) 0.09 s, 30 % of its search at the
+// 2-million work budget, so not there. A cost callback is slower per arc (0.8 s at 6 000 nodes).
 constexpr int kAutoBoundMaxClusters = 1000;
 constexpr int kAutoBoundMaxNodes = 3000;
 constexpr int kAutoBoundMaxCallbackNodes = 1500;
@@ -73,7 +73,6 @@ Solution run_exact(const Problem& p, const SolveParams& params, const StopToken&
   }
   return s;
 }
-
 
 // The heuristic, stopped as soon as it reaches the bound when there is one: its route is then optimal
 // (TSPLIB SOP esc63: the assignment bound 62 is the optimum; the run took 8.8 s to stagnate, not

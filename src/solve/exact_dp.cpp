@@ -64,14 +64,14 @@ std::size_t estimate_exact_memory(const Problem& p) {
 }
 
 Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const StopToken& stop, const Solution* incumbent,
-                     const ProgressFn& progress) {
+                     const ProgressFn& progress, std::optional<Cost> known_bound) {
   Solution out;
   Cost ub = detail::dp_take_incumbent(p, incumbent, out);
   // The cluster-graph bound (lower_bound.hpp) proves the incumbent optimal when it reaches it (the
   // stacker-crane instances' assignment bound often does), and stands in for the DP's own bound when
   // the DP cannot run or stops: beyond the DP's limits that bound is only the cheapest entries.
   const std::optional<Cost> global_lb =
-      p.cluster_count() > 1 ? route_lower_bound(p, stop, ub < kInf ? ub : kMaxCost) : std::nullopt;
+      known_bound ? known_bound : p.cluster_count() > 1 ? route_lower_bound(p, stop, ub < kInf ? ub : kMaxCost) : std::nullopt;
   if (global_lb && ub < kInf && *global_lb >= ub) {
     out.status = SolveStatus::optimal;
     out.lower_bound = out.cost;

@@ -64,13 +64,9 @@ Solution run_exact(const Problem& p, const SolveParams& params, const StopToken&
   h.time_limit_s = 0.0;
   if (bound) h.target_cost = *bound;
   Solution incumbent = solve_heuristic(p, h, stop, progress);
-  Solution s = solve_exact(p, params.exact_memory_limit_bytes, stop, incumbent.route.empty() ? nullptr : &incumbent, progress);
+  Solution s = solve_exact(p, params.exact_memory_limit_bytes, stop, incumbent.route.empty() ? nullptr : &incumbent, progress, bound);
   s.stats.solver = "exact";
   s.stats.iterations += incumbent.stats.iterations;
-  if (bound && (s.status == SolveStatus::feasible || s.status == SolveStatus::optimal)) {
-    s.lower_bound = std::max(s.lower_bound.value_or(0), std::min(*bound, s.cost));
-    if (s.cost <= *bound) s.status = SolveStatus::optimal;
-  }
   return s;
 }
 

@@ -61,9 +61,11 @@ std::size_t estimate_exact_memory(const Problem& p);
 // optimal with the optimum; infeasible when no route exists; or, when stopped or over the memory
 // limit, the incumbent (status feasible, or no_solution without one) with lower_bound set.
 // `progress` hears of each finished layer: stage "exact", fraction = (start nodes done + layers done /
-// clusters) / start nodes, best = the best route's cost when there is one.
+// clusters) / start nodes, best = the best route's cost when there is one. `known_bound`: the
+// caller's route_lower_bound() (lower_bound.hpp), used instead of computing it again here.
 Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const StopToken& stop,
-                     const Solution* incumbent = nullptr, const ProgressFn& progress = {});
+                     const Solution* incumbent = nullptr, const ProgressFn& progress = {},
+                     std::optional<Cost> known_bound = std::nullopt);
 
 // Ideals. The same recurrence over the ideals alone (exact_ideals.cpp), for precedence problems
 // beyond the dense table (more than 30 non-start clusters, or a table over the memory limit), where

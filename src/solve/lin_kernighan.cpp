@@ -1,5 +1,6 @@
 // Lin–Kernighan chains of 2-opt moves on nearly symmetric matrices, with or without precedence.
 #include <algorithm>
+#include <array>
 #include <span>
 #include <vector>
 
@@ -20,6 +21,7 @@ constexpr int kMaxDepth = 10;     // 2-opt moves in one chain (6: prob.100 worse
 // {5,5,3} 13 / 1169.0, {5,5,3,2} 5 / 1157.5 (seeds 31-60: 6 / 1162.1), {5,5,3,3} 7 / 1164.3,
 // {5,5,2,2} 10 / 1165.3, {5,5,3,2,2} 11 / 1170.8; {5,5,3,2} makes 4-6 times fewer iterations.
 constexpr int kBreadth[] = {5};
+constexpr std::size_t kMaxNeighbours = 16;  // at least the candidate lists' length (kNeighbours, tour.cpp)
 constexpr int kCheckedBreadth[] = {5, 5, 3, 2};
 }  // namespace
 
@@ -36,7 +38,7 @@ constexpr int kCheckedBreadth[] = {5, 5, 3, 2};
 // again in it, removed ones not added back (LK's rule), so a chain ends.
 bool Ops::lk_pass(Tour& t, std::span<const int> breadth) const {
   const int L = static_cast<int>(t.seq.size());
-  if (!lk_ || L < 8) return false;
+  if (!lk_ || L < 8 || kn_ > kMaxNeighbours) return false;
   // The node -> cluster table through a local pointer: GCC reloaded it through p_ at every use
   // inside the chain's lambdas.
   const ClusterId* const cluster_of = p_.cluster_of_nodes().data();
@@ -65,9 +67,17 @@ bool Ops::lk_pass(Tour& t, std::span<const int> breadth) const {
   const bool sym_gain = p_.symmetric() && closed_ && !prec_;
   const bool checked_gain = !sym_gain && finite_symmetric_;
   const auto& pairs = lk_pairs_;
+  // The pair found broken last is tried first: a chain that has broken a pair mostly keeps it
+  // broken for several steps, and a long chain checks every step (its gain counts a forbidden arc).
+  std::size_t last_broken = 0;
   auto feasible = [&]() {
-    for (auto [a, b] : pairs)
-      if (t.pos[a.index()] > t.pos[b.index()]) return false;
+    const int* const ps = t.pos.data();
+    if (last_broken < pairs.size() && ps[pairs[last_broken].first.index()] > ps[pairs[last_broken].second.index()]) return false;
+    for (std::size_t i = 0; i < pairs.size(); ++i)
+      if (ps[pairs[i].first.index()] > ps[pairs[i].second.index()]) {
+        last_broken = i;
+        return false;
+      }
     return true;
   };
   // On an open path the cycle closes through a dummy arc last -> first, which no move may remove.
@@ -83,11 +93,22 @@ bool Ops::lk_pass(Tour& t, std::span<const int> breadth) const {
   // reversal and the position update run as one loop over local pointers.
   NodeId* const seq = t.seq.data();
   int* const pos = t.pos.data();
-  auto raw = [&](int lo, int hi) {
+  // Where node v is cluster v (SOP) the loop skips the node -> cluster load, which each position
+  // update waited for.
+  const bool node_is_cluster = node_is_cluster_;
+  auto raw = [seq, pos, cluster_of, node_is_cluster](int lo, int hi) {
+    if (node_is_cluster) {
+      for (int a = lo, b = hi; a < b; ++a, --b) {
+        const NodeId x = seq[b], y = seq[a];
+        seq[a] = x, seq[b] = y;
+        pos[x.index()] = a, pos[y.index()] = b;
+      }
+      return;
+    }
     for (int a = lo, b = hi; a < b; ++a, --b) {
       const NodeId x = seq[b], y = seq[a];
       seq[a] = x, seq[b] = y;
-      pos[clu(x).index()] = a, pos[clu(y).index()] = b;
+      pos[cluster_of[x.index()].index()] = a, pos[cluster_of[y.index()].index()] = b;
     }
   };
   auto flip_run = [&](int i, int j) {
@@ -134,11 +155,6 @@ bool Ops::lk_pass(Tour& t, std::span<const int> breadth) const {
       v.pop_back();
     }
   };
-  auto in = [&](const std::vector<int>& s, NodeId x, NodeId y) {
-    const std::size_t i = 2 * clu(x).index();
-    const int c = clu(y).value();
-    return s[i] == c || s[i + 1] == c;
-  };
   struct Choice {
     Cost rank;
     NodeId t3, t4;
@@ -146,34 +162,62 @@ bool Ops::lk_pass(Tour& t, std::span<const int> breadth) const {
   std::vector<Choice> choices;
   // Candidates for the next step from t2 with partial gain g, best first by g - c(t2,t3) + c(t3,t4);
   // `all` = false: only the best is wanted (a greedy step, most steps), kept alone. This scan is
-  // LK's hot loop (about half of a prob.100 run), so t3's index and the side of t4 are used directly
+  // LK's hot loop (about 40 % of a prob.100 run), so t3's index and the side of t4 are used directly
   // instead of looking them up again through succ()/pred(). The best is the first maximum, as
   // std::sort puts it in front: on at most 12 elements (kNeighbours) it is a stable insertion sort.
-  auto candidates = [&](NodeId t1, NodeId t2, Cost g, bool all) {
-    choices.clear();
+  // The scan reads the route, the slots and the lists through pointers held by value: captured by
+  // reference, GCC reloaded each through the closure at every candidate.
+  const int* const add_s = add_slot.data();
+  const int* const rem_s = rem_slot.data();
+  const ClusterId* const succ_list = succ_.data();
+  const Cost* const succ_cost = succ_arc_.empty() ? nullptr : succ_arc_.data();
+  const std::size_t kn = kn_;
+  const bool sorted_lists = exact_succs_;
+  const bool open_path = !closed_;
+  const Cost* const mat = mat_;
+  const std::size_t n = n_;
+  auto candidates = [&choices, seq, pos, cluster_of, add_s, rem_s, succ_list, succ_cost, kn, sorted_lists, open_path,
+                     node_is_cluster, L, mat, n](NodeId t1, NodeId t2, Cost g, bool all) {
+    // Kept in a local array until the scan ends: stores into the vector made GCC reload every
+    // captured value at each candidate.
+    std::array<Choice, kMaxNeighbours> found;
+    std::size_t nf = 0;
     Choice best{0, NodeId(), NodeId()};
     bool any = false;
-    const bool before_t3 = succ(t1) == t2;  // t4 = pred(t3) when t2 follows t1, else succ(t3)
-    for (ClusterId x : succs(clu(t2))) {
-      const int q = t.pos[x.index()];
+    const int p1 = pos[cluster_of[t1.index()].index()], p2 = pos[cluster_of[t2.index()].index()];
+    const bool before_t3 = (p1 + 1 == L ? 0 : p1 + 1) == p2;  // t4 = pred(t3) when t2 follows t1, else succ(t3)
+    const std::size_t row = cluster_of[t2.index()].index() * kn;
+    const int c1 = cluster_of[t1.index()].value(), c2 = cluster_of[t2.index()].value();
+    for (std::size_t k = 0; k < kn; ++k) {
+      const ClusterId x = succ_list[row + k];
+      const int q = pos[x.index()];
       if (q < 0) continue;
-      const NodeId t3 = t.seq[static_cast<std::size_t>(q)];
-      if (t3 == t1 || t3 == t2) continue;
-      const Cost g1 = g - arc(t2, t3);
+      const NodeId t3 = seq[q];
+      if (x.value() == c1 || x.value() == c2) continue;
+      const Cost g1 = g - (succ_cost ? succ_cost[row + k] : mat[t2.index() * n + t3.index()]);
       // Lists in ascending arc order (SOP): every later candidate fails the gain criterion too.
       if (g1 <= 0) {
-        if (exact_succs_) break;
+        if (sorted_lists) break;
         continue;
       }
-      const int q4 = wrap(before_t3 ? q - 1 : q + 1);
-      const NodeId t4 = t.seq[static_cast<std::size_t>(q4)];
-      if (t4 == t2 || t4 == t1 || dummy_at(q, q4) || in(add_slot, t3, t4) || in(rem_slot, t2, t3)) continue;
-      const Choice c{g1 + arc(t3, t4), t3, t4};
-      if (all) choices.push_back(c);
+      const int q4 = before_t3 ? (q == 0 ? L - 1 : q - 1) : (q + 1 == L ? 0 : q + 1);
+      const NodeId t4 = seq[q4];
+      const int c4 = node_is_cluster ? t4.value() : cluster_of[t4.index()].value();
+      if (c4 == c2 || c4 == c1) continue;
+      if (open_path && ((q == L - 1 && q4 == 0) || (q4 == L - 1 && q == 0))) continue;
+      const std::size_t i3 = 2 * x.index(), i2 = 2 * static_cast<std::size_t>(c2);
+      if (add_s[i3] == c4 || add_s[i3 + 1] == c4 || rem_s[i2] == x.value() || rem_s[i2 + 1] == x.value()) continue;
+      const Choice c{g1 + mat[t3.index() * n + t4.index()], t3, t4};
+      if (all) found[nf++] = c;
       else if (!any || c.rank > best.rank) best = c, any = true;
     }
-    if (all) std::sort(choices.begin(), choices.end(), [](const Choice& a, const Choice& b) { return a.rank > b.rank; });
-    else if (any) choices.push_back(best);
+    if (all) {
+      std::sort(found.begin(), found.begin() + static_cast<std::ptrdiff_t>(nf), [](const Choice& a, const Choice& b) { return a.rank > b.rank; });
+      choices.assign(found.begin(), found.begin() + static_cast<std::ptrdiff_t>(nf));
+    } else {
+      choices.clear();
+      if (any) choices.push_back(best);
+    }
   };
 
   bool improved = false;

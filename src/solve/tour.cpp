@@ -166,6 +166,16 @@ Ops::Ops(const Problem& p, const StopToken* stop)
   if (p.symmetric()) succ_ = pred_;
   else build(succ_, false);
   exact_succs_ = n_ == static_cast<std::size_t>(m_);
+  node_is_cluster_ = exact_succs_;
+  for (std::size_t v = 0; v < n_ && node_is_cluster_; ++v) node_is_cluster_ = p.cluster_of(NodeId(static_cast<int>(v))).index() == v;
+  if (exact_succs_ && mat_) {
+    succ_arc_.resize(succ_.size());
+    for (int c = 0; c < m_; ++c)
+      for (std::size_t k = 0; k < kn_; ++k) {
+        const std::size_t i = static_cast<std::size_t>(c) * kn_ + k;
+        succ_arc_[i] = arc(p.nodes_of(ClusterId(c))[0], p.nodes_of(succ_[i])[0]);
+      }
+  }
 }
 
 Cost Ops::full_cost(const std::vector<NodeId>& seq) const {

@@ -195,7 +195,10 @@ int run(const Opts& o) {
                     std::to_string(r["frames"].get<std::size_t>()) + " frames, T_cut " +
                     format_fixed(r["t_cut_s"].get<double>(), 2) + " s (" +
                     format_fixed(r["t_cut_const_speed_s"].get<double>(), 2) + " s at the set speed), technique " +
-                    r["chosen"].get<std::string>() + " -> " + outs[i].program;
+                    r["chosen"].get<std::string>();
+      // How far from the best route this one can be at most, as the HTML page says it.
+      if (const std::string q = io::route_quality(r); !q.empty()) messages[i] += ", route " + q;
+      messages[i] += " -> " + outs[i].program;
     }
   };
   std::vector<std::thread> pool;

@@ -164,11 +164,22 @@ std::vector<std::pair<std::string, std::string>> report_summary(const nlohmann::
       const double objective = sv["objective"].get<double>(), bound = sv["lower_bound"].get<double>();
       const std::string unit = r.contains("cost_unit") && r["cost_unit"].is_string() ? " " + r["cost_unit"].get<std::string>() : "";
       text += "; route " + format_fixed(objective, 2) + unit + ", lower bound " + format_fixed(bound, 2) + unit;
-      if (status != "optimal" && objective > 0.0) text += " (gap " + format_fixed(100.0 * (objective - bound) / objective, 2) + " %)";
+      if (const std::string q = route_quality(r); q.starts_with("gap ")) text += " (" + q.substr(0, q.find(" to ")) + ")";
     }
     rows.emplace_back("solver", text);
   }
   return rows;
+}
+
+std::string route_quality(const nlohmann::json& r) {
+  if (!r.is_object() || !r.contains("solver") || !r["solver"].is_object()) return "";
+  const auto& sv = r["solver"];
+  if (sv.value("status", std::string()) == "optimal") return "optimal";
+  if (!sv.contains("objective") || !sv["objective"].is_number() || !sv.contains("lower_bound") || !sv["lower_bound"].is_number())
+    return "";
+  const double objective = sv["objective"].get<double>(), bound = sv["lower_bound"].get<double>();
+  if (!(objective > 0.0)) return "";
+  return "gap " + format_fixed(100.0 * (objective - bound) / objective, 2) + " % to its lower bound";
 }
 
 std::string route_to_html(const model::Nest& nest, const nc::Toolpath& path,

@@ -193,6 +193,43 @@ TEST(OptimizeCli, ReportsALowerBoundForHeuristicRoutes) {
   fs::remove_all(dir);
 }
 
+// The line `optimize` prints says how good the route is: "route optimal" when proven, else the gap
+// to the bound, computed here from the report's own figures.
+TEST(OptimizeCli, TerminalLineSaysHowFarTheRouteCanBeFromTheBest) {
+  const auto dir = temp_dir("quality");
+  struct Case {
+    const char* name;
+    int rows;
+  };
+  for (const Case c : {Case{"plates", 5}, Case{"pair", 1}}) {
+    const auto dxf = (dir / (std::string(c.name) + ".dxf")).string();
+    DxfBuilder b;
+    b.insunits(4);
+    for (int i = 0; i < (c.rows == 1 ? 2 : 6); ++i)
+      for (int j = 0; j < c.rows; ++j) {
+        const double x = 10.0 + 40 * i, y = 10.0 + 40 * j;
+        b.lwpolyline({{{x, y}}, {{x + 30, y}}, {{x + 30, y + 30}}, {{x, y + 30}}}, true);
+        b.circle({x + 15, y + 15}, 5);
+      }
+    std::ofstream(dxf) << b.str();
+    const auto prog = dir / "out.ngc", rep = dir / "out.json";
+    const auto cmd = run_command(cli_path() + " optimize " + dxf + " -o " + prog.string() + " --report " + rep.string() +
+                                 " --time-limit 1 --threads 2 --technique standard");
+    ASSERT_EQ(cmd.exit_code, 0) << cmd.err;
+    const auto solver = nlohmann::json::parse(read_text(rep))["solver"];
+    std::string expected = "route optimal";
+    if (solver["status"] != "optimal") {
+      ASSERT_TRUE(solver["lower_bound"].is_number()) << c.name << ": " << solver.dump();
+      const double lb = solver["lower_bound"].get<double>(), objective = solver["objective"].get<double>();
+      expected = "route gap " + format_fixed(100.0 * (objective - lb) / objective, 2) + " % to its lower bound";
+    }
+    EXPECT_NE(cmd.out.find(", " + expected + " -> " + prog.string()), std::string::npos) << c.name << ": " << cmd.out;
+    if (c.rows == 1) EXPECT_EQ(solver["status"], "optimal") << "4 contours: the exact DP proves its route";
+    else EXPECT_EQ(solver["status"], "feasible") << "60 contours: a heuristic route with a bound";
+  }
+  fs::remove_all(dir);
+}
+
 TEST(OptimizeCli, BadInputsFailCleanlyAndLeaveNothing) {
   const auto dir = temp_dir("bad");
   const auto dxf = (dir / "demo.dxf").string();

@@ -32,4 +32,8 @@ std::string route_to_html(const model::Nest& nest, const nc::Toolpath& path,
 // The rows a person wants from an optimize report: pierces, lengths, frames, speeds, times.
 std::vector<std::pair<std::string, std::string>> report_summary(const nlohmann::json& report);
 
+// How good the route is, from the report's solver block: "optimal" when proven, "gap Z % to its
+// lower bound" (Z = 100 (route - bound) / route) when a bound came with it, else empty.
+std::string route_quality(const nlohmann::json& report);
+
 }  // namespace cutroute::io

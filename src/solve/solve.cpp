@@ -22,6 +22,15 @@ constexpr std::size_t kAutoMaxIdeals = 200'000;
 constexpr int kAutoBoundMaxClusters = 1000;
 constexpr int kAutoBoundMaxNodes = 3000;
 constexpr int kAutoBoundMaxCallbackNodes = 1500;
+// Larger problems, up to route_lower_bound()'s own limit, get the bound when the run's time limit
+// is at least 1 / kBoundTimeShare times its estimated cost, kBoundSecondsPerArc per priced arc (n^2;
+// measured 4.9 ns on SHEET_004's planar costs, doubled for slower machines): SHEET_004 from a
+// 3.7-s limit on (`optimize`'s default 10 s gives each of its two solves about 5 s), 6 000 nodes from
+// 7.2 s. Runs without a time limit (a work budget) keep the fixed limits above, so the same options
+// give the same route as before.
+constexpr int kBoundMaxNodes = 6000;
+constexpr double kBoundSecondsPerArc = 1.0e-8;
+constexpr double kBoundTimeShare = 0.05;
 
 bool use_exact(const Problem& p, const SolveParams& params) {
   switch (params.solver) {
@@ -42,20 +51,26 @@ bool use_exact(const Problem& p, const SolveParams& params) {
 // The cluster-graph bound when it is cheap: precedence problems and asymmetric ones within the size
 // limits above. Skipped on symmetric closed tours without precedence, where the bound is the
 // Held-Karp ascent (0.1 s on GTSPLIB 207si1032) and rarely reaches the optimum.
-std::optional<Cost> cheap_bound(const Problem& p, const StopToken& stop) {
+std::optional<Cost> cheap_bound(const Problem& p, const StopToken& stop, double time_limit_s) {
   if (p.cluster_count() < 2) return std::nullopt;
   const bool cheap_arcs = p.has_matrix() || p.planar() != nullptr;
-  if (p.cluster_count() > kAutoBoundMaxClusters || p.node_count() > (cheap_arcs ? kAutoBoundMaxNodes : kAutoBoundMaxCallbackNodes))
+  const double n = p.node_count();
+  const bool affordable = cheap_arcs && n <= kBoundMaxNodes && time_limit_s > 0.0 &&
+                          n * n * kBoundSecondsPerArc <= kBoundTimeShare * time_limit_s;
+  if (p.cluster_count() > kAutoBoundMaxClusters ||
+      (p.node_count() > (cheap_arcs ? kAutoBoundMaxNodes : kAutoBoundMaxCallbackNodes) && !affordable))
     return std::nullopt;
   if (p.symmetric() && p.closed() && !p.has_precedence()) return std::nullopt;
   return route_lower_bound(p, stop);
 }
 
-Solution run_exact(const Problem& p, const SolveParams& params, const StopToken& stop, const ProgressFn& progress) {
+// `time_limit_s`: the caller's limit (0: none), already folded into `stop`.
+Solution run_exact(const Problem& p, const SolveParams& params, const StopToken& stop, const ProgressFn& progress,
+                   double time_limit_s) {
   // The cluster-graph bound first when it is cheap: the short heuristic run stops when it reaches it
   // (SOP esc63), and it stays the reported bound when that run takes the whole time limit (SOP
   // prob.100, 3 s: the DP's cheapest-entry bound 547 was reported instead of 993).
-  const std::optional<Cost> bound = cheap_bound(p, stop);
+  const std::optional<Cost> bound = cheap_bound(p, stop, time_limit_s);
   // A short heuristic run first: its route is the DP's initial upper bound (most states are pruned
   // by it) and the answer if the DP hits a limit.
   SolveParams h = SolveParams::fast();
@@ -73,8 +88,9 @@ Solution run_exact(const Problem& p, const SolveParams& params, const StopToken&
 // The heuristic, stopped as soon as it reaches the bound when there is one: its route is then optimal
 // (TSPLIB SOP esc63: the assignment bound 62 is the optimum; the run took 8.8 s to stagnate, not
 // knowing it was done).
-Solution run_heuristic(const Problem& p, const SolveParams& params, const StopToken& stop, const ProgressFn& progress) {
-  const std::optional<Cost> bound = params.solver == SolverKind::automatic ? cheap_bound(p, stop) : std::nullopt;
+Solution run_heuristic(const Problem& p, const SolveParams& params, const StopToken& stop, const ProgressFn& progress,
+                      double time_limit_s) {
+  const std::optional<Cost> bound = params.solver == SolverKind::automatic ? cheap_bound(p, stop, time_limit_s) : std::nullopt;
   SolveParams h = params;
   if (bound && (!h.target_cost || *h.target_cost < *bound)) h.target_cost = *bound;
   Solution s = solve_heuristic(p, h, stop, progress);
@@ -92,8 +108,9 @@ Solution solve(const Problem& problem, const SolveParams& params, const StopToke
   const StopToken stop = params.time_limit_s > 0 ? stop_in.with_time_limit(params.time_limit_s) : stop_in;
   SolveParams inner = params;
   inner.time_limit_s = 0.0;  // already folded into `stop`
-  Solution s = use_exact(problem, params) ? run_exact(problem, inner, stop, progress)
-                                          : run_heuristic(problem, inner, stop, progress);
+  const double limit = std::max(0.0, params.time_limit_s);
+  Solution s = use_exact(problem, params) ? run_exact(problem, inner, stop, progress, limit)
+                                          : run_heuristic(problem, inner, stop, progress, limit);
   s.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (s.status == SolveStatus::optimal || s.status == SolveStatus::feasible) {
     const auto errors = validate(problem, s);

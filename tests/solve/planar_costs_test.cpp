@@ -326,5 +326,39 @@ TEST(PlanarCosts, EveryInstructionSetRoundsHalfwayPricesWithoutFusedMultiplyAdd)
   EXPECT_EQ(cases, 40);
 }
 
+// Beyond 3 000 nodes `auto` computes the cluster-graph bound only when the run's time limit is at
+// least twenty times its estimated cost (n^2 arcs at 10 ns: 0.1 s here), never without a time
+// limit (a work budget alone): same options, same route. A bound it reports is below the route's
+// cost, and equals it only when the run says optimal.
+TEST(PlanarCosts, AutoBoundsLargeProblemsWhenTheTimeLimitAffordsIt) {
+  Rng rng(33);
+  const Planar pl = random_planar(350, 17, rng);
+  const Problem p = build(pl, false);
+  ASSERT_GT(p.node_count(), 3000);
+  ASSERT_LE(p.node_count(), 6000);
+  const double n = p.node_count();
+  const double needs = 20.0 * n * n * 1e-8;  // the time limit from which the bound is affordable
+  struct Case {
+    double time_limit;
+    bool bound;
+  };
+  for (const Case c : {Case{0.0, false}, Case{0.5 * needs, false}, Case{1.2 * needs, true}}) {
+    SolveParams sp;
+    sp.solver = SolverKind::automatic;
+    sp.threads = 2;
+    sp.time_limit_s = c.time_limit;
+    sp.work_budget = 4.0e5;  // a few hundred iterations: the run ends on it, not on the time limit
+    const Solution s = solve(p, sp);
+    SCOPED_TRACE("time limit " + std::to_string(c.time_limit));
+    ASSERT_FALSE(s.route.empty());
+    EXPECT_TRUE(validate(p, s).empty());
+    ASSERT_EQ(s.lower_bound.has_value(), c.bound);
+    if (!s.lower_bound) continue;
+    EXPECT_GT(*s.lower_bound, 0);
+    EXPECT_LE(*s.lower_bound, s.cost);
+    EXPECT_EQ(*s.lower_bound == s.cost, s.status == SolveStatus::optimal);
+  }
+}
+
 }  // namespace
 }  // namespace cutroute::solve

@@ -21,8 +21,8 @@ constexpr int kMaxDepth = 10;     // 2-opt moves in one chain (6: prob.100 worse
 // {5,5,3} 13 / 1169.0, {5,5,3,2} 5 / 1157.5 (seeds 31-60: 6 / 1162.1), {5,5,3,3} 7 / 1164.3,
 // {5,5,2,2} 10 / 1165.3, {5,5,3,2,2} 11 / 1170.8; {5,5,3,2} makes 4-6 times fewer iterations.
 constexpr int kBreadth[] = {5};
-constexpr std::size_t kMaxNeighbours = 16;  // at least the candidate lists' length (kNeighbours, tour.cpp)
 constexpr int kCheckedBreadth[] = {5, 5, 3, 2};
+constexpr std::size_t kMaxNeighbours = 16;  // at least the candidate lists' length (kNeighbours, tour.cpp)
 }  // namespace
 
 // Lin & Kernighan (1973) in the 2-opt-move form of Johnson & McGeoch's implementation: from t1 and a

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cutroute/core/number_format.hpp>
 #include <cutroute/core/stop.hpp>
 #include <cutroute/io/instance.hpp>
 #include <cutroute/solve/solve.hpp>
@@ -73,7 +74,14 @@ int run_gtsp(const GtspOptions& o) {
     std::cout << "instance:  " << inst->name << '\n';
     if (!s.route.empty()) std::cout << "objective: " << s.cost << '\n';
     std::cout << "status:    " << solve::to_string(s.status) << '\n';
-    if (s.lower_bound) std::cout << "lower bound: " << *s.lower_bound << '\n';
+    if (s.lower_bound) {
+      std::cout << "lower bound: " << *s.lower_bound;
+      // The share of the objective the bound leaves open: how much better any route could be.
+      if (!s.route.empty() && s.cost > 0 && *s.lower_bound < s.cost)
+        std::cout << " (gap " << format_fixed(100.0 * static_cast<double>(s.cost - *s.lower_bound) / static_cast<double>(s.cost), 2)
+                  << " % of the objective)";
+      std::cout << '\n';
+    }
     std::cout << "time:      " << seconds_text(s.stats.seconds) << " s (" << s.stats.solver << ", " << s.stats.threads
               << (s.stats.threads == 1 ? " thread" : " threads") << ")\n";
   }

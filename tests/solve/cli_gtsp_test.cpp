@@ -1,7 +1,9 @@
 // `cutroute gtsp`: JSON output, optimal status on small files, exit 2 with a line number on bad files.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <filesystem>
 #include <fstream>
 
@@ -62,6 +64,28 @@ TEST(CliGtsp, TextOutput) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("objective: 14"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("status:    optimal"), std::string::npos) << r.out;
+}
+
+// A heuristic route with a bound: the text names the gap, recomputed here from the two figures.
+TEST(CliGtsp, TextOutputGivesTheGapToTheBound) {
+  const auto r = test::run_command(test::cli_path() + " gtsp " + test::shared("data/sop/ry48p.1.sop") +
+                                   " --threads 2 --seed 1 --time-limit 0 --work-limit 0.05");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto number_after = [&](const std::string& label) {
+    const auto at = r.out.find(label);
+    EXPECT_NE(at, std::string::npos) << r.out;
+    return at == std::string::npos ? 0L : std::stol(r.out.substr(at + label.size()));
+  };
+  const long objective = number_after("objective: "), bound = number_after("lower bound: ");
+  ASSERT_GT(objective, bound) << r.out;
+  ASSERT_GT(bound, 0) << r.out;
+  char gap[32];
+  std::snprintf(gap, sizeof gap, "%.2f", 100.0 * static_cast<double>(objective - bound) / static_cast<double>(objective));
+  std::string text = gap;
+  while (text.back() == '0') text.pop_back();  // format_fixed drops trailing zeros
+  if (text.back() == '.') text.pop_back();
+  EXPECT_NE(r.out.find("lower bound: " + std::to_string(bound) + " (gap " + text + " % of the objective)"), std::string::npos)
+      << r.out;
 }
 
 // --work-limit: the heuristic stops once that much work is done (millions of units: iterations x

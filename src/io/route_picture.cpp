@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <cutroute/core/number_format.hpp>
 #include <cutroute/io/svg.hpp>
@@ -29,6 +30,19 @@ void add_rapid(SvgDocument& svg, geometry::Vec2 from, const std::vector<geometry
     from = p;
   }
   svg.add_line(from, to, style);
+}
+
+// 100 (route - bound) / route from the report's solver block, when it has both and the route is
+// not proven optimal.
+std::optional<double> gap_percent(const nlohmann::json& r) {
+  if (!r.is_object() || !r.contains("solver") || !r["solver"].is_object()) return std::nullopt;
+  const auto& sv = r["solver"];
+  if (sv.value("status", std::string()) == "optimal") return std::nullopt;
+  if (!sv.contains("objective") || !sv["objective"].is_number() || !sv.contains("lower_bound") || !sv["lower_bound"].is_number())
+    return std::nullopt;
+  const double objective = sv["objective"].get<double>(), bound = sv["lower_bound"].get<double>();
+  if (!(objective > 0.0)) return std::nullopt;
+  return 100.0 * (objective - bound) / objective;
 }
 
 }  // namespace
@@ -164,7 +178,7 @@ std::vector<std::pair<std::string, std::string>> report_summary(const nlohmann::
       const double objective = sv["objective"].get<double>(), bound = sv["lower_bound"].get<double>();
       const std::string unit = r.contains("cost_unit") && r["cost_unit"].is_string() ? " " + r["cost_unit"].get<std::string>() : "";
       text += "; route " + format_fixed(objective, 2) + unit + ", lower bound " + format_fixed(bound, 2) + unit;
-      if (const std::string q = route_quality(r); q.starts_with("gap ")) text += " (" + q.substr(0, q.find(" to ")) + ")";
+      if (const auto gap = gap_percent(r)) text += " (gap " + format_fixed(*gap, 2) + " %)";
     }
     rows.emplace_back("solver", text);
   }
@@ -172,14 +186,10 @@ std::vector<std::pair<std::string, std::string>> report_summary(const nlohmann::
 }
 
 std::string route_quality(const nlohmann::json& r) {
-  if (!r.is_object() || !r.contains("solver") || !r["solver"].is_object()) return "";
-  const auto& sv = r["solver"];
-  if (sv.value("status", std::string()) == "optimal") return "optimal";
-  if (!sv.contains("objective") || !sv["objective"].is_number() || !sv.contains("lower_bound") || !sv["lower_bound"].is_number())
-    return "";
-  const double objective = sv["objective"].get<double>(), bound = sv["lower_bound"].get<double>();
-  if (!(objective > 0.0)) return "";
-  return "gap " + format_fixed(100.0 * (objective - bound) / objective, 2) + " % to its lower bound";
+  if (r.is_object() && r.contains("solver") && r["solver"].is_object() && r["solver"].value("status", std::string()) == "optimal")
+    return "optimal";
+  const auto gap = gap_percent(r);
+  return gap ? "gap " + format_fixed(*gap, 2) + " % to its lower bound" : "";
 }
 
 std::string route_to_html(const model::Nest& nest, const nc::Toolpath& path,

@@ -166,9 +166,10 @@ Ops::Ops(const Problem& p, const StopToken* stop)
   if (p.symmetric()) succ_ = pred_;
   else build(succ_, false);
   exact_succs_ = n_ == static_cast<std::size_t>(m_);
-  node_is_cluster_ = exact_succs_;
+  // Only LK's chains read these (lk_ implies a plain matrix).
+  node_is_cluster_ = lk_ && exact_succs_;
   for (std::size_t v = 0; v < n_ && node_is_cluster_; ++v) node_is_cluster_ = p.cluster_of(NodeId(static_cast<int>(v))).index() == v;
-  if (exact_succs_ && mat_) {
+  if (lk_ && exact_succs_) {
     succ_arc_.resize(succ_.size());
     for (int c = 0; c < m_; ++c)
       for (std::size_t k = 0; k < kn_; ++k) {

@@ -198,7 +198,7 @@ class Ops {
   bool finite_symmetric_ = false;  // c(a,b) == c(b,a) wherever both arcs are allowed (SOP prob.100)
   // One node per cluster and lists built from the matrix: succs(c) are in ascending order of arc(c's node, x's node).
   bool exact_succs_ = false;
-  // With exact_succs_ on a matrix: succ_arc_[c * kn_ + k] = the arc from c's node to succs(c)[k]'s,
+  // With lk_ and exact_succs_: succ_arc_[c * kn_ + k] = the arc from c's node to succs(c)[k]'s,
   // read next to the list in LK's candidate scan instead of from the matrix (the scan's main stall).
   std::vector<Cost> succ_arc_;
   bool node_is_cluster_ = false;  // node v is the only node of cluster v (SOP): LK's flips skip the lookup

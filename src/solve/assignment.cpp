@@ -1,6 +1,7 @@
 #include "assignment.hpp"
 
 #include <algorithm>
+#include <vector>
 
 namespace cutroute::solve::detail {
 
@@ -24,6 +25,32 @@ void Assignment::reset(int m) {
 }
 
 void Assignment::solve() {
+  for (int i = 0; i < m_; ++i)
+    if (col_of_[static_cast<std::size_t>(i)] < 0) augment(i, kNoLimit);
+}
+
+void Assignment::solve_reduced() {
+  const auto m = static_cast<std::size_t>(m_);
+  // Column reduction: each column's potential is its cheapest entry (the first row on ties, found
+  // row by row for the cache); its row takes it when still free.
+  std::vector<int> arg(m, 0);
+  for (std::size_t j = 0; j < m; ++j) v_[j] = c_[j];
+  for (std::size_t i = 1; i < m; ++i) {
+    const Cost* ci = c_.data() + i * m;
+    for (std::size_t j = 0; j < m; ++j)
+      if (ci[j] < v_[j]) v_[j] = ci[j], arg[j] = static_cast<int>(i);
+  }
+  for (std::size_t j = 0; j < m; ++j) {
+    const auto i = static_cast<std::size_t>(arg[j]);
+    if (col_of_[i] < 0) {
+      col_of_[i] = static_cast<int>(j);
+      row_of_[j] = static_cast<int>(i);
+      value_ += v_[j];
+    }
+  }
+  // No reduction transfer (JV's next step): it takes a matched row's slack from its second-best
+  // column, which is often a kBig entry (an unusable arc, the diagonal), and the potentials then
+  // carry kBig where the exact DPs read them as bounds on usable arcs.
   for (int i = 0; i < m_; ++i)
     if (col_of_[static_cast<std::size_t>(i)] < 0) augment(i, kNoLimit);
 }

@@ -29,6 +29,11 @@ class Assignment {
     return c_[static_cast<std::size_t>(i) * static_cast<std::size_t>(m_) + static_cast<std::size_t>(j)];
   }
   void solve();  // assigns every free row, O(m^2) each
+  // The same optimum from an empty matching (right after reset() and filling), with Jonker &
+  // Volgenant's column reduction first: most rows start matched, and only the rest need a shortest
+  // augmenting path (a 1 187-cluster nest: 1.0 s -> 0.02 s). The matching and potentials may differ from solve()'s
+  // among equal optima.
+  void solve_reduced();
   Cost value() const { return value_; }
   // Row and column potentials after solve(): c(i, j) - row(i) - col(j) >= 0 on every entry.
   Cost row_potential(int i) const { return u_[static_cast<std::size_t>(i)]; }

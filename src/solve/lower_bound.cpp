@@ -6,13 +6,14 @@
 #include <vector>
 
 #include "assignment.hpp"
+#include "planar_rows.hpp"
 
 namespace cutroute::solve {
 
 namespace {
 
-constexpr int kMaxClusters = 1000;
-constexpr int kMaxNodes = 6000;
+constexpr int kMaxClusters = 1500;
+constexpr int kMaxNodes = 12000;
 constexpr Cost kNo = kForbiddenCost;  // a cluster arc no route can use
 constexpr double kTwoCycleShare = 0.2;  // see route_lower_bound()
 
@@ -25,6 +26,42 @@ struct ClusterGraph {
   Cost& at(std::vector<Cost>& v, int a, int b) { return v[static_cast<std::size_t>(a) * static_cast<std::size_t>(m) + static_cast<std::size_t>(b)]; }
 };
 
+// Plain planar costs: each node's row of prices against every node at once (the vectorised batch
+// of planar_rows.cpp, the same ticks as Problem::planar_arc), then the minima by cluster. Priced
+// one arc at a time, the cluster graph of a 7 500-node nest took 0.2 s (d2g_DRAAK).
+bool planar_rows(const Problem& p, const StopToken& stop, ClusterGraph& g) {
+  const int m = p.cluster_count(), n = p.node_count();
+  const PlanarCosts& pc = *p.planar();
+  std::vector<double> xs, ys;
+  std::vector<Cost> inner, row(static_cast<std::size_t>(n));
+  std::vector<std::size_t> begin{0};
+  xs.reserve(static_cast<std::size_t>(n)), ys.reserve(static_cast<std::size_t>(n)), inner.reserve(static_cast<std::size_t>(n));
+  for (int c = 0; c < m; ++c) {
+    for (NodeId v : p.nodes_of(ClusterId(c)))
+      xs.push_back(pc.in[v.index()].x), ys.push_back(pc.in[v.index()].y), inner.push_back(p.inner_cost(v));
+    begin.push_back(xs.size());
+  }
+  for (int ui = 0; ui < n; ++ui) {
+    if ((ui & 63) == 0 && stop.stop_requested()) return false;
+    const NodeId u(ui);
+    const int cu = p.cluster_of(u).value();
+    detail::planar_row(pc, pc.out[u.index()], xs.data(), ys.data(), xs.size(), row.data());
+    for (int cv = 0; cv < m; ++cv) {
+      if (cv == cu) continue;
+      Cost best_step = kNo, best_arc = kNo;
+      for (std::size_t j = begin[static_cast<std::size_t>(cv)]; j < begin[static_cast<std::size_t>(cv) + 1]; ++j) {
+        best_step = std::min(best_step, row[j] + inner[j]);
+        best_arc = std::min(best_arc, row[j]);
+      }
+      Cost& st = g.at(g.step, cu, cv);
+      st = std::min(st, best_step);
+      Cost& ar = g.at(g.arc, cu, cv);
+      ar = std::min(ar, best_arc);
+    }
+  }
+  return true;
+}
+
 bool build_graph(const Problem& p, const StopToken& stop, ClusterGraph& g) {
   const int m = p.cluster_count(), n = p.node_count();
   g.m = m;
@@ -33,9 +70,9 @@ bool build_graph(const Problem& p, const StopToken& stop, ClusterGraph& g) {
   g.arc.assign(mm, kNo);
   const int s0 = p.start_cluster().value();
   // Each node's cheapest arc and step into every other cluster, a cluster's nodes at a time so the
-  // minima stay in registers, with matrix and planar prices read inline: through arc_cost()'s
-  // dispatch and an update of both tables per arc, a cutting nest of 4 300 nodes with planar costs
-  // (vrs_Lv10_SHEET_004) took 0.13 s.
+  // minima stay in registers, with matrix prices read inline (planar ones in batches, above):
+  // through arc_cost()'s dispatch and an update of both tables per arc, a cutting nest of 4 300
+  // nodes with planar costs (vrs_Lv10_SHEET_004) took 0.13 s.
   auto rows = [&](auto arc) {
     for (int ui = 0; ui < n; ++ui) {
       if ((ui & 63) == 0 && stop.stop_requested()) return false;
@@ -60,7 +97,7 @@ bool build_graph(const Problem& p, const StopToken& stop, ClusterGraph& g) {
   };
   const Cost* const mat = p.matrix_data();
   const bool built = mat ? rows([mat, n](NodeId u, NodeId v) { return mat[u.index() * static_cast<std::size_t>(n) + v.index()]; })
-                     : p.plain_planar() ? rows([&p](NodeId u, NodeId v) { return p.planar_arc(u, v); })
+                     : p.plain_planar() ? planar_rows(p, stop, g)
                                         : rows([&p](NodeId u, NodeId v) { return p.arc_cost(u, v); });
   if (!built) return false;
   if (!p.closed()) {
@@ -109,7 +146,7 @@ bool solve_assignment(const ClusterGraph& g, detail::Assignment& ap) {
       const Cost c = g.at(g.step, a, b);
       ap.at(a, b) = a == b || c >= kNo ? detail::Assignment::kBig : c;
     }
-  ap.solve();
+  ap.solve_reduced();
   return ap.value() < kForbiddenCost;
 }
 
@@ -159,6 +196,8 @@ double cluster_tour(const std::vector<double>& c, int m, int root) {
   return len;
 }
 
+long long one_tree_steps(int m) { return std::clamp<long long>(30'000'000LL / (static_cast<long long>(m) * m), 50, 1000); }
+
 // Held–Karp: for node potentials pi, the cheapest 1-tree (a spanning tree of the clusters but the
 // root, plus the root's two cheapest edges) under costs c(a, b) + pi(a) + pi(b), minus 2 sum pi, is
 // below every tour; subgradient steps pi += t (degree - 2) raise it.
@@ -176,36 +215,43 @@ std::optional<Cost> held_karp_bound(const ClusterGraph& g, int root, Cost upper,
       c[a * um + b] = e >= kNo ? kUnusable : static_cast<double>(e);
     }
   std::vector<double> pi(um, 0.0), key(um);
-  std::vector<int> deg(um), parent(um);
-  std::vector<char> in_tree(um);
+  std::vector<int> deg(um), parent(um), outside;
+  outside.reserve(um);
   const double tour = cluster_tour(c, m, root);
   const double target = std::min(tour, upper < kMaxCost ? static_cast<double>(upper) : tour);
   double best = -1e300;
   double lambda = 2.0;
   int since_best = 0;
-  const long long max_steps = std::clamp<long long>(30'000'000LL / (static_cast<long long>(m) * m), 50, 1000);
+  const long long max_steps = one_tree_steps(m);
   for (long long it = 0; it < max_steps && lambda > 1e-4; ++it) {
     if ((it & 15) == 0 && stop.stop_requested()) break;
-    // Prim on every cluster but the root, O(m^2).
+    // Prim on every cluster but the root, O(m^2): one pass over the clusters still outside the tree
+    // (kept in ascending order, so ties go to the lowest index) updates their keys from the cluster
+    // just added and finds the next one. Two passes over all clusters per step took 0.3 s of the
+    // bound's 1.5 s on a 1 187-contour nest (d2g_DRAAK).
     std::fill(deg.begin(), deg.end(), 0);
-    std::fill(in_tree.begin(), in_tree.end(), 0);
+    outside.clear();
+    for (int v = 0; v < m; ++v)
+      if (v != root) outside.push_back(v);
     std::fill(key.begin(), key.end(), 1e300);
-    const int first = root == 0 ? 1 : 0;
+    const int first = outside.front();
     key[static_cast<std::size_t>(first)] = 0.0;
     parent[static_cast<std::size_t>(first)] = -1;
     double w = 0.0;
-    for (int k = 0; k < m - 1; ++k) {
-      int u = -1;
-      for (int v = 0; v < m; ++v)
-        if (v != root && !in_tree[static_cast<std::size_t>(v)] && (u < 0 || key[static_cast<std::size_t>(v)] < key[static_cast<std::size_t>(u)])) u = v;
-      in_tree[static_cast<std::size_t>(u)] = 1;
+    std::size_t next = 0;  // index in `outside` of the cheapest cluster to add
+    while (!outside.empty()) {
+      const int u = outside[next];
+      outside.erase(outside.begin() + static_cast<std::ptrdiff_t>(next));
       w += key[static_cast<std::size_t>(u)];
       if (parent[static_cast<std::size_t>(u)] >= 0) ++deg[static_cast<std::size_t>(u)], ++deg[static_cast<std::size_t>(parent[static_cast<std::size_t>(u)])];
       const double* cu = &c[static_cast<std::size_t>(u) * um];
-      for (int v = 0; v < m; ++v) {
-        if (v == root || in_tree[static_cast<std::size_t>(v)]) continue;
-        const double kv = cu[v] + pi[static_cast<std::size_t>(u)] + pi[static_cast<std::size_t>(v)];
-        if (kv < key[static_cast<std::size_t>(v)]) key[static_cast<std::size_t>(v)] = kv, parent[static_cast<std::size_t>(v)] = u;
+      const double pu = pi[static_cast<std::size_t>(u)];
+      double best_key = 0.0;
+      for (std::size_t i = 0; i < outside.size(); ++i) {
+        const auto v = static_cast<std::size_t>(outside[i]);
+        const double kv = cu[v] + pu + pi[v];
+        if (kv < key[v]) key[v] = kv, parent[v] = u;
+        if (i == 0 || key[v] < best_key) best_key = key[v], next = i;
       }
     }
     // The root's two cheapest edges.
@@ -263,7 +309,19 @@ std::optional<ClusterPotentials> assignment_potentials(const Problem& p, const S
   return pot;
 }
 
-std::optional<Cost> route_lower_bound(const Problem& p, const StopToken& stop, Cost upper) {
+BoundSeconds estimate_bound_seconds(const Problem& p) {
+  // Measured per solve (session 34): the graph 1.7-2.2 ns per node pair on planar
+  // costs (vrs_Lv10_SHEET_001, 8 060 nodes: 0.11 s; d2g_DRAAK, 7 494 nodes: 0.12 s), the
+  // assignment about 1.5e-8 s per cluster pair (DRAAK, 1 187 clusters: 0.02 s), a 1-tree step
+  // 1.5 ns per cluster pair (DRAAK: 0.12 s for 50 steps).
+  const double n = p.node_count(), m = p.cluster_count();
+  BoundSeconds s;
+  s.graph = 3.0e-9 * n * n + 2.0e-8 * m * m;
+  s.one_tree = 2.5e-9 * static_cast<double>(one_tree_steps(std::max(1, p.cluster_count()))) * m * m;
+  return s;
+}
+
+std::optional<Cost> route_lower_bound(const Problem& p, const StopToken& stop, Cost upper, bool one_tree) {
   if (p.cluster_count() > kMaxClusters || p.node_count() > kMaxNodes || p.cluster_count() < 2) return std::nullopt;
   ClusterGraph g;
   if (!build_graph(p, stop, g) || stop.stop_requested()) return std::nullopt;
@@ -274,7 +332,7 @@ std::optional<Cost> route_lower_bound(const Problem& p, const StopToken& stop, C
   // bound before -> after: prob.100 0.80, 773 -> 993; ry48p.1 0.61, 12 531 -> 13 489; p43.1 0.23,
   // 900 -> 3 623. Below 0.2 (rbg, ft, esc: 0-0.15) the ascent found nothing and costs 10-40 ms.
   const bool symmetric_tour = p.symmetric() && p.closed() && !p.has_precedence();
-  if (symmetric_tour || two_cycles >= kTwoCycleShare) {
+  if (one_tree && (symmetric_tour || two_cycles >= kTwoCycleShare)) {
     Cost inner = 0;
     for (int c = 0; c < p.cluster_count(); ++c) {
       Cost least = kNo;

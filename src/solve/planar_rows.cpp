@@ -12,6 +12,7 @@
 
 #include <cutroute/solve/heuristic.hpp>
 
+#include "planar_rows.hpp"
 #include "tour.hpp"
 
 namespace cutroute::solve::detail {
@@ -82,6 +83,10 @@ PriceRow widest() {
 }
 
 }  // namespace
+
+void planar_row(const PlanarCosts& pc, PlanarPoint from, const double* xs, const double* ys, std::size_t k, Cost* out) {
+  widest()(pc, from.x, from.y, xs, ys, k, nullptr, 0, out);
+}
 
 void Ops::planar_into(NodeId b, ClusterId a, Cost* out) const {
   const PlanarCosts& pc = *p_.planar();

@@ -3,6 +3,9 @@
 // they reach the incumbent.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <numeric>
+
 #include <cutroute/io/instance.hpp>
 #include <cutroute/solve/exact_dp.hpp>
 #include <cutroute/solve/heuristic.hpp>
@@ -53,6 +56,58 @@ TEST(LowerBound, NeverAboveTheBruteForceOptimum) {
   EXPECT_GE(bounded, 250);
   EXPECT_GT(tight, 20);
   EXPECT_GE(tsp_tight * 2, tsp) << tsp_tight << " of " << tsp;
+}
+
+// Without precedence, on closed tours, the assignment part of the bound is the cheapest cycle cover
+// of the cluster graph (each cluster left once and entered once, never by itself), the cluster
+// graph's arcs being the cheapest steps between two clusters' nodes: brute force over every such
+// cover, against the potentials' sum and the bound without the 1-tree. Ties (small integer costs)
+// and unusable pairs (forbidden arcs) included: the assignment starts from a column reduction that
+// leaves most rows matched, and its augmenting paths must still reach the optimum.
+TEST(LowerBound, AssignmentIsTheCheapestCycleCoverOfTheClusterGraph) {
+  Rng rng(34);
+  int compared = 0;
+  for (int k = 0; k < 120; ++k) {
+    test::RandomSpec spec;
+    spec.clusters = 2 + k % 7;
+    spec.max_nodes = 3;
+    spec.symmetric = k % 2 == 0;
+    spec.forbidden_arcs = k % 3 == 0 ? 2 * spec.clusters : 0;
+    spec.inner_costs = k % 4 == 1;
+    spec.scatter_nodes = k % 5 == 2;
+    const Problem p = test::random_problem(spec, rng);
+    SCOPED_TRACE("instance " + std::to_string(k));
+    const int m = p.cluster_count();
+    std::vector<Cost> d(static_cast<std::size_t>(m * m), kForbiddenCost);
+    for (int a = 0; a < m; ++a)
+      for (int b = 0; b < m; ++b)
+        if (a != b)
+          for (NodeId u : p.nodes_of(ClusterId(a)))
+            for (NodeId v : p.nodes_of(ClusterId(b))) d[static_cast<std::size_t>(a * m + b)] = std::min(d[static_cast<std::size_t>(a * m + b)], p.step(u, v));
+    std::vector<int> succ(static_cast<std::size_t>(m));
+    std::iota(succ.begin(), succ.end(), 0);
+    Cost truth = kForbiddenCost;
+    do {
+      Cost c = 0;
+      for (int a = 0; a < m && c < kForbiddenCost; ++a) {
+        const int b = succ[static_cast<std::size_t>(a)];
+        c = b == a ? kForbiddenCost : std::min(kForbiddenCost, c + d[static_cast<std::size_t>(a * m + b)]);
+      }
+      truth = std::min(truth, c);
+    } while (std::next_permutation(succ.begin(), succ.end()));
+    const auto pot = assignment_potentials(p, StopToken{});
+    if (truth >= kForbiddenCost) {
+      EXPECT_FALSE(pot.has_value());
+      continue;
+    }
+    ASSERT_TRUE(pot.has_value());
+    Cost sum = 0;
+    for (int c = 0; c < m; ++c) sum += pot->row[static_cast<std::size_t>(c)] + pot->col[static_cast<std::size_t>(c)];
+    EXPECT_EQ(sum, truth);
+    EXPECT_EQ(route_lower_bound(p, StopToken{}, kMaxCost, false), truth);
+    ++compared;
+  }
+  EXPECT_GE(compared, 100);
 }
 
 // The potentials' bound on what remains after every prefix of an optimal route (what the exact DPs

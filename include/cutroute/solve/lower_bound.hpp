@@ -28,10 +28,21 @@
 namespace cutroute::solve {
 
 // A lower bound on every route's cost, or nothing when the problem is beyond the size limits
-// (more than 1 000 clusters or 6 000 nodes: the O(n^2) cluster graph and O(m^3) assignment) or
-// `stop` fires first. `upper`: the cost of a known route (or kMaxCost when none), the target of the
-// ascent's steps; a bound that reaches it proves that route optimal.
-std::optional<Cost> route_lower_bound(const Problem& p, const StopToken& stop, Cost upper = kMaxCost);
+// (more than 1 500 clusters or 12 000 nodes: the O(n^2) cluster graph, O(m^2) memory, about 70 MB
+// at the limit) or `stop` fires first. `upper`: the cost of a known route (or kMaxCost when none),
+// the target of the ascent's steps; a bound that reaches it proves that route optimal.
+// `one_tree = false` keeps to the assignment bound (the 1-tree ascent costs most of the time on
+// problems of a few hundred clusters and adds little on cutting nests; see estimate_bound_seconds).
+std::optional<Cost> route_lower_bound(const Problem& p, const StopToken& stop, Cost upper = kMaxCost, bool one_tree = true);
+
+// What route_lower_bound() is expected to take on this problem, in seconds, from its size alone:
+// the cluster graph and its assignment, and the 1-tree ascent when it runs. About 1.5 times what
+// an AVX-512 machine measured (docs/SOLVER.md, "In `auto` mode the bound"), for slower ones.
+struct BoundSeconds {
+  double graph = 0.0;     // n^2 priced arcs, and the assignment from its column reduction
+  double one_tree = 0.0;  // at least 50 steps of O(m^2)
+};
+BoundSeconds estimate_bound_seconds(const Problem& p);
 
 // Potentials of the assignment bound, by cluster: every arc (a, b) of the cluster graph that a route
 // can use costs at least row[a] + col[b], and sum(row) + sum(col) is the assignment bound. A route's

@@ -131,6 +131,24 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
     return pot.ok ? pot.remaining(rest, b, apr0 - rc_s - pot.rc[static_cast<std::size_t>(b)]) : rest;
   };
 
+  // Progress by the work of the layers rather than their count: layer k holds up to C(mp, k) sets,
+  // each expanded by mp - k clusters from its k, so the middle layers take nearly all the time (16
+  // clusters: layers 1-4 are 3 % of the work, and the display counting layers said 31 % after them).
+  std::vector<double> layer_end(static_cast<std::size_t>(mp) + 1, 0.0);  // work share up to layer k
+  {
+    double binom = 1.0, sum = 0.0;
+    for (int k = 1; k < mp; ++k) {
+      binom = binom * (mp - k + 1) / k;
+      sum += binom * k * (mp - k);
+      layer_end[static_cast<std::size_t>(k)] = sum;
+    }
+    for (double& x : layer_end) x = sum > 0.0 ? x / sum : 1.0;
+  }
+  auto done_in_layer = [&](int k, double share) {
+    const double lo = layer_end[static_cast<std::size_t>(k) - 1], hi = layer_end[static_cast<std::size_t>(k)];
+    return lo + (hi - lo) * share;
+  };
+
   Cost lower_bound = kInf;  // min over start nodes handled so far (finished ones contribute ub later)
   bool stopped = false;
   long long expanded = 0;
@@ -164,7 +182,7 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
           break;
         }
         if ((li & 16383) == 16383)
-          detail::dp_progress(progress, static_cast<double>(si) + (k + static_cast<double>(li) / static_cast<double>(layer.size())) / mp, start_nodes.size(), ub);
+          detail::dp_progress(progress, static_cast<double>(si) + done_in_layer(k, static_cast<double>(li) / static_cast<double>(layer.size())), start_nodes.size(), ub);
         const std::uint32_t S = layer[li];
         const Cost* FS = &F[S * unp];
         Cost in_s = 0, rc_s = 0;
@@ -213,7 +231,7 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
         break;
       }
       layer.swap(next);
-      detail::dp_progress(progress, static_cast<double>(si) + static_cast<double>(k + 1) / mp, start_nodes.size(), ub);
+      detail::dp_progress(progress, static_cast<double>(si) + layer_end[static_cast<std::size_t>(k)], start_nodes.size(), ub);
     }
     if (stopped) break;
     // Close the routes of the full layer.

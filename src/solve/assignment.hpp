@@ -65,7 +65,7 @@ class Assignment {
   std::vector<Cost> u_, v_, d_;       // row and column potentials, Dijkstra distances
   std::vector<int> row_of_, col_of_;  // -1: free
   std::vector<int> pred_, scanned_;
-  std::vector<char> done_;
+  std::vector<int> open_;  // columns augment() has not reached yet, ascending
   Cost value_ = 0;
 };
 

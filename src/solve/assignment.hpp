@@ -31,8 +31,8 @@ class Assignment {
   void solve();  // assigns every free row, O(m^2) each
   // The same optimum from an empty matching (right after reset() and filling), with Jonker &
   // Volgenant's column reduction first: most rows start matched, and only the rest need a shortest
-  // augmenting path (a 1 187-cluster nest: 1.0 s -> 0.02 s). The matching and potentials may differ from solve()'s
-  // among equal optima.
+  // augmenting path (a 1 187-cluster nest: 1.0 s -> 0.02 s). The matching and potentials may
+  // differ from solve()'s among equal optima.
   void solve_reduced();
   Cost value() const { return value_; }
   // Row and column potentials after solve(): c(i, j) - row(i) - col(j) >= 0 on every entry.

@@ -35,7 +35,8 @@ bool planar_rows(const Problem& p, const StopToken& stop, ClusterGraph& g) {
   std::vector<double> xs, ys;
   std::vector<Cost> inner, row(static_cast<std::size_t>(n));
   std::vector<std::size_t> begin{0};
-  xs.reserve(static_cast<std::size_t>(n)), ys.reserve(static_cast<std::size_t>(n)), inner.reserve(static_cast<std::size_t>(n));
+  const auto un = static_cast<std::size_t>(n);
+  xs.reserve(un), ys.reserve(un), inner.reserve(un);
   for (int c = 0; c < m; ++c) {
     for (NodeId v : p.nodes_of(ClusterId(c)))
       xs.push_back(pc.in[v.index()].x), ys.push_back(pc.in[v.index()].y), inner.push_back(p.inner_cost(v));
@@ -196,7 +197,9 @@ double cluster_tour(const std::vector<double>& c, int m, int root) {
   return len;
 }
 
-long long one_tree_steps(int m) { return std::clamp<long long>(30'000'000LL / (static_cast<long long>(m) * m), 50, 1000); }
+long long one_tree_steps(int m) {
+  return std::clamp<long long>(30'000'000LL / (static_cast<long long>(m) * m), 50, 1000);
+}
 
 // Held–Karp: for node potentials pi, the cheapest 1-tree (a spanning tree of the clusters but the
 // root, plus the root's two cheapest edges) under costs c(a, b) + pi(a) + pi(b), minus 2 sum pi, is

@@ -83,7 +83,10 @@ TEST(LowerBound, AssignmentIsTheCheapestCycleCoverOfTheClusterGraph) {
       for (int b = 0; b < m; ++b)
         if (a != b)
           for (NodeId u : p.nodes_of(ClusterId(a)))
-            for (NodeId v : p.nodes_of(ClusterId(b))) d[static_cast<std::size_t>(a * m + b)] = std::min(d[static_cast<std::size_t>(a * m + b)], p.step(u, v));
+            for (NodeId v : p.nodes_of(ClusterId(b))) {
+              Cost& ab = d[static_cast<std::size_t>(a * m + b)];
+              ab = std::min(ab, p.step(u, v));
+            }
     std::vector<int> succ(static_cast<std::size_t>(m));
     std::iota(succ.begin(), succ.end(), 0);
     Cost truth = kForbiddenCost;

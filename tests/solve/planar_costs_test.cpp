@@ -350,7 +350,8 @@ TEST(PlanarCosts, AutoBoundsLargeProblemsWhenTheTimeLimitAffordsIt) {
     double time_limit;
     std::optional<Cost> bound;
   };
-  for (const Case c : {Case{0.0, std::nullopt}, Case{0.5 * graph, std::nullopt}, Case{1.2 * graph, assignment}, Case{1.2 * full, whole}}) {
+  const Case cases[] = {{0.0, std::nullopt}, {0.5 * graph, std::nullopt}, {1.2 * graph, assignment}, {1.2 * full, whole}};
+  for (const Case& c : cases) {
     SolveParams sp;
     sp.solver = SolverKind::automatic;
     sp.threads = 2;

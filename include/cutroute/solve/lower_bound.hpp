@@ -33,7 +33,8 @@ namespace cutroute::solve {
 // the target of the ascent's steps; a bound that reaches it proves that route optimal.
 // `one_tree = false` keeps to the assignment bound (the 1-tree ascent costs most of the time on
 // problems of a few hundred clusters and adds little on cutting nests; see estimate_bound_seconds).
-std::optional<Cost> route_lower_bound(const Problem& p, const StopToken& stop, Cost upper = kMaxCost, bool one_tree = true);
+std::optional<Cost> route_lower_bound(const Problem& p, const StopToken& stop, Cost upper = kMaxCost,
+                                      bool one_tree = true);
 
 // What route_lower_bound() is expected to take on this problem, in seconds, from its size alone:
 // the cluster graph and its assignment, and the 1-tree ascent when it runs. About 1.5 times what

@@ -26,43 +26,6 @@ struct ClusterGraph {
   Cost& at(std::vector<Cost>& v, int a, int b) { return v[static_cast<std::size_t>(a) * static_cast<std::size_t>(m) + static_cast<std::size_t>(b)]; }
 };
 
-// Plain planar costs: each node's row of prices against every node at once (the vectorised batch
-// of planar_rows.cpp, the same ticks as Problem::planar_arc), then the minima by cluster. Priced
-// one arc at a time, the cluster graph of a 7 500-node nest took 0.2 s (d2g_DRAAK).
-bool planar_rows(const Problem& p, const StopToken& stop, ClusterGraph& g) {
-  const int m = p.cluster_count(), n = p.node_count();
-  const PlanarCosts& pc = *p.planar();
-  std::vector<double> xs, ys;
-  std::vector<Cost> inner, row(static_cast<std::size_t>(n));
-  std::vector<std::size_t> begin{0};
-  const auto un = static_cast<std::size_t>(n);
-  xs.reserve(un), ys.reserve(un), inner.reserve(un);
-  for (int c = 0; c < m; ++c) {
-    for (NodeId v : p.nodes_of(ClusterId(c)))
-      xs.push_back(pc.in[v.index()].x), ys.push_back(pc.in[v.index()].y), inner.push_back(p.inner_cost(v));
-    begin.push_back(xs.size());
-  }
-  for (int ui = 0; ui < n; ++ui) {
-    if ((ui & 63) == 0 && stop.stop_requested()) return false;
-    const NodeId u(ui);
-    const int cu = p.cluster_of(u).value();
-    detail::planar_row(pc, pc.out[u.index()], xs.data(), ys.data(), xs.size(), row.data());
-    for (int cv = 0; cv < m; ++cv) {
-      if (cv == cu) continue;
-      Cost best_step = kNo, best_arc = kNo;
-      for (std::size_t j = begin[static_cast<std::size_t>(cv)]; j < begin[static_cast<std::size_t>(cv) + 1]; ++j) {
-        best_step = std::min(best_step, row[j] + inner[j]);
-        best_arc = std::min(best_arc, row[j]);
-      }
-      Cost& st = g.at(g.step, cu, cv);
-      st = std::min(st, best_step);
-      Cost& ar = g.at(g.arc, cu, cv);
-      ar = std::min(ar, best_arc);
-    }
-  }
-  return true;
-}
-
 bool build_graph(const Problem& p, const StopToken& stop, ClusterGraph& g) {
   const int m = p.cluster_count(), n = p.node_count();
   g.m = m;
@@ -70,37 +33,53 @@ bool build_graph(const Problem& p, const StopToken& stop, ClusterGraph& g) {
   g.step.assign(mm, kNo);
   g.arc.assign(mm, kNo);
   const int s0 = p.start_cluster().value();
-  // Each node's cheapest arc and step into every other cluster, a cluster's nodes at a time so the
-  // minima stay in registers, with matrix prices read inline (planar ones in batches, above):
-  // through arc_cost()'s dispatch and an update of both tables per arc, a cutting nest of 4 300
-  // nodes with planar costs (vrs_Lv10_SHEET_004) took 0.13 s.
-  auto rows = [&](auto arc) {
-    for (int ui = 0; ui < n; ++ui) {
-      if ((ui & 63) == 0 && stop.stop_requested()) return false;
-      const NodeId u(ui);
-      const int cu = p.cluster_of(u).value();
-      for (int cv = 0; cv < m; ++cv) {
-        if (cv == cu) continue;
-        Cost best_step = kNo, best_arc = kNo;
-        for (NodeId v : p.nodes_of(ClusterId(cv))) {
-          const Cost a = arc(u, v);
-          if (a >= kForbiddenCost) continue;
-          best_step = std::min(best_step, a + p.inner_cost(v));
-          best_arc = std::min(best_arc, a);
-        }
-        Cost& st = g.at(g.step, cu, cv);
-        st = std::min(st, best_step);
-        Cost& ar = g.at(g.arc, cu, cv);
-        ar = std::min(ar, best_arc);
-      }
-    }
-    return true;
-  };
+  // Each node's cheapest arc and step into every other cluster: u's arcs to every node, in cluster
+  // order, then the minima over each cluster's contiguous run. The row is read from the matrix,
+  // priced against every node in one vectorised batch on planar costs (planar_rows.cpp, the same
+  // ticks as Problem::planar_arc), or asked of arc_cost() otherwise. Forbidden arcs cost at least
+  // kNo, so the minima need no test. Arc by arc through arc_cost()'s dispatch with an update of
+  // both tables per arc, a 4 300-node nest (vrs_Lv10_SHEET_004) took 0.13 s; the planar graph of
+  // d2g_DRAAK's 7 500 nodes priced one arc at a time, 0.2 s.
+  const auto un = static_cast<std::size_t>(n);
+  std::vector<NodeId> order;  // the nodes by cluster
+  std::vector<std::size_t> begin{0};
+  order.reserve(un);
+  for (int c = 0; c < m; ++c) {
+    for (NodeId v : p.nodes_of(ClusterId(c))) order.push_back(v);
+    begin.push_back(order.size());
+  }
+  std::vector<Cost> slot_inner(un), prices(un);
+  for (std::size_t j = 0; j < un; ++j) slot_inner[j] = p.inner_cost(order[j]);
+  std::vector<double> xs, ys;  // planar entry points, in `order`
+  const PlanarCosts* const pc = p.plain_planar() ? p.planar() : nullptr;
+  if (pc)
+    for (NodeId v : order) xs.push_back(pc->in[v.index()].x), ys.push_back(pc->in[v.index()].y);
   const Cost* const mat = p.matrix_data();
-  const bool built = mat ? rows([mat, n](NodeId u, NodeId v) { return mat[u.index() * static_cast<std::size_t>(n) + v.index()]; })
-                     : p.plain_planar() ? planar_rows(p, stop, g)
-                                        : rows([&p](NodeId u, NodeId v) { return p.arc_cost(u, v); });
-  if (!built) return false;
+  for (int ui = 0; ui < n; ++ui) {
+    if ((ui & 63) == 0 && stop.stop_requested()) return false;
+    const NodeId u(ui);
+    if (mat) {
+      const Cost* r = mat + u.index() * un;
+      for (std::size_t j = 0; j < un; ++j) prices[j] = r[order[j].index()];
+    } else if (pc) {
+      detail::planar_row(*pc, pc->out[u.index()], xs.data(), ys.data(), un, prices.data());
+    } else {
+      for (std::size_t j = 0; j < un; ++j) prices[j] = p.arc_cost(u, order[j]);
+    }
+    const int cu = p.cluster_of(u).value();
+    for (int cv = 0; cv < m; ++cv) {
+      if (cv == cu) continue;
+      Cost best_step = kNo, best_arc = kNo;
+      for (std::size_t j = begin[static_cast<std::size_t>(cv)]; j < begin[static_cast<std::size_t>(cv) + 1]; ++j) {
+        best_step = std::min(best_step, prices[j] + slot_inner[j]);
+        best_arc = std::min(best_arc, prices[j]);
+      }
+      Cost& st = g.at(g.step, cu, cv);
+      st = std::min(st, best_step);
+      Cost& ar = g.at(g.arc, cu, cv);
+      ar = std::min(ar, best_arc);
+    }
+  }
   if (!p.closed()) {
     // The free closing arc of an open path: entering the start cluster costs its cheapest inner cost.
     Cost inner = kNo;

@@ -6,6 +6,7 @@
 
 #include <cutroute/io/instance.hpp>
 #include <cutroute/solve/exact_dp.hpp>
+#include <cutroute/solve/lower_bound.hpp>
 #include <cutroute/solve/solve.hpp>
 
 #include <cmath>
@@ -118,5 +119,49 @@ BENCHMARK_CAPTURE(BM_Heuristic_Gtsplib, 132d657, "132d657")->Unit(benchmark::kMi
 // planar_rows.cpp (session 8: 31C3k.0 about 0.5 -> 0.2 s, 100C10k.0 about 2.0 -> 1.15 s of wall).
 BENCHMARK_CAPTURE(BM_Heuristic_Gtsplib, 31C3k_0, "31C3k.0")->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(BM_Heuristic_Gtsplib, 100C10k_0, "100C10k.0")->Unit(benchmark::kMillisecond)->Iterations(1);
+
+// A nest-like planar problem: `m` contours of 8 entry candidates each on a 3000 x 1500 mm sheet
+// (rapid 0.25 s + 1 s/250 mm, cutting time as inner cost), an open path.
+solve::Problem planar_nest(int m) {
+  Rng rng(77);
+  solve::PlanarCosts pc;
+  pc.base = 0.25, pc.per_unit = 1.0 / 250, pc.scale = 1e6;
+  const int k = 8;
+  solve::ProblemBuilder b(m * k);
+  std::vector<solve::Cost> inner;
+  for (int c = 0; c < m; ++c) {
+    const double cx = rng.uniform01() * 3000, cy = rng.uniform01() * 1500, r = 2 + rng.uniform01() * 10;
+    std::vector<solve::NodeId> nodes;
+    for (int j = 0; j < k; ++j) {
+      const double a = 6.283185307179586 * j / k;
+      pc.in.push_back({cx + r * std::cos(a), cy + r * std::sin(a)});
+      pc.out.push_back(pc.in.back());
+      nodes.push_back(solve::NodeId(c * k + j));
+      inner.push_back(static_cast<solve::Cost>((0.4 + 6.283185307179586 * r / 50) * 1e6));
+    }
+    b.add_cluster(nodes);
+  }
+  b.set_planar_costs(std::move(pc));
+  for (std::size_t v = 0; v < inner.size(); ++v) b.set_inner_cost(solve::NodeId(static_cast<int>(v)), inner[v]);
+  b.set_kind(solve::RouteKind::open_path);
+  return std::move(b.build()).value();
+}
+
+// The cheapest-entry bound (k-d tree, any size) against the cluster graph's assignment bound
+// (O(n^2) prices, up to 1 500 clusters), on nests of m contours x 8 candidates.
+void BM_Bound_Entries(benchmark::State& state) {
+  const solve::Problem p = planar_nest(static_cast<int>(state.range(0)));
+  std::optional<solve::Cost> b;
+  for (auto _ : state) b = solve::entry_lower_bound(p);
+  state.counters["bound"] = static_cast<double>(b.value_or(-1));
+}
+BENCHMARK(BM_Bound_Entries)->Arg(1000)->Arg(5000)->Arg(20000)->Unit(benchmark::kMillisecond);
+void BM_Bound_Assignment(benchmark::State& state) {
+  const solve::Problem p = planar_nest(static_cast<int>(state.range(0)));
+  std::optional<solve::Cost> b;
+  for (auto _ : state) b = solve::route_lower_bound(p, StopToken{}, solve::kMaxCost, false);
+  state.counters["bound"] = static_cast<double>(b.value_or(-1));
+}
+BENCHMARK(BM_Bound_Assignment)->Arg(1000)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "assignment.hpp"
+#include "planar_neighbours.hpp"
 #include "planar_rows.hpp"
 
 namespace cutroute::solve {
@@ -289,6 +291,21 @@ std::optional<ClusterPotentials> assignment_potentials(const Problem& p, const S
   for (Cost r : pot.row)
     if (r >= kNo) return std::nullopt;  // a cluster no route can leave
   return pot;
+}
+
+std::optional<Cost> entry_lower_bound(const Problem& p) {
+  const int m = p.cluster_count();
+  if (p.planar() == nullptr || m < 2) return std::nullopt;
+  const std::vector<Cost> in = detail::planar_cheapest_arcs_in(p);
+  const bool open_start = !p.closed();
+  Cost sum = 0;
+  for (int c = 0; c < m; ++c) {
+    const bool start = open_start && ClusterId(c) == p.start_cluster();
+    Cost least = std::numeric_limits<Cost>::max();
+    for (NodeId v : p.nodes_of(ClusterId(c))) least = std::min(least, (start ? 0 : in[v.index()]) + p.inner_cost(v));
+    sum += least;
+  }
+  return sum;
 }
 
 BoundSeconds estimate_bound_seconds(const Problem& p) {

@@ -14,4 +14,10 @@ namespace cutroute::solve::detail {
 // ties go to the lower cluster id. Needs p.planar() and kn < cluster_count().
 void planar_neighbours(const Problem& p, std::size_t kn, std::vector<ClusterId>& pred, std::vector<ClusterId>& succ);
 
+// For every node v, a lower bound on every planar arc u -> v from a node u of another cluster: the
+// price of the nearest such arc, computed from a distance shrunk by 1e-12 so that the k-d tree's
+// arithmetic (not Problem::planar_arc's) cannot make it one tick too high. Forbidden arcs are
+// priced like the rest. O(n log n). Needs p.planar() and at least 2 clusters.
+std::vector<Cost> planar_cheapest_arcs_in(const Problem& p);
+
 }  // namespace cutroute::solve::detail

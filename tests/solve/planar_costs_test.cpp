@@ -328,10 +328,87 @@ TEST(PlanarCosts, EveryInstructionSetRoundsHalfwayPricesWithoutFusedMultiplyAdd)
   EXPECT_EQ(cases, 40);
 }
 
+// The cheapest-entry bound (entry_lower_bound, k-d tree) against the same sum priced arc by arc here
+// (expected_arc: its own hypot and rounding): never above it, at most a tick per cluster below (its
+// guard against the tree's rounding), equal on all but a few; and never above the brute-force optimum,
+// with inner costs, forbidden arcs and precedence (which it leaves out), open and closed.
+TEST(PlanarCosts, EntryBoundIsEveryClustersCheapestEntry) {
+  Rng rng(35);
+  int equal = 0, brute = 0;
+  constexpr int kInstances = 80;
+  for (int k = 0; k < kInstances; ++k) {
+    const bool tiny = k % 2 == 0;
+    const Planar pl = random_planar(tiny ? 2 + static_cast<int>(rng.below(5)) : 10 + static_cast<int>(rng.below(60)),
+                                    tiny ? 3 : 6, rng);
+    const int n = static_cast<int>(pl.costs.in.size()), m = static_cast<int>(pl.clusters.size());
+    const bool open = k % 3 == 0;
+    ProblemBuilder b(n);
+    b.set_planar_costs(pl.costs);
+    for (const auto& c : pl.clusters) b.add_cluster(c);
+    std::vector<Cost> inner(static_cast<std::size_t>(n), 0);
+    if (k % 4 != 1)
+      for (int v = 0; v < n; ++v) b.set_inner_cost(NodeId(v), inner[static_cast<std::size_t>(v)] = static_cast<Cost>(rng.below(400000)));
+    if (k % 5 == 2 && m > 3) b.add_precedence(ClusterId(m - 1), ClusterId(1)), b.forbid_arc(NodeId(0), NodeId(n - 1));
+    b.set_kind(open ? RouteKind::open_path : RouteKind::closed_tour);
+    auto built = b.build();
+    ASSERT_TRUE(built.ok()) << built.error().message;
+    const Problem& p = built.value();
+    SCOPED_TRACE("instance " + std::to_string(k));
+    Cost want = 0;
+    std::vector<int> cluster(static_cast<std::size_t>(n));
+    for (int c = 0; c < m; ++c)
+      for (NodeId v : pl.clusters[static_cast<std::size_t>(c)]) cluster[v.index()] = c;
+    for (int c = 0; c < m; ++c) {
+      Cost least = std::numeric_limits<Cost>::max();
+      for (NodeId v : pl.clusters[static_cast<std::size_t>(c)]) {
+        Cost in = open && c == 0 ? 0 : std::numeric_limits<Cost>::max();
+        for (int u = 0; u < n; ++u)
+          if (cluster[static_cast<std::size_t>(u)] != c) in = std::min(in, expected_arc(pl.costs, u, v.value()));
+        least = std::min(least, in + inner[v.index()]);
+      }
+      want += least;
+    }
+    const auto got = entry_lower_bound(p);
+    ASSERT_TRUE(got.has_value());
+    EXPECT_LE(*got, want);
+    EXPECT_GE(*got, want - m);
+    if (*got == want) ++equal;
+    if (tiny) {
+      const Cost truth = test::brute_force(p);
+      if (truth == std::numeric_limits<Cost>::max()) continue;
+      ++brute;
+      EXPECT_LE(*got, truth);
+    }
+  }
+  EXPECT_GE(equal, kInstances - 2);
+  EXPECT_GE(brute, 30);
+}
+
+// A nest beyond the cluster graph's limits (more than 1 500 contours) still gets a bound: the
+// cheapest entries, below the route.
+TEST(PlanarCosts, NestsBeyondTheClusterGraphGetTheCheapestEntries) {
+  Rng rng(36);
+  const Planar pl = random_planar(1600, 2, rng);
+  const Problem p = build(pl, false, RouteKind::open_path, {{3, 7}, {5, 7}});
+  ASSERT_FALSE(route_lower_bound(p, StopToken{}).has_value());
+  const auto entries = entry_lower_bound(p);
+  ASSERT_TRUE(entries);
+  SolveParams sp;
+  sp.solver = SolverKind::automatic;
+  sp.threads = 2;
+  sp.time_limit_s = 1000.0;
+  sp.work_budget = 4.0e5;
+  const Solution s = solve(p, sp);
+  ASSERT_FALSE(s.route.empty());
+  EXPECT_TRUE(validate(p, s).empty());
+  EXPECT_EQ(s.lower_bound, entries);
+  EXPECT_LT(*entries, s.cost);
+}
+
 // Beyond 3 000 nodes `auto` computes the cluster-graph bound only when the run's time limit is at
 // least twenty times its estimated cost (estimate_bound_seconds), and the 1-tree ascent on top
 // only when the limit covers that too; never without a time limit (a work budget alone): same
-// options, same route. A bound it reports is below the route's cost, and equals it only when the
+// options, same route. Otherwise it reports the cheapest entries. A bound it reports is below the route's cost, and equals it only when the
 // run says optimal.
 TEST(PlanarCosts, AutoBoundsLargeProblemsWhenTheTimeLimitAffordsIt) {
   Rng rng(33);
@@ -350,7 +427,11 @@ TEST(PlanarCosts, AutoBoundsLargeProblemsWhenTheTimeLimitAffordsIt) {
     double time_limit;
     std::optional<Cost> bound;
   };
-  const Case cases[] = {{0.0, std::nullopt}, {0.5 * graph, std::nullopt}, {1.2 * graph, assignment}, {1.2 * full, whole}};
+  // Without the time for it, the cheapest entries, a little lower.
+  const auto entries = entry_lower_bound(p);
+  ASSERT_TRUE(entries);
+  EXPECT_LT(*entries, *assignment);
+  const Case cases[] = {{0.0, entries}, {0.5 * graph, entries}, {1.2 * graph, assignment}, {1.2 * full, whole}};
   for (const Case& c : cases) {
     SolveParams sp;
     sp.solver = SolverKind::automatic;

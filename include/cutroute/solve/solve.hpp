@@ -16,7 +16,8 @@ namespace cutroute::solve {
 //    cost callback), and up to 1 500 clusters and 12 000 nodes when the time limit is at least 20
 //    times its estimated cost (estimate_bound_seconds), the cluster-graph bound (lower_bound.hpp) is
 //    computed first: the run stops when it reaches the bound (status optimal) and the Solution
-//    reports it as its lower bound;
+//    reports it as its lower bound; other problems with planar costs (larger nests, or a time limit
+//    too short for the graph) get the cheapest-entry bound (entry_lower_bound) instead;
 // 4. the result is checked with validate() (a failure is a bug: it throws std::logic_error).
 // `stop` adds an external cancel and deadline to params.time_limit_s.
 Solution solve(const Problem& problem, const SolveParams& params, const StopToken& stop = {},

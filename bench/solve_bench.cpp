@@ -10,6 +10,7 @@
 #include <cutroute/solve/solve.hpp>
 
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include <cutroute/core/random.hpp>
@@ -133,11 +134,11 @@ solve::Problem planar_nest(int m) {
     const double cx = rng.uniform01() * 3000, cy = rng.uniform01() * 1500, r = 2 + rng.uniform01() * 10;
     std::vector<solve::NodeId> nodes;
     for (int j = 0; j < k; ++j) {
-      const double a = 6.283185307179586 * j / k;
+      const double a = 2 * std::numbers::pi * j / k;
       pc.in.push_back({cx + r * std::cos(a), cy + r * std::sin(a)});
       pc.out.push_back(pc.in.back());
       nodes.push_back(solve::NodeId(c * k + j));
-      inner.push_back(static_cast<solve::Cost>((0.4 + 6.283185307179586 * r / 50) * 1e6));
+      inner.push_back(static_cast<solve::Cost>((0.4 + 2 * std::numbers::pi * r / 50) * 1e6));
     }
     b.add_cluster(nodes);
   }

@@ -103,32 +103,13 @@ void lists(const Problem& p, std::size_t kn, const std::vector<PlanarPoint>& sou
   }
 }
 
-// nanoflann result set keeping the nearest point of a cluster other than `self`.
-class NearestOther {
- public:
-  explicit NearestOther(const Problem& p) : p_(p) {}
-  void reset(int self) { self_ = self, d2_ = std::numeric_limits<double>::max(); }
-  bool addPoint(double d2, std::uint32_t i) {
-    if (d2 < d2_ && p_.cluster_of(NodeId(static_cast<int>(i))).value() != self_) d2_ = d2;
-    return true;
-  }
-  double worstDist() const { return d2_; }
-  double distance2() const { return d2_; }
-  bool full() const { return true; }
-
- private:
-  const Problem& p_;
-  int self_ = -1;
-  double d2_ = 0;
-};
-
 }  // namespace
 
 std::vector<Cost> planar_cheapest_arcs_in(const Problem& p) {
   const PlanarCosts& pc = *p.planar();
   const Cloud cloud{pc.out};
   const Tree tree(2, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  NearestOther res(p);
+  ClusterResults res(p, 1);  // the nearest point of another cluster
   std::vector<Cost> cheapest(static_cast<std::size_t>(p.node_count()));
   for (int v = 0; v < p.node_count(); ++v) {
     const PlanarPoint q = pc.in[static_cast<std::size_t>(v)];
@@ -137,7 +118,7 @@ std::vector<Cost> planar_cheapest_arcs_in(const Problem& p) {
     tree.findNeighbors(res, qp, nanoflann::SearchParams());
     // The price as Problem::planar_arc forms it, from a length and a price a few ulps short of the
     // tree's: its sum of squares may round otherwise than planar_arc's.
-    double t = (pc.base + pc.per_unit * std::sqrt(res.distance2()) * (1.0 - 1e-12)) * pc.scale;
+    double t = (pc.base + pc.per_unit * std::sqrt(res.items().front().first) * (1.0 - 1e-12)) * pc.scale;
     t -= std::abs(t) * 1e-12;
     cheapest[static_cast<std::size_t>(v)] = static_cast<Cost>(std::clamp(t, 0.0, static_cast<double>(kMaxCost)) + 0.5);
   }

@@ -28,7 +28,8 @@ constexpr int kAutoBoundMaxCallbackNodes = 1500;
 // solves about 5 s: vrs_Lv10_SHEET_004 (4 300-4 500 nodes) gets the whole bound, SHEET_001 (7 200-
 // 8 100 nodes) and d2g_DRAAK (7 500 nodes, 1 187 clusters) the assignment (the 1-tree was 0.01 %
 // higher on SHEET_001's chain problem, lower on the rest). Runs without a time limit (a work budget)
-// keep the fixed limits above, so the same options give the same route as before.
+// keep the fixed limits above, so the same options give the same route as before; beyond them,
+// planar costs get the cheapest entries (entry_lower_bound), which no timing decides either.
 constexpr double kBoundTimeShare = 0.05;
 
 bool use_exact(const Problem& p, const SolveParams& params) {
@@ -63,8 +64,8 @@ std::optional<Cost> cheap_bound(const Problem& p, const StopToken& stop, double 
   if (time_limit_s > 0.0 && cost.graph <= share)
     if (auto bound = route_lower_bound(p, stop, kMaxCost, cost.graph + cost.one_tree <= share)) return bound;
   // Where the cluster graph is beyond the limits or the time, planar costs still get the cheapest
-  // entries (d2g_DRAAK: 13 ms, 0.12 % below the assignment; a nest of 2 000 contours and 16 000
-  // candidates had no bound at all).
+  // entries: milliseconds (solve_bench BM_Bound_Entries), 0.12 % below the assignment on
+  // d2g_DRAAK; a nest of 2 000 contours and 16 000 candidates had no bound at all.
   return entry_lower_bound(p);
 }
 

@@ -408,8 +408,8 @@ TEST(PlanarCosts, NestsBeyondTheClusterGraphGetTheCheapestEntries) {
 // Beyond 3 000 nodes `auto` computes the cluster-graph bound only when the run's time limit is at
 // least twenty times its estimated cost (estimate_bound_seconds), and the 1-tree ascent on top
 // only when the limit covers that too; never without a time limit (a work budget alone): same
-// options, same route. Otherwise it reports the cheapest entries. A bound it reports is below the route's cost, and equals it only when the
-// run says optimal.
+// options, same route. Otherwise it reports the cheapest entries. A bound it reports is below the
+// route's cost, and equals it only when the run says optimal.
 TEST(PlanarCosts, AutoBoundsLargeProblemsWhenTheTimeLimitAffordsIt) {
   Rng rng(33);
   const Planar pl = random_planar(350, 17, rng);

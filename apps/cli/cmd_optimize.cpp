@@ -233,14 +233,16 @@ void add_shop_rule_options(CLI::App* app, pipeline::ShopRules& r, std::string& c
       ->check(finite_range(0.0, 1e6))->capture_default_str()->group(g);
   app->add_option("--tip-up-margin", r.tip_up_margin_mm, "Tip-up: detour distance from freed parts [mm]")
       ->check(finite_range(0.0, 1e3))->capture_default_str()->group(g);
-  app->add_flag("--part-rigidity", r.part_rigidity, "Part rigidity: outer contours entered at the corner toward the uncut material")->group(g);
+  app->add_flag("--part-rigidity", r.part_rigidity,
+                "Part rigidity: outer contours entered at the corner toward the uncut material (standard technique only)")->group(g);
   app->add_option("--sheet-clamp", clamp, "Sheet rigidity: clamped side; the order sweeps away from it")
       ->check(CLI::IsMember({"left", "right", "bottom", "top"}))->group(g);
   app->add_option("--sheet-weight", r.sheet_weight_per_mm, "Sheet rigidity: price per mm behind the sweep front [s/mm]")
       ->check(finite_range(0.0, 1e6))->capture_default_str()->group(g);
   app->add_option("--sheet-band", r.sheet_band_mm, "Sheet rigidity: allowed step back behind the front [mm]")
       ->check(finite_range(0.0, 1e6))->capture_default_str()->group(g);
-  app->add_option("--tabs", r.tabs, "Micro-joints: uncut tabs per outer contour (0: off)")->check(CLI::Range(0, 64))->group(g);
+  app->add_option("--tabs", r.tabs, "Micro-joints: uncut tabs per outer contour (0: off; standard technique only)")
+      ->check(CLI::Range(0, 64))->group(g);
   app->add_option("--tab-width", r.tab_width_mm, "Micro-joints: tab width [mm]")
       ->check(finite_range(0.001, 1e3))->capture_default_str()->group(g);
 }
@@ -285,7 +287,8 @@ void add_optimize(CLI::App& root, Commands& out) {
   app->add_option("--technique", o->technique,
                   "Basic segments: standard (one per contour), chain (neighbouring parts joined by bridges), "
                   "common (shared edges cut once), multi (long contours cut in pieces, ECP), auto (each available "
-                  "one solved, the fastest kept; multi only with --multi-segment)")
+                  "one solved, the fastest kept, with shop rules the fastest plus the rules' price; multi only with "
+                  "--multi-segment; only standard with --part-rigidity or --tabs)")
       ->check(CLI::IsMember({"standard", "chain", "common", "multi", "auto"}))
       ->capture_default_str();
   app->add_option("--chain-gap", o->chain_gap, "Chain cutting: largest gap between parts bridged [mm]")

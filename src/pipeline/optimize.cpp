@@ -112,9 +112,9 @@ struct Evaluated {
 // Is program a better than program b? The lower objective, but first the fewer rapids left over
 // freed parts by a stopped detour pass: those rapids are shorter than their detours, and a program
 // whose pass ran out of time must not win for them (0 for both without tip-up detours).
-bool better(const Evaluated& a, const Evaluated& b) {
+bool better(const Evaluated& a, const Evaluated& b, double a_penalty = 0.0, double b_penalty = 0.0) {
   if (a.detours_left != b.detours_left) return a.detours_left < b.detours_left;
-  return a.objective < b.objective - 1e-9;
+  return a.objective + a_penalty < b.objective + b_penalty - 1e-9;
 }
 
 // One entry of the report's lead_alternatives.
@@ -259,11 +259,13 @@ class Laps {
 // Rapids whose detour was not found in time are left straight, counted in the report and warned
 // about. Without a limit nothing changes; without these rules the solver gets what it got before.
 // A stop request (SIGINT/SIGTERM) ends them all at once, like the solver.
+// Each alternative (technique) has its own: `limit_s` is its part of --time-limit (the shares are
+// taken of it) and `deadline` where its time ends (the run's deadline for the last one), so that
+// the first alternative's search does not run into the time of the others.
 class RunLimit {
  public:
-  RunLimit(const OptimizeOptions& o, Clock::time_point begin) : limit_s_(o.time_limit_s), shares_(rules::time_shares(o.rules)) {
-    if (o.time_limit_s > 0) deadline_ = begin + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.time_limit_s));
-  }
+  RunLimit(double limit_s, std::optional<Clock::time_point> deadline, const ShopRules& r)
+      : limit_s_(limit_s), shares_(rules::time_shares(r)), deadline_(deadline) {}
   // [s] kept from each solver for the rules' steps after it.
   double rules_reserve_s() const { return (shares_.search + shares_.refine + shares_.detours) * limit_s_; }
   StopToken search(const StopToken& stop) const {
@@ -325,6 +327,7 @@ struct Alternative {
   std::string lead_name;
   nlohmann::json leads_json;
   nlohmann::json rules_json;  // shop rules: the history-dependent re-ordering's search and effects
+  double rules_penalty = 0.0; // shop rules: their price of the route [objective unit] (heat, tip-up, sheet)
   int rigid_corners = 0;      // shop rules: outer contours entered at a rigid corner
   StopToken refine_stop;      // shop rules: where the tip-up refinements of its lead types stop
   StopToken detour_stop;      // shop rules: where the tip-up detours of its programs stop
@@ -352,8 +355,9 @@ Result<Alternative> solve_alternative(const model::Nest& nest, const model::CutJ
   if (alt.solution.route.empty()) return make_error("the route solver stopped before it found any route");
   // Shop rules: history-dependent re-ordering of the solver's route.
   const std::vector<solve::NodeId> route =
-      o.rules.orders() ? rules::reorder(nest, job, *rp, alt.solution.route, o.rules, run.search(stop), alt.rules_json)
-                       : alt.solution.route;
+      o.rules.orders()
+          ? rules::reorder(nest, job, *rp, alt.solution.route, o.rules, run.search(stop), alt.rules_json, alt.rules_penalty)
+          : alt.solution.route;
   auto& seq = alt.sequence;
   for (const auto* e : cost::route_entries(job, *rp, route)) seq.push_back(*e);
   lap("sequence");
@@ -467,15 +471,17 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   const model::Nest& cut_nest = o.kerf_mode == nc::KerfMode::cam ? kerf.nest : nest;
   // 2-6 for each alternative set of basic segments (GSCCP), the best kept.
   std::vector<Technique> wanted;
-  // The shop rules are written for one pierce per contour: with any rule on, only the standard
-  // technique is built (asked for another one explicitly: an error, not a silent change).
-  if (o.rules.any() && o.technique != Technique::automatic && o.technique != Technique::standard)
-    return make_error(std::string("the shop rules work with --technique standard only, not ") + to_string(o.technique));
-  if (o.rules.any() && o.multi_segment) return make_error("the shop rules work with --technique standard only, not with --multi-segment");
+  // Part rigidity and tabs are written for one pierce per contour: with either on, only the
+  // standard technique is built (asked for another one explicitly: an error, not a silent change).
+  // The order rules (heat, tip-up, sheet rigidity) work with every technique.
+  if (o.rules.standard_only() && o.technique != Technique::automatic && o.technique != Technique::standard)
+    return make_error(std::string("--part-rigidity and --tabs work with --technique standard only, not ") + to_string(o.technique));
+  if (o.rules.standard_only() && o.multi_segment)
+    return make_error("--part-rigidity and --tabs work with --technique standard only, not with --multi-segment");
   if (o.multi_segment && o.technique != Technique::automatic && o.technique != Technique::multi)
     return make_error(std::string("--multi-segment adds multi-segment cutting to --technique auto; not with --technique ") +
                       to_string(o.technique) + " (use --technique multi to cut with it alone)");
-  if (o.technique == Technique::automatic && !o.rules.any()) wanted = {Technique::standard, Technique::chain, Technique::common};
+  if (o.technique == Technique::automatic && !o.rules.standard_only()) wanted = {Technique::standard, Technique::chain, Technique::common};
   else if (o.technique == Technique::automatic) wanted = {Technique::standard};
   else wanted = {o.technique};
   if (o.technique == Technique::automatic && o.multi_segment) wanted.push_back(Technique::multi);  // ECP only when asked for
@@ -516,12 +522,16 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   // first alternative has been measured, its post-processing is guessed from the time the
   // standard job took (the same kind of geometric work over the same contours).
   const auto deadline = t_begin + std::chrono::duration<double>(o.time_limit_s);
-  RunLimit run(o, t_begin);  // shop rules: their steps after the solver
   double post_s = 2.0 * standard_job_s;  // [s] refinement, evaluation and lead comparison of one alternative (estimate)
   std::optional<Alternative> best;
   std::size_t chosen = 0;
   for (std::size_t k = 0; k < jobs.size(); ++k) {
     const double left_alts = static_cast<double>(jobs.size() - k);
+    // Shop rules: their steps after this alternative's solver keep to an even share of what is left.
+    std::optional<Clock::time_point> alt_deadline;
+    if (o.time_limit_s > 0)
+      alt_deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>((deadline - Clock::now()) / left_alts);
+    RunLimit run(o.time_limit_s / static_cast<double>(jobs.size()), alt_deadline, o.rules);
     // No limit asked stays no limit (0). A limit already spent still leaves each solver a tenth of
     // an even share, never 0 (which the solver reads as "no limit").
     double budget = 0.0;
@@ -559,8 +569,13 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     j["frames"] = alt->best.frames;
     j["t_cut_s"] = alt->best.estimate.t_cut_s;
     j["objective"] = alt->best.objective;
+    // With shop rules on, techniques are compared by the objective plus the rules' price of their
+    // route (the price the order was optimised for): a faster program that cuts next to the last
+    // cut does not win against one that keeps the rules, unless it saves more than their weights.
+    if (o.rules.orders()) j["rules_penalty"] = alt->rules_penalty;
+    if (alt->best.detours_left > 0) j["tip_up_left_at_time_limit"] = alt->best.detours_left;  // why it lost (better())
     alternatives[slot[k]] = std::move(j);
-    if (!best || better(alt->best, best->best)) {
+    if (!best || better(alt->best, best->best, alt->rules_penalty, best->rules_penalty)) {
       best = std::move(alt).value();
       chosen = k;
     }

@@ -112,38 +112,58 @@ class RuleCost {
   RuleCost(const model::Nest& nest, const model::CutJob& job, const cost::RouteProblem& rp, const ShopRules& r)
       : nest_(nest), rp_(rp), r_(r), obstacles_(nest, r.tip_up_margin_mm) {
     const std::size_t m = job.segments.size();
-    contour_.resize(m);
-    outer_part_.assign(m, -1);
-    key_.assign(m, 0.0);
+    touched_.resize(m);
+    parts_.resize(m);
+    key_.assign(m, {0.0, 0.0});
     for (std::size_t j = 0; j < m; ++j) {
-      const model::ContourId id = job.segments[j].contours.front();  // standard jobs: one contour each
-      contour_[j] = id;
-      const auto& c = nest.contours[id];
-      if (c.role == model::ContourRole::outer && c.part.valid()) outer_part_[j] = c.part.value();
-      if (r.sheet_clamp) key_[j] = sweep_key(nest, id, *r.sheet_clamp);
+      // A standard segment cuts one contour; a chain several whole ones; a common-line or
+      // multi-segment piece parts of several. The rules see every contour a segment cuts.
+      touched_[j] = model::touched_contours(job.segments[j]);
+      std::pair<double, double> span{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+      for (const model::ContourId id : touched_[j]) {
+        const auto& c = nest.contours[id];
+        // A part counts as cut free once a segment has cut (any of) its outer contour, as the
+        // program's detour pass (nc/rapid_detours.hpp) counts it.
+        if (c.role == model::ContourRole::outer && c.part.valid()) parts_[j].push_back(c.part.value());
+        if (r.sheet_clamp) {
+          const double k = sweep_key(nest, id, *r.sheet_clamp);
+          span = {std::min(span.first, k), std::max(span.second, k)};
+        }
+      }
+      if (r.sheet_clamp && !touched_[j].empty()) key_[j] = span;
     }
     near_.resize(m);
     freed_stamp_.assign(nest.parts.size(), 0);
     freed_pos_.assign(nest.parts.size(), 0);
   }
 
-  // Are segments a and b closer than the heat distance? Decided when first asked and kept: a
-  // search asks about the pairs next to each other in the routes it prices, a few per contour,
-  // while all pairs within the distance were 365 000 on 10 000 circles 12 mm apart (0.5 s to
-  // measure, a tenth of --time-limit 5).
+  // Are segments a and b closer than the heat distance (any contour of one to any of the other)?
+  // Decided when first asked and kept: a search asks about the pairs next to each other in the
+  // routes it prices, a few per contour, while all pairs within the distance were 365 000 on
+  // 10 000 circles 12 mm apart (0.5 s to measure, a tenth of --time-limit 5).
   bool near(int a, int b) const {
     if (a > b) std::swap(a, b);
     auto& known = near_[static_cast<std::size_t>(a)];
     const auto it = std::lower_bound(known.begin(), known.end(), std::pair<int, bool>{b, false},
                                      [](const auto& x, const auto& y) { return x.first < y.first; });
     if (it != known.end() && it->first == b) return it->second;
-    const auto& ca = nest_.contours[contour_[static_cast<std::size_t>(a)]];
-    const auto& cb = nest_.contours[contour_[static_cast<std::size_t>(b)]];
     const double d = r_.heat_distance_mm;
-    const bool close = box_gap(ca.box, cb.box) < d && closer_than(ca.source.contour, cb.source.contour, cb.box, d);
+    bool close = false;
+    for (const model::ContourId ia : touched_[static_cast<std::size_t>(a)]) {
+      const auto& ca = nest_.contours[ia];
+      for (const model::ContourId ib : touched_[static_cast<std::size_t>(b)]) {
+        const auto& cb = nest_.contours[ib];
+        close = ia == ib || (box_gap(ca.box, cb.box) < d && closer_than(ca.source.contour, cb.source.contour, cb.box, d));
+        if (close) break;
+      }
+      if (close) break;
+    }
     known.insert(it, {b, close});
     return close;
   }
+
+  // Where segment j stands along the sweep: the least and the largest key of the contours it cuts.
+  std::pair<double, double> sweep_span(std::size_t j) const { return key_[j]; }
 
   Cost operator()(std::span<const NodeId> route) const { return price(route, nullptr); }
 
@@ -202,8 +222,9 @@ class RuleCost {
         }
       }
       if (r_.sheet_clamp) {
-        const double key = key_[static_cast<std::size_t>(j)];
-        const double behind = front - key - r_.sheet_band_mm;
+        // The contour of the segment nearest the clamp is the one that may lie behind the front.
+        const auto [lo, hi] = key_[static_cast<std::size_t>(j)];
+        const double behind = front - lo - r_.sheet_band_mm;
         if (behind > 0) {
           pen += r_.sheet_weight_per_mm * behind;
           if (fx) {
@@ -212,7 +233,7 @@ class RuleCost {
             fx->sheet_penalty += r_.sheet_weight_per_mm * behind;
           }
         }
-        front = std::max(front, key);
+        front = std::max(front, hi);
       }
       if (tip) {
         if (over_freed(route[i - 1], route[i], i)) {
@@ -222,8 +243,8 @@ class RuleCost {
             fx->tip_up_penalty += r_.tip_up_weight;
           }
         }
-        const int part = outer_part_[static_cast<std::size_t>(j)];
-        if (part >= 0) {
+        for (const int part : parts_[static_cast<std::size_t>(j)]) {
+          if (freed_stamp_[static_cast<std::size_t>(part)] == stamp_) continue;  // freed earlier
           freed_stamp_[static_cast<std::size_t>(part)] = stamp_;
           freed_pos_[static_cast<std::size_t>(part)] = i;
         }
@@ -243,9 +264,9 @@ class RuleCost {
   const cost::RouteProblem& rp_;
   const ShopRules& r_;
   nc::PartObstacles obstacles_;
-  std::vector<model::ContourId> contour_;
-  std::vector<int> outer_part_;
-  std::vector<double> key_;
+  std::vector<std::vector<model::ContourId>> touched_;  // per segment: the contours it cuts
+  std::vector<std::vector<int>> parts_;                 // per segment: the parts whose outer contour it cuts
+  std::vector<std::pair<double, double>> key_;          // per segment: least and largest sweep key
   mutable std::vector<std::vector<std::pair<int, bool>>> near_;  // per segment a: (b > a, near?) sorted by b
   mutable std::unordered_map<std::uint64_t, std::uint32_t> slot_;  // node pair -> offset in pool_
   mutable std::vector<int> pool_;
@@ -310,7 +331,7 @@ void restrict_candidates(model::CutJob& job, const model::Nest& nest, const Shop
 
 std::vector<NodeId> reorder(const model::Nest& nest, const model::CutJob& job, const cost::RouteProblem& rp,
                             const std::vector<NodeId>& route, const ShopRules& r, const StopToken& stop,
-                            nlohmann::json& report) {
+                            nlohmann::json& report, double& penalty) {
   const RuleCost rc(nest, job, rp, r);
   const solve::SequenceCost cost = [&rc](std::span<const NodeId> x) { return rc(x); };
   std::vector<std::vector<NodeId>> starts{route};
@@ -321,9 +342,7 @@ std::vector<NodeId> reorder(const model::Nest& nest, const model::CutJob& job, c
     std::vector<double> prio(static_cast<std::size_t>(rp.problem.cluster_count()), 0.0);
     for (const NodeId v : route) {
       const int j = rp.nodes[v.index()].segment;
-      if (j >= 0)
-        prio[rp.problem.cluster_of(v).index()] =
-            sweep_key(nest, job.segments[static_cast<std::size_t>(j)].contours.front(), *r.sheet_clamp);
+      if (j >= 0) prio[rp.problem.cluster_of(v).index()] = rc.sweep_span(static_cast<std::size_t>(j)).first;
     }
     starts.push_back(solve::order_by_priority(rp.problem, route, prio));
   }
@@ -335,9 +354,11 @@ std::vector<NodeId> reorder(const model::Nest& nest, const model::CutJob& job, c
   rc.price(route, &before);
   if (res.route.empty()) {
     report["route"] = effects_json(before, r);
+    penalty = before.heat_penalty + before.tip_up_penalty + before.sheet_penalty;
     return route;
   }
   rc.price(res.route, &after);
+  penalty = after.heat_penalty + after.tip_up_penalty + after.sheet_penalty;
   report["route"] = effects_json(after, r);
   report["search"] = {{"starts", starts.size()},
                       {"evaluations", res.evaluations},

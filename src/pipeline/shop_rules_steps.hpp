@@ -36,10 +36,13 @@ void restrict_candidates(model::CutJob& job, const model::Nest& nest, const Shop
 // tip-up, sheet rigidity) by solve::history_search() from three starts: the solver's route, the
 // greedy route under the rules, and (with a clamp) the route sorted along the sweep. Returns the
 // route and writes what it did into report["search"], and the rules' effects on the returned
-// route (heat pairs, rapids over freed parts, steps behind the sweep front) into report["route"].
+// route (heat pairs, rapids over freed parts, steps behind the sweep front) into report["route"];
+// `penalty` gets their total price [objective unit], by which alternatives are compared. Every
+// technique's segments work: a segment is priced by all the contours it cuts (a chain's parts,
+// the contours a common line or a multi-segment piece runs along).
 std::vector<solve::NodeId> reorder(const model::Nest& nest, const model::CutJob& job, const cost::RouteProblem& rp,
                                    const std::vector<solve::NodeId>& route, const ShopRules& r, const StopToken& stop,
-                                   nlohmann::json& report);
+                                   nlohmann::json& report, double& penalty);
 
 // Step 4 (entry refinement): with tip-up, the price of an entry's rapids that pass over parts
 // already cut free at that point of the sequence (tip_up_weight each, freed as the program's

@@ -175,6 +175,31 @@ TEST(CommonOptimize, AutoReportsAlternativesAndKeepsTheFaster) {
   std::filesystem::remove_all(dir);
 }
 
+// The order rules (heat, tip-up, sheet rigidity) with common lines: each common line counts as
+// every part it runs along. The program stays admissible (every edge, holes and common lines
+// first), the rules' search never makes the route's price under them worse, the same bytes twice.
+TEST(CommonOptimize, OrderRulesKeepTheProgramAdmissible) {
+  const auto dir = fresh_temp_dir("common-rules");
+  const Layout l = grid(dir, 3, 2, 120, 80, 15);
+  const auto rep = dir / "out.json";
+  const std::string rules = "--technique common --heat-distance 30 --sheet-clamp left --avoid-tip-up --threads 1 --report " + rep.string();
+  std::string first, second;
+  const auto check = optimize_and_check(l.dxf, dir, rules, 0.005, &first);
+  EXPECT_NEAR(check.boundary_cut_mm, l.perimeters - l.shared, 0.01);
+  EXPECT_EQ(check.runs, 6 + 1 + 3);
+  const auto report = nlohmann::json::parse(read_text(rep));
+  EXPECT_EQ(report.at("chosen"), "common");
+  const auto& r = report.at("rules");
+  EXPECT_EQ(r.at("active"), nlohmann::json::array({"heat", "tip_up", "sheet_rigidity"}));
+  EXPECT_GT(r.at("search").at("evaluations").get<int>(), 0);
+  EXPECT_LE(r.at("search").at("final_s").get<double>(), r.at("search").at("solver_route_s").get<double>() + 1e-9);
+  // A common line runs along two to six parts: cutting the next contour of any of them is "near".
+  EXPECT_GT(r.at("search").at("solver_route").at("heat").at("consecutive_closer_than_d").get<int>(), 0);
+  optimize_and_check(l.dxf, dir, rules, 0.005, &second);
+  EXPECT_EQ(first, second);
+  std::filesystem::remove_all(dir);
+}
+
 // A row of four parts drawn one kerf apart: the common cuts run on the centre lines of the gaps.
 TEST(CommonOptimize, KerfApartRow) {
   const auto dir = fresh_temp_dir("common-kerf");

@@ -145,19 +145,29 @@ TEST(MultiOptimize, DemoSheetKeepsWholeContours) {
 }
 
 // Asked for explicitly, the demo sheet is cut with its long contours in pieces: every contour
-// covered once by its pieces, holes and inner parts before any piece, leads in scrap.
+// covered once by its pieces, holes and inner parts before any piece, leads in scrap. The same
+// with the order rules, which price pieces like whole contours (two pieces of one contour are
+// "close" for heat); their search never worsens the route's price under them.
 TEST(MultiOptimize, DemoSheetInPiecesIsAdmissible) {
-  const auto dir = temp_dir("multi-demo-forced");
-  const auto dxf = write_demo(dir);
-  const OptRun run = optimize(dxf, dir, "--technique multi");
-  ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
-  EXPECT_EQ(run.report["chosen"], "multi");
-  ProgramCheck check;
-  expect_admissible(dxf, run, 0.0, &check);
-  EXPECT_GE(check.split_contours, 1);
-  EXPECT_EQ(check.probe.pierces, 21 + check.split_contours);
-  expect_rs274_accepts(dir / "out.ngc");
-  fs::remove_all(dir);
+  for (const std::string rules : {"", "--heat-distance 30 --sheet-clamp bottom --avoid-tip-up"}) {
+    const auto dir = temp_dir("multi-demo-forced");
+    const auto dxf = write_demo(dir);
+    const OptRun run = optimize(dxf, dir, "--technique multi " + rules);
+    ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
+    EXPECT_EQ(run.report["chosen"], "multi");
+    ProgramCheck check;
+    expect_admissible(dxf, run, 0.0, &check);
+    EXPECT_GE(check.split_contours, 1);
+    if (rules.empty()) {
+      EXPECT_EQ(check.probe.pierces, 21 + check.split_contours);
+      expect_rs274_accepts(dir / "out.ngc");
+    } else {
+      const auto& r = run.report["rules"];
+      EXPECT_EQ(r["active"], nlohmann::json::array({"heat", "tip_up", "sheet_rigidity"}));
+      EXPECT_LE(r["search"]["final_s"].get<double>(), r["search"]["solver_route_s"].get<double>() + 1e-9);
+    }
+    fs::remove_all(dir);
+  }
 }
 
 // Three pieces per split contour (--multi-pieces 3).
@@ -265,9 +275,9 @@ TEST(MultiOptimize, BadCombinationsAreRefused) {
   const auto dxf = write_frame(dir);
   const auto prog = (dir / "p.ngc").string();
   const std::string base = cli_path() + " optimize " + dxf + " -o " + prog + " --quiet --time-limit 0.2 ";
-  auto r = run_command(base + "--technique multi --avoid-tip-up");
+  auto r = run_command(base + "--technique multi --tabs 2");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("shop rules work with --technique standard only, not multi"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--tabs work with --technique standard only, not multi"), std::string::npos) << r.err;
   r = run_command(base + "--multi-segment --part-rigidity");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("not with --multi-segment"), std::string::npos) << r.err;

@@ -106,11 +106,13 @@ Program parse(const std::string& text, const std::vector<Rect>& parts) {
   return p;
 }
 
-Program optimize(const std::string& dxf, const fs::path& dir, const std::string& extra, const std::vector<Rect>& parts) {
+Program optimize(const std::string& dxf, const fs::path& dir, const std::string& extra, const std::vector<Rect>& parts,
+                 const std::string& technique = "standard") {
   const auto prog = dir / "out.ngc", rep = dir / "out.json";
   fs::remove(prog);
   const auto r = run_command(cli_path() + " optimize " + dxf + " -o " + prog.string() + " --report " + rep.string() +
-                             " --svg " + (dir / "out.svg").string() + " --quiet --time-limit 2 --threads 1 --technique standard " + extra);
+                             " --svg " + (dir / "out.svg").string() + " --quiet --time-limit 2 --threads 1 --technique " +
+                             technique + " " + extra);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   if (r.exit_code != 0) return {};
   Program p = parse(read_text(prog), parts);
@@ -446,6 +448,164 @@ TEST(ShopRules, OffMeansOffAndAllRulesTogetherStayAdmissibleAndDeterministic) {
   fs::remove_all(dir);
 }
 
+// ---------------------------------------------------------------------------------------------
+// The order rules with the other techniques: a segment is every part it cuts (a chain's parts).
+
+// The parts each run of the program cuts along (a chain's run cuts several), from the re-parsed
+// moves alone.
+std::vector<std::vector<int>> parts_of_runs(const Program& p, const std::vector<Rect>& parts) {
+  std::vector<std::vector<int>> out;
+  for (const auto& r : p.runs) {
+    std::vector<int> on;
+    for (std::size_t k = 0; k < parts.size(); ++k)
+      for (const auto* m : r.moves)
+        if (parts[k].boundary_distance({m->x0, m->y0}) < 0.01 && parts[k].boundary_distance({m->x1, m->y1}) < 0.01 && m->length > 1) {
+          on.push_back(static_cast<int>(k));
+          break;
+        }
+    out.push_back(on);
+  }
+  return out;
+}
+
+// Consecutive runs with parts closer than d.
+int close_consecutive_runs(const std::vector<std::vector<int>>& runs, const std::vector<Rect>& parts, double d) {
+  int close = 0;
+  for (std::size_t i = 1; i < runs.size(); ++i) {
+    bool near = false;
+    for (int a : runs[i - 1])
+      for (int b : runs[i]) near = near || gap(parts[static_cast<std::size_t>(a)], parts[static_cast<std::size_t>(b)]) < d;
+    close += near;
+  }
+  return close;
+}
+
+// Four pairs of 40 mm squares in a row: the squares of a pair 5 mm apart (chain cutting joins
+// them), the pairs 30 mm apart. With D = 40 only pairs that are not neighbours may follow each
+// other (e.g. 2 4 1 3); the shortest chain route (1 2 3 4) breaks it.
+std::vector<Rect> pairs_in_a_row(double y0) {
+  std::vector<Rect> v;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 2; ++k) {
+      const double x = 20 + i * 115 + k * 45;
+      v.push_back({x, y0, x + 40, y0 + 40});
+    }
+  return v;
+}
+
+TEST(ShopRules, HeatKeepsChainsApart) {
+  const auto dir = temp_dir("heat_chain");
+  const auto parts = pairs_in_a_row(30);
+  const auto dxf = write_nest(dir, parts, 500, 100);
+  const Program plain = optimize(dxf, dir, "", parts, "chain");
+  ASSERT_EQ(plain.runs.size(), 4u) << "chain cutting must join each pair";
+  EXPECT_GT(close_consecutive_runs(parts_of_runs(plain, parts), parts, 40), 0) << "the nest must tempt the route into neighbours";
+
+  const Program heat = optimize(dxf, dir, "--heat-distance 40", parts, "chain");
+  ASSERT_EQ(heat.runs.size(), 4u);
+  const auto runs = parts_of_runs(heat, parts);
+  for (const auto& r : runs) EXPECT_EQ(r.size(), 2u) << "each run cuts one pair";
+  EXPECT_EQ(close_consecutive_runs(runs, parts, 40), 0);
+  EXPECT_EQ(heat.report["chosen"], "chain");
+  EXPECT_EQ(heat.report["rules"]["route"]["heat"]["consecutive_closer_than_d"], 0);
+  EXPECT_GT(heat.report["rules"]["search"]["solver_route"]["heat"]["consecutive_closer_than_d"].get<int>(), 0);
+  auto loaded = io::load_nest(dxf, io::NestLoadOptions{});
+  ASSERT_TRUE(loaded.ok());
+  const auto check = check_program(loaded->nest, heat.text, ProgramCheckOptions{});
+  for (const auto& f : check.failures) ADD_FAILURE() << f;
+  EXPECT_EQ(check.bridges, 4);
+  fs::remove_all(dir);
+}
+
+TEST(ShopRules, SheetRigiditySweepsChainsAwayFromTheClamp) {
+  // Three rows of the pairs above; clamped at the top, the chains must go row by row downwards.
+  const auto dir = temp_dir("sheet_chain");
+  std::vector<Rect> parts;
+  for (double y : {20.0, 100.0, 180.0})
+    for (const Rect& r : pairs_in_a_row(y)) parts.push_back(r);
+  const auto dxf = write_nest(dir, parts, 500, 240);
+  auto row_order_down = [&](const Program& p) {
+    double last = 1e18;
+    for (const auto& run : parts_of_runs(p, parts))
+      for (int k : run) {
+        const double y = parts[static_cast<std::size_t>(k)].centre().y;
+        if (y > last + 1e-9) return false;
+        last = std::min(last, y);
+      }
+    return true;
+  };
+  const Program plain = optimize(dxf, dir, "", parts, "chain");
+  ASSERT_EQ(plain.runs.size(), 12u);
+  EXPECT_FALSE(row_order_down(plain)) << "the shortest route must not already sweep downwards";
+  const Program top = optimize(dxf, dir, "--sheet-clamp top", parts, "chain");
+  ASSERT_EQ(top.runs.size(), 12u);
+  EXPECT_TRUE(row_order_down(top));
+  EXPECT_EQ(top.report["rules"]["route"]["sheet"]["steps_behind_front"], 0);
+  fs::remove_all(dir);
+}
+
+TEST(ShopRules, TipUpRapidsGoAroundFreedChains) {
+  // Pairs of squares on the diagonal through the park position (0, 0): the way back passes over
+  // the chains already cut unless it goes around them.
+  const auto dir = temp_dir("tipup_chain");
+  std::vector<Rect> parts;
+  for (int i = 0; i < 4; ++i) {
+    const double o = 15.0 + i * 70;
+    parts.push_back({o, o, o + 25, o + 25});
+    parts.push_back({o + 30, o, o + 55, o + 25});
+  }
+  const auto dxf = write_nest(dir, parts, 320, 320);
+  auto over = [&](const Program& p) {
+    const auto runs = parts_of_runs(p, parts);
+    int n = 0;
+    for (const auto& [m, runs_before] : p.rapids) {
+      std::vector<char> freed(parts.size(), 0);
+      for (int r = 0; r < runs_before; ++r)
+        for (int k : runs[static_cast<std::size_t>(r)]) freed[static_cast<std::size_t>(k)] = 1;
+      bool hit = false;
+      for (std::size_t k = 0; k < parts.size() && !hit; ++k)
+        for (int s = 0; s <= 200 && freed[k] && !hit; ++s) {
+          Vec2 q;
+          probe_point(*m, s / 200.0, q.x, q.y);
+          hit = parts[k].strictly_inside(q, 0.01);
+        }
+      n += hit;
+    }
+    return n;
+  };
+  const Program plain = optimize(dxf, dir, "", parts, "chain");
+  ASSERT_EQ(plain.runs.size(), 4u);
+  EXPECT_GT(over(plain), 0) << "the nest must make straight rapids pass over freed parts";
+  const Program tip = optimize(dxf, dir, "--avoid-tip-up", parts, "chain");
+  ASSERT_EQ(tip.runs.size(), 4u);
+  EXPECT_EQ(over(tip), 0);
+  EXPECT_EQ(tip.report["rules"]["tip_up_program"]["unavoidable"], 0);
+  fs::remove_all(dir);
+}
+
+TEST(ShopRules, AutoComparesTechniquesByTimePlusTheRulesPrice) {
+  const auto dir = temp_dir("heat_auto");
+  const auto parts = pairs_in_a_row(30);
+  const auto dxf = write_nest(dir, parts, 500, 100);
+  for (const char* rule : {"--heat-distance 40", "--heat-distance 60 --heat-weight 1", "--sheet-clamp right --sheet-weight 1"}) {
+    const Program p = optimize(dxf, dir, rule, parts, "auto");
+    const auto& alts = p.report["alternatives"];
+    double best = 1e300;
+    std::string best_name;
+    int available = 0;
+    for (const auto& a : alts) {
+      if (!a["available"].get<bool>()) continue;
+      ++available;
+      ASSERT_TRUE(a.contains("rules_penalty")) << rule;
+      const double v = a["objective"].get<double>() + a["rules_penalty"].get<double>();
+      if (v < best - 1e-9) best = v, best_name = a["name"].get<std::string>();
+    }
+    EXPECT_GE(available, 2) << rule << ": standard and chain are both built";
+    EXPECT_EQ(p.report["chosen"], best_name) << rule;
+  }
+  fs::remove_all(dir);
+}
+
 TEST(ShopRules, BadRuleOptionsAreUsageErrors) {
   const auto dir = temp_dir("bad");
   const auto dxf = write_nest(dir, grid(2, 1), 160, 100);
@@ -454,13 +614,15 @@ TEST(ShopRules, BadRuleOptionsAreUsageErrors) {
     EXPECT_EQ(r.exit_code, 1) << bad;
     EXPECT_FALSE(fs::exists(dir / "x.ngc"));
   }
-  // The rules are written for one pierce per contour: another technique asked for is refused, and
-  // auto builds only the standard one.
-  const auto chain = run_command(cli_path() + " optimize " + dxf + " -o " + (dir / "x.ngc").string() +
-                                 " --quiet --heat-distance 20 --technique chain");
-  EXPECT_EQ(chain.exit_code, 2);
-  EXPECT_NE(chain.err.find("--technique standard only"), std::string::npos) << chain.err;
-  EXPECT_FALSE(fs::exists(dir / "x.ngc"));
+  // Part rigidity and tabs are written for one pierce per contour: another technique asked for is
+  // refused (auto builds only the standard one).
+  for (const char* bad : {"--part-rigidity --technique chain", "--tabs 2 --technique common", "--tabs 1 --multi-segment",
+                          "--part-rigidity --heat-distance 5 --technique multi"}) {
+    const auto r = run_command(cli_path() + " optimize " + dxf + " -o " + (dir / "x.ngc").string() + " --quiet " + bad);
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_NE(r.err.find("--technique standard only"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "x.ngc"));
+  }
   fs::remove_all(dir);
 }
 

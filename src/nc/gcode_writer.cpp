@@ -219,6 +219,7 @@ Vec2 tool_off_point(const CutSegment& s) {
   return s.pierce;
 }
 
+
 WrittenProgram write_gcode(const Toolpath& path, const PostDialect& d, const GcodeWriteOptions& options) {
   WrittenProgram out;
   Emitter e(d, out);
@@ -228,16 +229,25 @@ WrittenProgram write_gcode(const Toolpath& path, const PostDialect& d, const Gco
   for (const auto& h : d.header) e.block(h);
   e.set_position(path.start);
 
-  for (const auto& seg : path.segments) {
+  // Micro-joints under controller compensation: a segment that resumes its contour past a tab keeps
+  // the compensation of the one before (no G40 .. G41 around the gap). Switched on again on the
+  // contour itself, the controller would take the resumed cut's first move as its entry move, from
+  // the drawn contour to the offset path: half a kerf into the part at the start of that move.
+  const bool hold_over_tabs = beam_switches_under_compensation(d);
+  bool held = false;  // compensation kept on from the previous segment
+  for (std::size_t k = 0; k < path.segments.size(); ++k) {
+    const auto& seg = path.segments[k];
     if (options.comments && !seg.label.empty()) e.comment(seg.label);
-    for (const Vec2 via : seg.rapid_via) e.rapid(via);  // shop rules: detour around freed parts
+    for (const Vec2 via : seg.rapid_via) e.rapid(via);  // shop rules: detour around freed parts; tab gap
     e.rapid(seg.pierce);
     e.codes(d.beam_on, path.pierce_time_s, seg.feed_mm_min);
     e.codes(d.pierce, path.pierce_time_s, seg.feed_mm_min);
     ++out.pierces;
     const bool comp = seg.kerf != KerfSide::none;
-    if (comp) e.codes(d.thc_on, path.pierce_time_s, seg.feed_mm_min);  // no outputs under G41/G42
-    if (comp) e.block(seg.kerf == KerfSide::left ? d.kerf_left : d.kerf_right);
+    if (comp && !held) e.codes(d.thc_on, path.pierce_time_s, seg.feed_mm_min);  // no outputs under G41/G42
+    if (comp && !held) e.block(seg.kerf == KerfSide::left ? d.kerf_left : d.kerf_right);
+    const bool hold = comp && hold_over_tabs && k + 1 < path.segments.size() && path.segments[k + 1].after_tab &&
+                      path.segments[k + 1].kerf == seg.kerf;
     std::string feed = e.feed_word(seg.feed_mm_min);
     bool thc = comp;
     for (const auto& piece : seg.pieces) {
@@ -256,9 +266,10 @@ WrittenProgram write_gcode(const Toolpath& path, const PostDialect& d, const Gco
         if (written) feed.clear();  // F is modal: written once per segment, on its first cutting move
       }
     }
-    if (comp) e.block(d.kerf_off);
-    if (thc) e.codes(d.thc_off, path.pierce_time_s, seg.feed_mm_min);
+    if (comp && !hold) e.block(d.kerf_off);
+    if (thc && !hold) e.codes(d.thc_off, path.pierce_time_s, seg.feed_mm_min);
     e.codes(d.beam_off, path.pierce_time_s, seg.feed_mm_min);
+    held = hold;
   }
   for (const Vec2 via : path.end_via) e.rapid(via);  // shop rules: detour around freed parts
   e.rapid(path.end);

@@ -84,6 +84,14 @@ MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const 
       } else {
         part.pierce = stretch.vertices.front().p;
         part.label = seg.label + " after tab " + std::to_string(j);
+        part.after_tab = true;
+        // Under controller compensation the head crosses the gap on the offset path: along the
+        // contour's corners, not across them (an arc in the gap is crossed on its chord, which
+        // for a tab of a millimetre or two lies within a few hundredths of it).
+        if (seg.kerf != KerfSide::none) {
+          const Contour gap = sub_path(it->path, keep[j - 1].second, keep[j].first);
+          for (std::size_t v = 1; v + 1 < gap.vertices.size(); ++v) part.rapid_via.push_back(gap.vertices[v].p);
+        }
       }
       part.pieces.push_back({std::move(stretch), PieceRole::contour, it->contour});
       if (j + 1 == keep.size())

@@ -183,6 +183,18 @@ Result<std::vector<int>> m_codes(const PostDialect& post, const char* field,
 
 }  // namespace
 
+bool beam_switches_under_compensation(const PostDialect& post) {
+  if (!post.thc_on.empty() || !post.thc_off.empty()) return false;
+  for (const auto& [field, lines] : {std::pair{"beam_on", &post.beam_on}, std::pair{"beam_off", &post.beam_off},
+                                     std::pair{"pierce", &post.pierce}}) {
+    const auto codes = m_codes(post, field, *lines);
+    if (!codes) return false;
+    for (int m : *codes)
+      if (m >= 62 && m <= 68) return false;  // digital / analog outputs
+  }
+  return true;
+}
+
 Result<Dialect> reader_dialect(const PostDialect& post) {
   auto on = m_codes(post, "beam_on", post.beam_on);
   if (!on) return on.error();

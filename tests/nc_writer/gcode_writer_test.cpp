@@ -1,11 +1,14 @@
 // The G-code writer: exact text for formatting rules, meaning checked by re-parsing (tests/support).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <sstream>
 
 #include <cutroute/core/version.hpp>
 #include <cutroute/nc/gcode_reader.hpp>
@@ -242,6 +245,81 @@ TEST(PostDialect, ShippedDialectsLoad) {
 
 // LinuxCNC's own interpreter must accept every program we write (installed by
 // scripts/install-deps; the test says so and stops when it is missing).
+// The rectangle of square_path() with two tabs: one in the middle of the first edge, one round the
+// corner (0, 50); the pieces after them resume on the contour. With compensation the generic
+// dialect keeps G41 on over both gaps (one G41 .. G40 for the contour) and its rapid follows the
+// gap's corner; plasma-thc, whose THC outputs LinuxCNC refuses under G41, switches it per piece.
+Toolpath tabbed_square() {
+  Toolpath tp = square_path();
+  CutSegment first = tp.segments.front();
+  first.kerf = KerfSide::left;
+  first.pieces[1].path = Contour{{Vertex{{0, 0}, 0}, Vertex{{0, 24}, 0}}, false};
+  CutSegment second;
+  second.kerf = KerfSide::left;
+  second.feed_mm_min = first.feed_mm_min;
+  second.after_tab = true;
+  second.pierce = {0, 26};
+  second.pieces.push_back({Contour{{Vertex{{0, 26}, 0}, Vertex{{0, 49}, 0}}, false}, PieceRole::contour, 0});
+  CutSegment third = second;
+  third.pierce = {1, 50};
+  third.rapid_via = {{0, 50}};
+  third.pieces[0].path = Contour{{Vertex{{1, 50}, 0}, Vertex{{100, 50}, 0}, Vertex{{100, 0}, 0}, Vertex{{0, 0}, 0}}, false};
+  tp.segments = {first, second, third};
+  return tp;
+}
+
+std::size_t count_blocks(const std::string& text, const std::string& block) {
+  std::size_t n = 0;
+  for (auto at = text.find("\n" + block + "\n"); at != std::string::npos; at = text.find("\n" + block + "\n", at + 1)) ++n;
+  return n;
+}
+
+TEST(GcodeWriter, CompensationStaysOnOverTabs) {
+  auto generic = find_post_dialect("generic");
+  auto plasma = find_post_dialect("plasma-thc");
+  ASSERT_TRUE(generic.ok() && plasma.ok());
+  const Toolpath tp = tabbed_square();
+  const auto g = write_gcode(tp, *generic, GcodeWriteOptions{});
+  EXPECT_EQ(count_blocks(g.text, "G41"), 1u) << g.text;
+  EXPECT_EQ(count_blocks(g.text, "G40"), 1u) << g.text;  // the header's G40 shares its line
+  EXPECT_EQ(g.pierces, 3u);
+  EXPECT_NE(g.text.find("M5\nG0 X0 Y50\nG0 X1 Y50\nM3"), std::string::npos) << g.text;
+  const auto p = write_gcode(tp, *plasma, GcodeWriteOptions{});
+  std::size_t g41 = 0;
+  for (auto at = p.text.find(" G41\n"); at != std::string::npos; at = p.text.find(" G41\n", at + 1)) ++g41;
+  EXPECT_EQ(g41, 3u) << p.text;
+  // Under a tool of 0.2 mm the interpreter offsets the path and checks it for gouges: the held
+  // compensation passes; switched on again on the contour after a tab it would enter on a cut.
+  if (std::system("command -v rs274 >/dev/null 2>&1") != 0) GTEST_SKIP() << "rs274 (linuxcnc-uspace) not installed";
+  const auto path = std::filesystem::temp_directory_path() / "cutroute-rs274-tabs.ngc";
+  // Where the interpreter puts the tool on the left edge (x = 0, cut upwards, tool on its left):
+  // the end points of the moves there, x of each.
+  auto left_edge_xs = [](const std::string& canon) {
+    std::vector<double> xs;
+    std::istringstream in(canon);
+    for (std::string line; std::getline(in, line);) {
+      const auto at = line.find("STRAIGHT_");
+      if (at == std::string::npos) continue;
+      double x = 0, y = 0;
+      if (std::sscanf(line.c_str() + line.find('(', at) + 1, "%lf, %lf", &x, &y) != 2) continue;
+      if (y > 1 && y < 49.5 && std::abs(x) < 1) xs.push_back(x);
+    }
+    return xs;
+  };
+  for (const auto* w : {&g, &p}) {
+    std::ofstream(path) << w->text;
+    const auto r = test::run_rs274(path.string(), 0.2);
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err << "\n" << w->text;
+    const auto xs = left_edge_xs(r.out);
+    ASSERT_GE(xs.size(), 3u) << r.out;  // before the tab, over the gap, after it
+    const bool on_offset = std::all_of(xs.begin(), xs.end(), [](double x) { return std::abs(x + 0.1) < 1e-3; });
+    // Held (generic): the whole edge on the offset path. Switched on again on the contour
+    // (plasma-thc): the gap's rapid ends on the contour and the entry move slants from there.
+    EXPECT_EQ(on_offset, w == &g) << r.out;
+  }
+  std::filesystem::remove(path);
+}
+
 TEST(GcodeWriter, LinuxCncInterpreterAcceptsOurPrograms) {
   if (std::system("command -v rs274 >/dev/null 2>&1") != 0) GTEST_SKIP() << "rs274 (linuxcnc-uspace) not installed";
   for (const char* name : {"generic", "plasma-thc"}) {

@@ -416,6 +416,15 @@ TEST(ShopRules, TabsLeaveNGapsOfWidthW) {
     EXPECT_NEAR(on, 2 * (r.x1 - r.x0 + r.y1 - r.y0) - n * w, 0.02) << "part " << part;
   }
   EXPECT_EQ(p.report["rules"]["tabs"]["tabs"], static_cast<int>(parts.size()) * n);
+  // Controller compensation (the default) stays on over the gaps: one G41 per part, and LinuxCNC,
+  // with the kerf as its tool, accepts the program.
+  std::size_t g41 = 0;
+  for (auto at = p.text.find("\nG41\n"); at != std::string::npos; at = p.text.find("\nG41\n", at + 1)) ++g41;
+  EXPECT_EQ(g41, parts.size());
+  if (std::system("command -v rs274 >/dev/null 2>&1") == 0) {
+    const auto rs = run_rs274((dir / "out.ngc").string(), p.report["kerf_mm"].get<double>());
+    EXPECT_EQ(rs.exit_code, 0) << rs.out;
+  }
   // The picture shows every piece: one group per cutting segment (+ the park rapid).
   const std::string svg = read_text(dir / "out.svg");
   std::size_t groups = 0;

@@ -32,14 +32,26 @@ CommandOutput run_command(const std::string& command) {
   return result;
 }
 
-CommandOutput run_rs274(const std::string& program) {
+CommandOutput run_rs274(const std::string& program, double tool_diameter_mm) {
   // rs274 truncates and maps $HOME/.tool.mmap: two at once with the same HOME (ctest -j) truncate
   // the file under each other's mapping and die of SIGBUS (exit 135). Each call gets its own HOME.
   static int counter = 0;
   const auto home = std::filesystem::temp_directory_path() /
                     ("cutroute-rs274-home-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
   std::filesystem::create_directories(home);
-  CommandOutput r = run_command("HOME=" + home.string() + " rs274 -g " + program + " < /dev/null");
+  std::string command = "HOME=" + home.string() + " rs274 -g " + program + " < /dev/null";
+  if (tool_diameter_mm > 0) {
+    // Tool 1 with the kerf as its diameter, selected before the program: G41/G42 then offset by
+    // half of it. The stand-alone interpreter reads the table in inches (no INI file).
+    std::ofstream(home / "kerf.tbl") << "T1 P1 D" << tool_diameter_mm / 25.4 << "\n";
+    std::ifstream in(program);
+    std::stringstream text;
+    text << "T1 M6\n" << in.rdbuf();
+    std::ofstream(home / "program.ngc") << text.str();
+    command = "HOME=" + home.string() + " rs274 -t " + (home / "kerf.tbl").string() + " -g " + (home / "program.ngc").string() +
+              " < /dev/null";
+  }
+  CommandOutput r = run_command(command);
   std::filesystem::remove_all(home);
   return r;
 }

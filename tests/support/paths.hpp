@@ -20,6 +20,8 @@ struct CommandOutput {
 };
 CommandOutput run_command(const std::string& command);
 // LinuxCNC's interpreter on a program file (`rs274 -g`), with a HOME of its own: safe to run in parallel.
-CommandOutput run_rs274(const std::string& program);
+// With a tool diameter, the program runs with that tool (the kerf) loaded, so G41/G42 really offset
+// the path and the interpreter's gouge checks of cutter compensation apply.
+CommandOutput run_rs274(const std::string& program, double tool_diameter_mm = 0.0);
 
 }  // namespace cutroute::test

@@ -21,7 +21,8 @@ struct MicroJointStats {
 // tabs centred at (k + 1/2) L / N from the entry point, k = 0..N-1, so none sits at the entry
 // where the lead-in joins or at the end where the part drops last. The segment is split there:
 // the beam goes off before each gap, the head moves over the gap, and the next piece is a new
-// segment pierced on the contour (no lead-in) with the same feed and kerf side. The lead-in stays
+// segment pierced on the contour (no lead-in) with the same feed and kerf side, marked `after_tab`
+// (with controller compensation its rapid follows the gap's corners). The lead-in stays
 // on the first piece, the lead-out (and the overcut) on the last. A contour whose gaps would not
 // leave at least one gap width of cut between them (N · 2w > L) is left whole and counted.
 MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const MicroJointOptions& options);

@@ -57,6 +57,12 @@ std::string fill_placeholders(std::string line, const std::string& pierce_s, con
 // The names of the shipped dialects (<data_dir>/dialects/*.json), sorted.
 std::vector<std::string> post_dialect_names();
 
+// Can the beam go off and on again (beam_off, beam_on, pierce lines) while G41/G42 is on? LinuxCNC
+// refuses the digital and analog outputs M62-M68 under compensation, and the torch-height codes
+// bracket the compensated block; without either (the generic laser dialect) it can. The writer
+// then keeps compensation on over micro-joint gaps (gcode_writer.cpp).
+bool beam_switches_under_compensation(const PostDialect& post);
+
 // The reader dialect that reads what `post` writes, so that `cutroute estimate` understands the
 // programs `cutroute optimize` wrote with it:
 //   beam on / off  the M words of the beam_on / beam_off lines;

@@ -31,8 +31,14 @@ struct CutSegment {
   double feed_mm_min = 0.0;          // programmed cutting feed [mm/min]
   std::string label;                 // e.g. "part 3 hole 2", written as a comment
   // Shop rules (nc/rapid_detours.hpp): rapid waypoints before the pierce, so the rapid to this
-  // segment goes around parts already cut free; empty: one straight rapid [mm].
+  // segment goes around parts already cut free; empty: one straight rapid [mm]. After a tab: the
+  // corners of the gap, so the rapid follows the contour.
   std::vector<geometry::Vec2> rapid_via;
+  // Micro-joints (nc/micro_joints.hpp): this segment resumes the previous one's contour past a tab
+  // gap, pierced on the contour with the same kerf side. The writer keeps controller compensation
+  // on over the gap where the dialect allows (gcode_writer.hpp), so the cut resumes on the offset
+  // path instead of entering the compensation on the contour.
+  bool after_tab = false;
 };
 
 struct Toolpath {

@@ -17,6 +17,14 @@ using geometry::Vec2;
 // Largest arc radius written as G2/G3 (100 m). Such an arc over a whole 3-m sheet still bows 11 mm,
 // so larger ones are written as chords (flat_arc), and no I/J/R word goes beyond 1e5 mm.
 constexpr double kMaxArcRadiusMm = 1.0e5;
+// Smallest arc radius written as G2/G3. LinuxCNC refuses arcs below its tolerance (0.005 mm, 0.0005
+// in = 0.0127 mm in G20) as "zero-radius arc": spline fits leave arcs of 1-2 um at cusps (d2g_DRAAK,
+// d2g_Lueftergitter_R14), and the whole program was refused. Smaller ones are written as chords
+// that stay within kMicroArcChordMm of the arc (one move for the arcs of a micrometre or two:
+// chords within the output resolution took two or three, and the frame count sets V_on*(n):
+// d2g_Lueftergitter_R14 got 96 more frames and 1.9 % more T_cut).
+constexpr double kMinArcRadiusMm = 0.02;
+constexpr double kMicroArcChordMm = 0.004;
 
 // Arc centre from end points and bulge: the chord's perpendicular bisector, offset by
 // (1 - b²) / (4 b) chord lengths to the left of the chord direction.
@@ -99,14 +107,14 @@ class Emitter {
     return true;
   }
 
-  // An arc of radius beyond kMaxArcRadiusMm as chords whose sagitta R (1 - cos(phi / 2)) ~ R phi^2 / 8
-  // stays within the output resolution. Nearly straight arcs (bulge 1e-8 on a 10-mm edge: I J of
+  // An arc of radius beyond kMaxArcRadiusMm (or below kMinArcRadiusMm) as chords whose sagitta
+  // R (1 - cos(phi / 2)) ~ R phi^2 / 8 stays within the output resolution (or `sagitta_mm`). Nearly straight arcs (bulge 1e-8 on a 10-mm edge: I J of
   // 2.5e9 mm) made centres that the controller's range, and our own reader, refuse. The chord ends
   // come from the chord-based arc_point_at_sweep, which stays exact where the centre is far away.
-  bool flat_arc(Vec2 q, double bulge, double radius, const std::string& feed_word) {
+  bool flat_arc(Vec2 q, double bulge, double radius, const std::string& feed_word, double sagitta_mm = 0.0) {
     const Vec2 a = pos_;
     const double sweep = 4 * std::atan(bulge);
-    const double pieces = std::ceil(std::abs(sweep) * std::sqrt(radius / (8 * res_mm_)));
+    const double pieces = std::ceil(std::abs(sweep) * std::sqrt(radius / (8 * std::max(res_mm_, sagitta_mm))));
     const int k = static_cast<int>(std::clamp(pieces, 1.0, 100000.0));
     bool wrote = false;
     for (int i = 1; i < k; ++i)
@@ -123,6 +131,7 @@ class Emitter {
     const double b = std::abs(bulge);
     const double radius = geometry::distance(pos_, q) * (1 + b * b) / (4 * b);
     if (radius > kMaxArcRadiusMm) return flat_arc(q, bulge, radius, feed_word);
+    if (radius < kMinArcRadiusMm) return flat_arc(q, bulge, radius, feed_word, kMicroArcChordMm);
     const double sweep = 4 * std::atan(bulge);
     if (d_.arc_format == ArcFormat::r && std::abs(sweep) > 150.0 * std::numbers::pi / 180.0) {
       // Split at the arc's midpoint into two arcs of half the sweep.

@@ -245,6 +245,29 @@ TEST(PostDialect, ShippedDialectsLoad) {
 
 // LinuxCNC's own interpreter must accept every program we write (installed by
 // scripts/install-deps; the test says so and stops when it is missing).
+// Spline fits leave arcs of a micrometre or two at cusps; LinuxCNC refuses arcs below its 0.005 mm
+// tolerance ("zero-radius arc"), so they are written as chords within the resolution.
+TEST(GcodeWriter, MicrometreArcsBecomeChords) {
+  Toolpath tp = square_path();
+  // A half circle of radius 1.5 um between (0, 0) and (0, 0.003), then on up the edge.
+  tp.segments[0].pieces[1].path = Contour{{Vertex{{0, 0}, 1.0}, Vertex{{0, 0.003}, 0}, Vertex{{0, 50}, 0}}, false};
+  auto d = find_post_dialect("generic");
+  ASSERT_TRUE(d.ok());
+  const auto w = write_gcode(tp, *d, GcodeWriteOptions{});
+  EXPECT_EQ(w.text.find("\nG2 "), std::string::npos) << w.text;
+  EXPECT_EQ(w.text.find("\nG3 "), std::string::npos) << w.text;
+  EXPECT_NE(w.text.find("G1 X0 Y50"), std::string::npos) << w.text;
+  // A 0.05 mm arc stays an arc.
+  tp.segments[0].pieces[1].path = Contour{{Vertex{{0, 0}, 1.0}, Vertex{{0, 0.1}, 0}, Vertex{{0, 50}, 0}}, false};
+  EXPECT_NE(write_gcode(tp, *d, GcodeWriteOptions{}).text.find("G3 X0 Y0.1 I0 J0.05"), std::string::npos);
+  if (std::system("command -v rs274 >/dev/null 2>&1") != 0) GTEST_SKIP() << "rs274 (linuxcnc-uspace) not installed";
+  const auto path = std::filesystem::temp_directory_path() / "cutroute-rs274-micro-arc.ngc";
+  std::ofstream(path) << w.text;
+  const auto r = test::run_rs274(path.string());
+  EXPECT_EQ(r.exit_code, 0) << r.err << "\n" << w.text;
+  std::filesystem::remove(path);
+}
+
 // The rectangle of square_path() with two tabs: one in the middle of the first edge, one round the
 // corner (0, 50); the pieces after them resume on the contour. With compensation the generic
 // dialect keeps G41 on over both gaps (one G41 .. G40 for the contour) and its rapid follows the

@@ -171,5 +171,36 @@ TEST(CutJob, EntryAtArcLengthMatchesTheContour) {
   }
 }
 
+// An entry within half a kerf of a vertex is made at the vertex, as a corner entry where the
+// contour turns: else the cut starts (and ends) with a move of a few micrometres, in which a
+// controller's cutter compensation cannot turn the corner. Farther away the entry stays put.
+TEST(CutJob, EntryAHairFromAVertexIsMadeAtTheVertex) {
+  std::vector<SourceContour> cs{src(square(0, 0, 50))};
+  const Nest nest = build_nest(cs, NestOptions{});
+  EntryOptions opt;
+  opt.kerf_mm = 0.2;
+  EntryPlanner planner(nest, opt);
+  const Contour& c = nest.contours[ContourId(0)].source.contour;
+  const double len = geometry::length(c);
+  for (double s : {50.0 - 0.004, 50.0 + 0.09, 100.0 + 0.001, len - 0.05, 0.08}) {
+    const auto e = planner.entry_at(ContourId(0), s, true);
+    ASSERT_TRUE(e.has_value()) << s;
+    const double vertex = std::round(s / 50.0) * 50.0;
+    EXPECT_NEAR(e->s_mm, std::fmod(vertex, len), 1e-9) << s;
+    EXPECT_LT(geometry::distance(e->point, geometry::point_at_length(c, std::fmod(vertex, len))), 1e-9) << s;
+    EXPECT_TRUE(e->corner) << s;  // the square turns 90 degrees at every vertex
+    // The cut begins and ends on the vertex: its first and last moves are whole edges.
+    const Contour path = entry_path(*e);
+    EXPECT_NEAR(geometry::distance(path.vertices[0].p, path.vertices[1].p), 50.0, 1e-9) << s;
+    EXPECT_NEAR(geometry::distance(path.vertices[path.vertices.size() - 2].p, path.vertices.back().p), 50.0, 1e-9) << s;
+  }
+  for (double s : {50.0 - 0.2, 50.0 + 0.15, 125.0}) {
+    const auto e = planner.entry_at(ContourId(0), s, true);
+    ASSERT_TRUE(e.has_value()) << s;
+    EXPECT_NEAR(e->s_mm, s, 1e-9) << s;
+    EXPECT_FALSE(e->corner) << s;
+  }
+}
+
 }  // namespace
 }  // namespace cutroute::model

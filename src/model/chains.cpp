@@ -158,9 +158,12 @@ class ChainBuilder {
     bool dir = first.clockwise;
     double bridges = 0;
     for (std::size_t i = 1; i <= last; ++i) {
-      const auto [s_next, d] = planner_.closest(run[i], p);
-      if (d > opt_.max_gap_mm) return std::nullopt;
+      // The bridge ends on a vertex when the closest point lies within kerf/2 of one (as entries
+      // do): else the next contour's cut starts and ends with a micrometre move there.
+      const double s_next = planner_.at_vertex_if_near(run[i], planner_.closest(run[i], p).first);
       const Vec2 q = planner_.point_at(run[i], s_next);
+      const double d = geometry::distance(p, q);
+      if (d > opt_.max_gap_mm) return std::nullopt;
       Contour bridge{{geometry::Vertex{p, 0}, geometry::Vertex{q, 0}}, false};
       if (!planner_.bridge_clear(bridge, run[i - 1], run[i])) return std::nullopt;
       bridges += d;

@@ -438,32 +438,38 @@ struct EntryPlanner::Impl {
   // vertex (and again at the end of the cut): under controller compensation the offset path cannot
   // turn a corner within it, and LinuxCNC refused such programs ("concave corner cannot be reached
   // by the tool without gouging"; 7 blocks of bryanduxbury_jewelrybox, 5 of d2g_AFluegel_Rippen).
-  // An entry within half a kerf of a vertex is made at the vertex (a corner entry where the
-  // tangent turns there): the rapids change by less than a kerf.
-  void snap_to_vertex(ContourId id, const Contour& path, bool clockwise, double total_len, double& s_path, bool& corner) const {
-    const auto& cum = measured(id, clockwise).cum;
-    if (cum.size() < 2 || !(total_len > 0)) return;
-    const double reach = 0.5 * opt.kerf_mm;
-    const auto it = std::lower_bound(cum.begin(), cum.end(), s_path);
+  // The arc length (stored contour) of the vertex within half a kerf of s, if any, and whether the
+  // contour turns there as at a corner.
+  std::optional<std::pair<double, bool>> vertex_near(ContourId id, double s) const {
+    const auto& cum = measured_stored[id.index()].cum;
+    if (cum.size() < 2) return std::nullopt;
+    const auto it = std::lower_bound(cum.begin(), cum.end(), s);
     std::size_t best = cum.size();
-    double best_d = reach;
+    double best_d = 0.5 * opt.kerf_mm;
     for (auto k : {it - cum.begin() - 1, it - cum.begin()}) {
       if (k < 0 || static_cast<std::size_t>(k) >= cum.size()) continue;
-      const double d = std::abs(cum[static_cast<std::size_t>(k)] - s_path);
+      const double d = std::abs(cum[static_cast<std::size_t>(k)] - s);
       if (d > 0 && d <= best_d) best = static_cast<std::size_t>(k), best_d = d;
     }
-    if (best == cum.size()) return;
-    const std::size_t n = cum.size() - 1;  // segments
-    const std::size_t v = best % n;         // the last vertex is the first again
-    s_path = cum[v];
-    const Vec2 a = geometry::segment(path, (v + n - 1) % n).tangent_at(1), b = geometry::segment(path, v).tangent_at(0);
-    corner = std::abs(std::atan2(geometry::cross(a, b), geometry::dot(a, b))) > opt.corner_angle_deg * std::numbers::pi / 180.0;
+    if (best == cum.size()) return std::nullopt;
+    const std::size_t n = cum.size() - 1;  // segments; the last vertex is the first again
+    const std::size_t v = best % n;
+    const Contour& c = nc(id).source.contour;
+    const Vec2 a = geometry::segment(c, (v + n - 1) % n).tangent_at(1), b = geometry::segment(c, v).tangent_at(0);
+    const double turn = std::abs(std::atan2(geometry::cross(a, b), geometry::dot(a, b)));
+    return std::pair{cum[v], turn > opt.corner_angle_deg * std::numbers::pi / 180.0};
   }
 
   // Builds the entry at arc length s of the oriented path; nullopt when not admissible.
   std::optional<EntryCandidate> build(ContourId id, const Contour& path, double s_path, bool clockwise, bool corner,
                                       double scale, double total_len) const {
-    if (!corner) snap_to_vertex(id, path, clockwise, total_len, s_path, corner);
+    // An entry within half a kerf of a vertex is made at the vertex (a corner entry where the
+    // contour turns there): the rapids change by less than a kerf.
+    if (!corner)
+      if (const auto v = vertex_near(id, to_path_s(id, s_path, clockwise))) {
+        s_path = to_path_s(id, v->first, clockwise);
+        corner = v->second;
+      }
     EntryCandidate e = shape(id, path, s_path, clockwise, corner, scale, total_len);
     const double lead_len = geometry::length(e.lead_in);
     if (!pierce_ok(e.pierce, id, std::min(clearance, 0.5 * lead_len))) return std::nullopt;
@@ -553,6 +559,11 @@ bool EntryPlanner::bridge_clear(const geometry::Contour& path, ContourId from, C
 std::pair<double, double> EntryPlanner::closest(ContourId id, geometry::Vec2 p) const {
   const auto cp = geometry::closest_point(impl_->nc(id).source.contour, p);
   return {cp.length_along, cp.distance};
+}
+
+double EntryPlanner::at_vertex_if_near(ContourId id, double s_mm) const {
+  const auto v = impl_->vertex_near(id, s_mm);
+  return v ? v->first : s_mm;
 }
 
 geometry::Vec2 EntryPlanner::point_at(ContourId id, double s_mm) const {

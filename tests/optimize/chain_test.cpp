@@ -174,6 +174,32 @@ TEST(Chains, RunOfThreeAroundACorner) {
   EXPECT_EQ(make_chain_job(nest, EntryOptions{}, pairs).segments.size(), 2u);
 }
 
+// B sits 0.05 mm lower than A: from A's lower right corner the closest point of B lies 0.05 mm
+// above B's corner. The bridge ends on the corner instead (within kerf/2 = 0.1 mm of it): else B's
+// cut would start and end with a 0.05 mm move, too short for a controller's compensation to turn
+// the corner in. Every bridge end lies on a vertex of B or more than kerf/2 from all of them.
+TEST(Chains, BridgeEndsOnAVertexWithinHalfAKerf) {
+  std::vector<SourceContour> cs{src(rect(0, 0, 50, 50)), src(rect(55, -0.05, 50, 50))};
+  const Nest nest = loose_nest(cs);
+  EntryOptions entries;
+  entries.kerf_mm = 0.2;
+  const ChainOptions opt;
+  const CutJob job = make_chain_job(nest, entries, opt);
+  ASSERT_EQ(job.segments.size(), 1u);
+  const auto& seg = job.segments[0];
+  int at_corner = 0;
+  for (const auto& e : seg.candidates) {
+    check_chain_candidate(nest, seg, e, opt.max_gap_mm);
+    const Vec2 q = e.pieces[1].path.vertices.back().p;
+    const auto& other = nest.contours[e.pieces[2].contour].source.contour;
+    double nearest = 1e300;
+    for (const auto& v : other.vertices) nearest = std::min(nearest, geometry::distance(v.p, q));
+    EXPECT_TRUE(nearest < 1e-9 || nearest > 0.1 - 1e-9) << "bridge ends " << nearest << " mm from a vertex";
+    at_corner += nearest < 1e-9 && geometry::distance(q, {55, -0.05}) < 1e-9;
+  }
+  EXPECT_GT(at_corner, 0) << "the bridge from A's corner (50, 0) must end on B's corner";
+}
+
 TEST(Chains, BridgeMustNotCrossAPartAndKeepsClearance) {
   // A and B 10 mm apart; C, a small part, sits in the gap near y = 20.
   std::vector<SourceContour> cs{src(rect(0, 0, 50, 50)), src(rect(60, 0, 50, 50)), src(rect(54, 18, 2, 4))};

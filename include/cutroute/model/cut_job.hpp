@@ -177,6 +177,9 @@ class EntryPlanner {
   // The stored contour's closest point to p: its arc length [mm] and distance [mm].
   std::pair<double, double> closest(ContourId contour, geometry::Vec2 p) const;
   geometry::Vec2 point_at(ContourId contour, double s_mm) const;  // on the stored contour
+  // s moved onto the vertex within kerf/2 of it, if any (stored contour): a cut that starts a hair
+  // from a vertex begins with a move too short for a controller's compensation to turn in.
+  double at_vertex_if_near(ContourId contour, double s_mm) const;
   double contour_length(ContourId contour) const;  // of the stored contour [mm]
 
  private:

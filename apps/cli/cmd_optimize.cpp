@@ -144,7 +144,7 @@ int run(const Opts& o) {
   ProgressLine progress(show_progress(o.quiet));
   std::vector<int> codes(o.nests.size(), kOk);
   std::vector<std::string> messages(o.nests.size());
-  std::vector<std::string> warnings(o.nests.size());  // printed even with --quiet: the program is less safe than asked for
+  std::vector<std::string> warnings(o.nests.size());  // printed even with --quiet: the program is less safe or less sure to run than asked for
   std::atomic<std::size_t> next{0};
   auto work = [&] {
     for (std::size_t i = next++; i < o.nests.size(); i = next++) {
@@ -184,7 +184,8 @@ int run(const Opts& o) {
         continue;
       }
       for (Diagnostic d : res->diagnostics) {
-        if (d.code != "tip_up.time_limit") continue;
+        // Printed: rapids left over freed parts, and cuts the controller's compensation may refuse.
+        if (d.code != "tip_up.time_limit" && d.code != "kerf.controller_detail") continue;
         if (d.file.empty()) d.file = o.nests[i];
         warnings[i] += "cutroute: " + format(d) + "\n";
       }

@@ -1,1 +1,1 @@
-list(APPEND CUTROUTE_NC_SOURCES build_toolpath.cpp gcode_writer.cpp post_dialect.cpp)
+list(APPEND CUTROUTE_NC_SOURCES build_toolpath.cpp compensation_check.cpp gcode_writer.cpp post_dialect.cpp)

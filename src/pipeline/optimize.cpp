@@ -17,6 +17,7 @@
 #include <cutroute/model/cut_job.hpp>
 #include <cutroute/model/kerf_offset.hpp>
 #include <cutroute/model/multi_segment.hpp>
+#include <cutroute/nc/compensation_check.hpp>
 #include <cutroute/nc/frames.hpp>
 #include <cutroute/nc/post_dialect.hpp>
 #include <cutroute/solve/solve.hpp>
@@ -598,6 +599,26 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
                           : std::string("the time limit ran out before their detours were found (a longer --time-limit routes them around)")));
     w.code = "tip_up.time_limit";
     result.diagnostics.push_back(std::move(w));
+  }
+
+  // Controller compensation: details of the path finer than the kerf, which the controller's
+  // offset cannot follow (LinuxCNC refuses such blocks; nc/compensation_check.hpp).
+  if (o.kerf_mode == nc::KerfMode::controller) {
+    const nc::CompensationHazards h = nc::compensation_hazards(best_ev.toolpath, s.entries.kerf_mm / 2);
+    if (h.segments > 0) {
+      std::string where;
+      for (const auto& l : h.labels) where += (where.empty() ? "" : ", ") + l;
+      Diagnostic w = make_warning(
+          "cutter compensation: " + std::to_string(h.segments) + " of " + std::to_string(h.compensated) +
+          " compensated cuts have details finer than the kerf (" + format_fixed(s.entries.kerf_mm, 3) +
+          " mm) that the controller's offset cannot follow: inside corners between moves shorter than the offset needs, "
+          "inside arcs tighter than half the kerf, or entry moves shorter than it (" + where +
+          (h.segments > static_cast<int>(h.labels.size()) ? ", ..." : "") +
+          "); LinuxCNC refuses such blocks. --kerf-mode cam writes the offset path itself; "
+          "scripts/check-compensation lists what LinuxCNC refuses");
+      w.code = "kerf.controller_detail";
+      result.diagnostics.push_back(std::move(w));
+    }
   }
 
   // 7. Report.

@@ -122,6 +122,34 @@ TEST(OptimizeCli, DemoSheetAutoChoosesChainsLikeThePaper) {
   fs::remove_all(dir);
 }
 
+// Under controller compensation (the default) a drawing with details finer than the kerf gets a
+// warning, on stderr and in the report, naming how many cuts and which: the panel's crosses 0.1 mm
+// wide and finger-joint steps of 0.1 mm. LinuxCNC, with the kerf as its tool, refuses the program.
+// The demo sheet gets none, and LinuxCNC accepts it.
+TEST(OptimizeCli, WarnsWhereControllerCompensationCannotFollowTheDrawing) {
+  const auto dir = temp_dir("comp-detail");
+  const OptRun panel = optimize(shared("data/dxf/bryanduxbury_pongbox_panelized_3mm.dxf"), dir, "--technique standard");
+  ASSERT_EQ(panel.cmd.exit_code, 0) << panel.cmd.err;
+  EXPECT_NE(panel.cmd.err.find("cutter compensation: "), std::string::npos) << panel.cmd.err;
+  int warned = 0;
+  for (const auto& d : panel.report["diagnostics"]) warned += d.value("code", "") == "kerf.controller_detail";
+  EXPECT_EQ(warned, 1);
+  const bool rs274 = std::system("command -v rs274 >/dev/null 2>&1") == 0;
+  if (rs274) {
+    EXPECT_NE(run_rs274((dir / "out.ngc").string(), panel.report["kerf_mm"].get<double>()).exit_code, 0);
+  }
+  const auto dxf = (dir / "demo.dxf").string();
+  ASSERT_EQ(run_command(cli_path() + " demo " + dxf).exit_code, 0);
+  const OptRun demo = optimize(dxf, dir);
+  ASSERT_EQ(demo.cmd.exit_code, 0) << demo.cmd.err;
+  EXPECT_EQ(demo.cmd.err.find("cutter compensation"), std::string::npos) << demo.cmd.err;
+  for (const auto& d : demo.report["diagnostics"]) EXPECT_NE(d.value("code", ""), "kerf.controller_detail");
+  if (rs274) {
+    EXPECT_EQ(run_rs274((dir / "out.ngc").string(), demo.report["kerf_mm"].get<double>()).exit_code, 0);
+  }
+  fs::remove_all(dir);
+}
+
 TEST(OptimizeCli, SameSeedSameBytes) {
   const auto dir = temp_dir("det");
   const auto dxf = (dir / "demo.dxf").string();

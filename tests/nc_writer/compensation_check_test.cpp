@@ -1,0 +1,112 @@
+// compensation_hazards() against LinuxCNC's interpreter: each small program is written with the
+// generic dialect and run through rs274 with a tool of the kerf; the interpreter refuses it
+// exactly when the check says the controller's offset cannot follow the path.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <cutroute/nc/compensation_check.hpp>
+#include <cutroute/nc/gcode_writer.hpp>
+#include <cutroute/nc/post_dialect.hpp>
+
+#include "support/paths.hpp"
+
+namespace cutroute::nc {
+namespace {
+
+using geometry::Contour;
+using geometry::Vec2;
+using geometry::Vertex;
+
+constexpr double kKerf = 0.2;  // tool radius 0.1 mm
+
+// One compensated cut (G41: the tool left of the path) along `loop`, after a straight lead-in
+// from `pierce` to its first point.
+Toolpath cut(const Contour& loop, Vec2 pierce) {
+  Toolpath tp;
+  tp.pierce_time_s = 0.3;
+  CutSegment s;
+  s.pierce = pierce;
+  s.kerf = KerfSide::left;
+  s.feed_mm_min = 3000;
+  s.label = "cut";
+  s.pieces.push_back({Contour{{Vertex{pierce, 0}, Vertex{loop.vertices.front().p, 0}}, false}, PieceRole::lead_in, -1});
+  s.pieces.push_back({loop, PieceRole::contour, 0});
+  tp.segments.push_back(s);
+  return tp;
+}
+
+// A 20 mm square from (0, 0), counter-clockwise (the tool, on the left, inside it: a hole), with
+// `corner` in place of its corner (20, 20); closed back to (0, 0).
+Contour hole(std::vector<Vertex> corner) {
+  Contour c{{Vertex{{0, 0}, 0}, Vertex{{20, 0}, 0}}, false};
+  for (const auto& v : corner) c.vertices.push_back(v);
+  c.vertices.push_back({{0, 20}, 0});
+  c.vertices.push_back({{0, 0}, 0});
+  return c;
+}
+
+bool refused_by_linuxcnc(const Toolpath& tp) {
+  auto d = find_post_dialect("generic");
+  EXPECT_TRUE(d.ok());
+  const auto path = std::filesystem::temp_directory_path() / ("cutroute-comp-check-" + std::to_string(::getpid()) + ".ngc");
+  std::ofstream(path) << write_gcode(tp, *d, GcodeWriteOptions{}).text;
+  const auto r = test::run_rs274(path.string(), kKerf);
+  std::filesystem::remove(path);
+  return r.exit_code != 0;
+}
+
+TEST(CompensationCheck, AgreesWithLinuxCncOnDetailsFinerThanTheKerf) {
+  struct Case {
+    const char* what;
+    Toolpath path;
+    bool at_risk;
+  };
+  const Vec2 inside{10, 3};
+  // A quarter arc from (20, 20 - f) to (20 - f, 20) rounding the corner, bulge tan(90°/4).
+  auto fillet = [](double f, double sign) {
+    return std::vector<Vertex>{{{20, 20 - f}, sign * std::tan(std::numbers::pi / 8)}, {{20 - f, 20}, 0}};
+  };
+  const Case cases[] = {
+      {"square hole", cut(hole({{{20, 20}, 0}}), inside), false},
+      {"a 0.05 mm chamfer at an inside corner", cut(hole({{{20, 19.965}, 0}, {{19.965, 20}, 0}}), inside), true},
+      {"a 1 mm chamfer at an inside corner", cut(hole({{{20, 19.3}, 0}, {{19.3, 20}, 0}}), inside), false},
+      {"an inside fillet of radius 0.05 mm", cut(hole(fillet(0.05, 1)), inside), true},
+      {"an inside fillet of radius 0.5 mm", cut(hole(fillet(0.5, 1)), inside), false},
+      {"a lead-in of 0.05 mm", cut(hole({{{20, 20}, 0}}), {0.035, 0.035}), true},
+  };
+  for (const auto& c : cases) {
+    const CompensationHazards h = compensation_hazards(c.path, kKerf / 2);
+    EXPECT_EQ(h.compensated, 1) << c.what;
+    EXPECT_EQ(h.segments, c.at_risk ? 1 : 0) << c.what;
+    if (c.at_risk) {
+      EXPECT_EQ(h.labels, std::vector<std::string>{"cut"}) << c.what;
+    }
+    if (std::system("command -v rs274 >/dev/null 2>&1") == 0) {
+      EXPECT_EQ(refused_by_linuxcnc(c.path), c.at_risk) << c.what;
+    }
+  }
+  // Outside the part (the same square cut clockwise: the tool outside), a tight corner arc is no
+  // obstacle: the offset goes round it.
+  Contour outer = geometry::reversed(hole(fillet(0.05, 1)));
+  const Toolpath convex = cut(outer, {-3, 0});
+  EXPECT_EQ(compensation_hazards(convex, kKerf / 2).segments, 0);
+  if (std::system("command -v rs274 >/dev/null 2>&1") == 0) {
+    EXPECT_FALSE(refused_by_linuxcnc(convex));
+  }
+  // Without compensation nothing is checked.
+  Toolpath plain = cut(hole(fillet(0.05, 1)), inside);
+  plain.segments[0].kerf = KerfSide::none;
+  EXPECT_EQ(compensation_hazards(plain, kKerf / 2).compensated, 0);
+}
+
+}  // namespace
+}  // namespace cutroute::nc

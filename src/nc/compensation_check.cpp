@@ -9,6 +9,8 @@ namespace {
 
 using geometry::Vec2;
 
+constexpr double kDropMm = 1e-4;
+
 struct Move {
   Vec2 a, b;
   double bulge = 0;  // 0: a line (arcs the writer turns into chords included)
@@ -17,38 +19,45 @@ struct Move {
   Vec2 t0, t1;  // unit tangents at the start and the end
 };
 
-// The moves of a segment as the writer emits them (gcode_writer.cpp: moves that round to nothing
-// are dropped, arcs below 0.02 mm radius are written as chords).
-std::vector<Move> moves_of(const CutSegment& seg) {
-  constexpr double kDropMm = 1e-4, kChordBelowMm = 0.02;
-  std::vector<Move> out;
+void append_line(Vec2 a, Vec2 b, std::vector<Move>& out) {
+  Move m;
+  m.a = a;
+  m.b = b;
+  m.length = geometry::distance(a, b);
+  if (m.length <= kDropMm) return;
+  m.t0 = m.t1 = (b - a) / m.length;
+  out.push_back(m);
+}
+
+// Appends the moves of a segment's pieces as the writer emits them (gcode_writer.cpp: moves that
+// round to nothing are dropped, arcs below 0.02 mm radius are written as chords).
+void append_moves(const CutSegment& seg, std::vector<Move>& out) {
+  constexpr double kChordBelowMm = 0.02;
   for (const auto& piece : seg.pieces) {
     const std::size_t n = geometry::segment_count(piece.path);
     for (std::size_t i = 0; i < n; ++i) {
       const geometry::Segment s = geometry::segment(piece.path, i);
-      Move m;
-      m.a = s.a;
-      m.b = s.b;
       if (s.is_arc() && s.radius() >= kChordBelowMm) {
+        Move m;
+        m.a = s.a;
+        m.b = s.b;
         m.bulge = s.bulge;
         m.length = s.length();
         m.radius = s.radius();
         m.t0 = s.tangent_at(0);
         m.t1 = s.tangent_at(1);
+        if (m.length > kDropMm) out.push_back(m);
       } else {
-        m.length = geometry::distance(s.a, s.b);
-        if (m.length > 0) m.t0 = m.t1 = (s.b - s.a) / m.length;
+        append_line(s.a, s.b, out);
       }
-      if (m.length > kDropMm) out.push_back(m);
     }
   }
-  return out;
 }
 
-bool at_risk(const CutSegment& seg, double r) {
-  const std::vector<Move> ms = moves_of(seg);
+// One G41/G42 .. G40 block: the segments it holds (a contour and the pieces after its tabs when the
+// compensation stays on over them), with the rapids over the gaps between them.
+bool at_risk(const std::vector<Move>& ms, double side, double r) {
   if (ms.empty()) return false;
-  const double side = seg.kerf == KerfSide::left ? 1.0 : -1.0;  // G41: the tool left of the path
   // The entry move: the controller moves from the uncompensated point onto the offset path.
   if (ms.front().length <= r || (ms.front().bulge != 0 && ms.front().radius <= r)) return true;
   for (const Move& m : ms)
@@ -69,16 +78,37 @@ bool at_risk(const CutSegment& seg, double r) {
 
 }  // namespace
 
-CompensationHazards compensation_hazards(const Toolpath& path, double tool_radius_mm, std::size_t max_labels) {
+CompensationHazards compensation_hazards(const Toolpath& path, double tool_radius_mm, bool held_over_tabs,
+                                         std::size_t max_labels) {
   CompensationHazards h;
   if (!(tool_radius_mm > 0)) return h;
-  for (const auto& seg : path.segments) {
-    if (seg.kerf == KerfSide::none) continue;
+  std::vector<Move> block;
+  const CutSegment* first = nullptr;
+  auto close = [&] {
+    if (!first) return;
     ++h.compensated;
-    if (!at_risk(seg, tool_radius_mm)) continue;
-    ++h.segments;
-    if (h.labels.size() < max_labels) h.labels.push_back(seg.label);
+    if (at_risk(block, first->kerf == KerfSide::left ? 1.0 : -1.0, tool_radius_mm)) {
+      ++h.segments;
+      if (h.labels.size() < max_labels) h.labels.push_back(first->label);
+    }
+    block.clear();
+    first = nullptr;
+  };
+  for (std::size_t k = 0; k < path.segments.size(); ++k) {
+    const CutSegment& seg = path.segments[k];
+    const bool continues = first && held_over_tabs && seg.after_tab && seg.kerf == first->kerf;
+    if (!continues) close();
+    if (seg.kerf == KerfSide::none) continue;
+    if (continues) {  // the rapid over the gap, compensated too
+      Vec2 at = tool_off_point(path.segments[k - 1]);
+      for (const Vec2 via : seg.rapid_via) append_line(at, via, block), at = via;
+      append_line(at, seg.pierce, block);
+    } else {
+      first = &seg;
+    }
+    append_moves(seg, block);
   }
+  close();
   return h;
 }
 

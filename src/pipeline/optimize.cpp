@@ -604,7 +604,8 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   // Controller compensation: details of the path finer than the kerf, which the controller's
   // offset cannot follow (LinuxCNC refuses such blocks; nc/compensation_check.hpp).
   if (o.kerf_mode == nc::KerfMode::controller) {
-    const nc::CompensationHazards h = nc::compensation_hazards(best_ev.toolpath, s.entries.kerf_mm / 2);
+    const nc::CompensationHazards h =
+        nc::compensation_hazards(best_ev.toolpath, s.entries.kerf_mm / 2, nc::beam_switches_under_compensation(s.dialect));
     if (h.segments > 0) {
       std::string where;
       for (const auto& l : h.labels) where += (where.empty() ? "" : ", ") + l;

@@ -54,8 +54,8 @@ Contour hole(std::vector<Vertex> corner) {
   return c;
 }
 
-bool refused_by_linuxcnc(const Toolpath& tp) {
-  auto d = find_post_dialect("generic");
+bool refused_by_linuxcnc(const Toolpath& tp, const char* dialect = "generic") {
+  auto d = find_post_dialect(dialect);
   EXPECT_TRUE(d.ok());
   const auto path = std::filesystem::temp_directory_path() / ("cutroute-comp-check-" + std::to_string(::getpid()) + ".ngc");
   std::ofstream(path) << write_gcode(tp, *d, GcodeWriteOptions{}).text;
@@ -84,7 +84,7 @@ TEST(CompensationCheck, AgreesWithLinuxCncOnDetailsFinerThanTheKerf) {
       {"a lead-in of 0.05 mm", cut(hole({{{20, 20}, 0}}), {0.035, 0.035}), true},
   };
   for (const auto& c : cases) {
-    const CompensationHazards h = compensation_hazards(c.path, kKerf / 2);
+    const CompensationHazards h = compensation_hazards(c.path, kKerf / 2, true);
     EXPECT_EQ(h.compensated, 1) << c.what;
     EXPECT_EQ(h.segments, c.at_risk ? 1 : 0) << c.what;
     if (c.at_risk) {
@@ -98,14 +98,43 @@ TEST(CompensationCheck, AgreesWithLinuxCncOnDetailsFinerThanTheKerf) {
   // obstacle: the offset goes round it.
   Contour outer = geometry::reversed(hole(fillet(0.05, 1)));
   const Toolpath convex = cut(outer, {-3, 0});
-  EXPECT_EQ(compensation_hazards(convex, kKerf / 2).segments, 0);
+  EXPECT_EQ(compensation_hazards(convex, kKerf / 2, true).segments, 0);
   if (std::system("command -v rs274 >/dev/null 2>&1") == 0) {
     EXPECT_FALSE(refused_by_linuxcnc(convex));
   }
   // Without compensation nothing is checked.
   Toolpath plain = cut(hole(fillet(0.05, 1)), inside);
   plain.segments[0].kerf = KerfSide::none;
-  EXPECT_EQ(compensation_hazards(plain, kKerf / 2).compensated, 0);
+  EXPECT_EQ(compensation_hazards(plain, kKerf / 2, true).compensated, 0);
+}
+
+// A 50 mm square cut clockwise (the tool outside) with a tab that ends 0.05 mm before the corner
+// (0, 50): the piece after it begins with a 0.05 mm move. Where the compensation stays on over the
+// tab (generic) that move is no entry and the corner is convex: nothing to refuse. Where it is
+// switched on again (plasma-thc), the 0.05 mm move is the entry move, shorter than the tool radius.
+TEST(CompensationCheck, APieceAfterATabIsNoEntryWhileTheCompensationHolds) {
+  Toolpath tp = cut(Contour{{Vertex{{0, 0}, 0}, Vertex{{0, 48.95}, 0}}, false}, {-3, 0});
+  CutSegment after;
+  after.kerf = KerfSide::left;
+  after.after_tab = true;
+  after.feed_mm_min = 3000;
+  after.label = "cut after tab 1";
+  after.pierce = {0, 49.95};
+  after.pieces.push_back(
+      {Contour{{Vertex{{0, 49.95}, 0}, Vertex{{0, 50}, 0}, Vertex{{50, 50}, 0}, Vertex{{50, 0}, 0}, Vertex{{0, 0}, 0}}, false},
+       PieceRole::contour, 0});
+  tp.segments.push_back(after);
+  const auto held = compensation_hazards(tp, kKerf / 2, true);
+  EXPECT_EQ(held.compensated, 1);
+  EXPECT_EQ(held.segments, 0);
+  const auto switched = compensation_hazards(tp, kKerf / 2, false);
+  EXPECT_EQ(switched.compensated, 2);
+  EXPECT_EQ(switched.segments, 1);
+  EXPECT_EQ(switched.labels, std::vector<std::string>{"cut after tab 1"});
+  if (std::system("command -v rs274 >/dev/null 2>&1") == 0) {
+    EXPECT_FALSE(refused_by_linuxcnc(tp, "generic"));
+    EXPECT_TRUE(refused_by_linuxcnc(tp, "plasma-thc"));
+  }
 }
 
 }  // namespace

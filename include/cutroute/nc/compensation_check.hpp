@@ -9,14 +9,14 @@
 namespace cutroute::nc {
 
 struct CompensationHazards {
-  int segments = 0;                 // compensated cutting segments at risk
-  int compensated = 0;              // compensated cutting segments in all
-  std::vector<std::string> labels;  // the first few at risk (segment labels)
+  int segments = 0;                 // compensated blocks (G41/G42 .. G40) at risk
+  int compensated = 0;              // compensated blocks in all
+  std::vector<std::string> labels;  // the first few at risk (the label of each block's first segment)
 };
 
 // Under G41/G42 the controller offsets each move by the tool radius r to the kerf side and joins
 // the offset moves at their intersections. It cannot where the drawing has details finer than
-// the kerf, and LinuxCNC then refuses the block. A segment is at risk when, on its path as written
+// the kerf, and LinuxCNC then refuses the block. A block is at risk when, on its path as written
 // (moves shorter than 0.1 um dropped, arcs below the writer's 0.02 mm radius taken as chords):
 //   - its first move (the entry move) is no longer than r, or an arc of radius at most r;
 //   - an arc curving toward the tool side (the inside of the arc) has a radius of at most r;
@@ -26,6 +26,10 @@ struct CompensationHazards {
 // kerf 0.15 and 0.2 mm): the same count on every program but d2g_DRAAK, where it flags more (686
 // against 575, 696 against 585: spline arcs whose offsets LinuxCNC still joins); none flagged
 // that LinuxCNC accepts.
-CompensationHazards compensation_hazards(const Toolpath& path, double tool_radius_mm, std::size_t max_labels = 5);
+// `held_over_tabs`: the writer keeps compensation on over micro-joint gaps (the dialect lets the
+// beam switch under it: beam_switches_under_compensation()); a contour and the pieces after its
+// tabs are then one block, with the rapids over the gaps, and only its first move is an entry.
+CompensationHazards compensation_hazards(const Toolpath& path, double tool_radius_mm, bool held_over_tabs,
+                                         std::size_t max_labels = 5);
 
 }  // namespace cutroute::nc

@@ -171,7 +171,8 @@ int run(const Opts& o) {
         continue;
       }
       // The program last: a report or picture that fails to write leaves no program behind.
-      io::RoutePictureOptions pic{1400, std::filesystem::path(o.nests[i]).filename().string()};
+      io::RoutePictureOptions pic{1400, std::filesystem::path(o.nests[i]).filename().string(), {}};
+      pic.compensation_at_risk = io::compensation_at_risk(res->report);
       Status st = Ok{};
       if (st && !outs[i].report.empty()) st = io::write_file_atomic(outs[i].report, res->report.dump(2) + "\n");
       if (st && !outs[i].svg.empty()) st = io::write_file_atomic(outs[i].svg, io::route_to_svg(loaded->nest, res->toolpath, pic));

@@ -83,10 +83,15 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
   std::vector<std::size_t> pieces_drawn(nest.contours.size(), 0);
   geometry::Vec2 at = path.start;
   std::vector<geometry::Vec2> placed;  // label positions so far
+  std::vector<std::size_t> risky = options.compensation_at_risk;
+  std::sort(risky.begin(), risky.end());
   for (std::size_t k = 0; k < path.segments.size(); ++k) {
     const auto& s = path.segments[k];
     svg.begin_group("class=\"seg\" data-k=\"" + std::to_string(k + 1) + "\"");
-    svg.add_raw("<title>" + std::to_string(k + 1) + ": " + xml_escape(s.label) + "</title>\n");
+    const bool at_risk = std::binary_search(risky.begin(), risky.end(), k + 1);
+    svg.add_raw("<title>" + std::to_string(k + 1) + ": " + xml_escape(s.label) +
+                (at_risk ? " (details finer than the kerf: the controller's compensation may refuse this cut)" : "") +
+                "</title>\n");
     add_rapid(svg, at, s.rapid_via, s.pierce);
     for (const auto& piece : s.pieces) {
       const bool lead = piece.role == nc::PieceRole::lead_in || piece.role == nc::PieceRole::lead_out;
@@ -103,6 +108,7 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
       svg.add_contour(piece.path, std::string("fill=\"none\" stroke=\"") + colour + "\" stroke-width=\"" + width + "\" " + cls + kNs);
     }
     svg.add_circle(s.pierce, mark_mm, "fill=\"#f39c12\" stroke=\"#7a4a00\" stroke-width=\"0.6\" " + std::string(kNs));
+    if (at_risk) svg.add_circle(s.pierce, mark_mm * 3, "class=\"risk\" fill=\"none\" stroke=\"#e00000\" stroke-width=\"2\" " + std::string(kNs));
     // Numbers of pierces that stand close together are stacked upwards instead of overprinted.
     geometry::Vec2 label_at = s.pierce + geometry::Vec2{mark_mm * 1.5, mark_mm * 1.5};
     for (bool moved = true; moved;) {
@@ -152,6 +158,10 @@ std::vector<std::pair<std::string, std::string>> report_summary(const nlohmann::
                                                       format_fixed(b.value("pierce", 0.0), 1) + " s");
   }
   rows.emplace_back("lead-in", str("lead_in"));
+  if (r.contains("compensation") && r["compensation"].value("at_risk", 0) > 0)
+    rows.emplace_back("compensation at risk", std::to_string(r["compensation"].value("at_risk", 0)) + " of " +
+                                                  std::to_string(r["compensation"].value("blocks", 0)) +
+                                                  " cuts have details finer than the kerf (red rings)");
   if (r.contains("kerf_mode")) {
     const std::string mode = str("kerf_mode");
     rows.emplace_back("kerf", num("kerf_mm", 3) + " mm, " +
@@ -232,6 +242,14 @@ std::string route_to_html(const model::Nest& nest, const nc::Toolpath& path,
           "show(+step.value);\n"
           "</script>\n</body></html>\n";
   return html;
+}
+
+std::vector<std::size_t> compensation_at_risk(const nlohmann::json& report) {
+  std::vector<std::size_t> out;
+  if (!report.contains("compensation")) return out;
+  for (const auto& k : report["compensation"].value("at_risk_segments", nlohmann::json::array()))
+    if (k.is_number_unsigned()) out.push_back(k.get<std::size_t>());
+  return out;
 }
 
 }  // namespace cutroute::io

@@ -84,11 +84,13 @@ CompensationHazards compensation_hazards(const Toolpath& path, double tool_radiu
   if (!(tool_radius_mm > 0)) return h;
   std::vector<Move> block;
   const CutSegment* first = nullptr;
+  std::size_t first_k = 0;
   auto close = [&] {
     if (!first) return;
     ++h.compensated;
     if (at_risk(block, first->kerf == KerfSide::left ? 1.0 : -1.0, tool_radius_mm)) {
       ++h.segments;
+      h.at.push_back(first_k);
       if (h.labels.size() < max_labels) h.labels.push_back(first->label);
     }
     block.clear();
@@ -105,6 +107,7 @@ CompensationHazards compensation_hazards(const Toolpath& path, double tool_radiu
       append_line(at, seg.pierce, block);
     } else {
       first = &seg;
+      first_k = k;
     }
     append_moves(seg, block);
   }

@@ -603,9 +603,12 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
 
   // Controller compensation: details of the path finer than the kerf, which the controller's
   // offset cannot follow (LinuxCNC refuses such blocks; nc/compensation_check.hpp).
+  nlohmann::json compensation;
   if (o.kerf_mode == nc::KerfMode::controller) {
     const nc::CompensationHazards h =
         nc::compensation_hazards(best_ev.toolpath, s.entries.kerf_mm / 2, nc::beam_switches_under_compensation(s.dialect));
+    compensation = {{"blocks", h.compensated}, {"at_risk", h.segments}, {"at_risk_segments", nlohmann::json::array()}};
+    for (const std::size_t k : h.at) compensation["at_risk_segments"].push_back(k + 1);  // as the picture numbers them
     if (h.segments > 0) {
       std::string where;
       for (const auto& l : h.labels) where += (where.empty() ? "" : ", ") + l;
@@ -630,6 +633,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   r["measured_speed_row"] = s.conditions.speed.measured;
   r["kerf_mode"] = to_string(o.kerf_mode);
   r["kerf_mm"] = s.entries.kerf_mm;
+  if (!compensation.is_null()) r["compensation"] = compensation;  // controller kerf: blocks at risk
   r["objective_kind"] = o.objective == cost::Objective::time ? "time" : "cost";
   r["pierces"] = best_ev.program.pierces;
   r["cut_length_mm"] = best_ev.program.cut_length_mm;

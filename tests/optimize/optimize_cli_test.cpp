@@ -128,12 +128,25 @@ TEST(OptimizeCli, DemoSheetAutoChoosesChainsLikeThePaper) {
 // The demo sheet gets none, and LinuxCNC accepts it.
 TEST(OptimizeCli, WarnsWhereControllerCompensationCannotFollowTheDrawing) {
   const auto dir = temp_dir("comp-detail");
-  const OptRun panel = optimize(shared("data/dxf/bryanduxbury_pongbox_panelized_3mm.dxf"), dir, "--technique standard");
+  const auto svg = (dir / "p.svg").string();
+  const OptRun panel = optimize(shared("data/dxf/bryanduxbury_pongbox_panelized_3mm.dxf"), dir, "--technique standard --svg " + svg);
   ASSERT_EQ(panel.cmd.exit_code, 0) << panel.cmd.err;
   EXPECT_NE(panel.cmd.err.find("cutter compensation: "), std::string::npos) << panel.cmd.err;
   int warned = 0;
   for (const auto& d : panel.report["diagnostics"]) warned += d.value("code", "") == "kerf.controller_detail";
   EXPECT_EQ(warned, 1);
+  // The report lists the cuts at risk by their number in the picture, which rings each in red.
+  const auto& comp = panel.report["compensation"];
+  const int at_risk = comp["at_risk"].get<int>();
+  EXPECT_GT(at_risk, 0);
+  EXPECT_EQ(comp["blocks"].get<int>(), panel.report["pierces"].get<int>());  // one G41 .. G40 per cut here
+  EXPECT_EQ(static_cast<int>(comp["at_risk_segments"].size()), at_risk);
+  const std::string picture = read_text(svg);
+  int rings = 0;
+  for (auto at = picture.find("class=\"risk\""); at != std::string::npos; at = picture.find("class=\"risk\"", at + 1)) ++rings;
+  EXPECT_EQ(rings, at_risk);
+  for (const auto& k : comp["at_risk_segments"])
+    EXPECT_NE(picture.find("<title>" + std::to_string(k.get<int>()) + ": "), std::string::npos) << k;
   const bool rs274 = std::system("command -v rs274 >/dev/null 2>&1") == 0;
   if (rs274) {
     EXPECT_NE(run_rs274((dir / "out.ngc").string(), panel.report["kerf_mm"].get<double>()).exit_code, 0);
@@ -144,6 +157,8 @@ TEST(OptimizeCli, WarnsWhereControllerCompensationCannotFollowTheDrawing) {
   ASSERT_EQ(demo.cmd.exit_code, 0) << demo.cmd.err;
   EXPECT_EQ(demo.cmd.err.find("cutter compensation"), std::string::npos) << demo.cmd.err;
   for (const auto& d : demo.report["diagnostics"]) EXPECT_NE(d.value("code", ""), "kerf.controller_detail");
+  EXPECT_EQ(demo.report["compensation"]["at_risk"], 0);
+  EXPECT_EQ(demo.report["compensation"]["blocks"], demo.report["pierces"]);
   if (rs274) {
     EXPECT_EQ(run_rs274((dir / "out.ngc").string(), demo.report["kerf_mm"].get<double>()).exit_code, 0);
   }

@@ -15,7 +15,13 @@ namespace cutroute::io {
 struct RoutePictureOptions {
   double width_px = 1400;
   std::string title;
+  // Segments (numbered from 1, as drawn) whose cut a controller's compensation may refuse: their
+  // pierce gets a red ring and their title says why (report "compensation").
+  std::vector<std::size_t> compensation_at_risk;
 };
+
+// The report's compensation.at_risk_segments, for RoutePictureOptions (empty when absent).
+std::vector<std::size_t> compensation_at_risk(const nlohmann::json& report);
 
 // Parts (filled, holes open), then per cutting segment in order: the rapid to its pierce (dashed),
 // the pierce mark, the lead-in, the cut, the lead-out, and the segment's order number at the

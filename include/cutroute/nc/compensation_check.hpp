@@ -12,6 +12,7 @@ struct CompensationHazards {
   int segments = 0;                 // compensated blocks (G41/G42 .. G40) at risk
   int compensated = 0;              // compensated blocks in all
   std::vector<std::string> labels;  // the first few at risk (the label of each block's first segment)
+  std::vector<std::size_t> at;      // every block at risk: the index of its first segment in the toolpath
 };
 
 // Under G41/G42 the controller offsets each move by the tool radius r to the kerf side and joins

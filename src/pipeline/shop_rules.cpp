@@ -103,6 +103,7 @@ struct Effects {
   double behind_mm = 0;        // sum over steps behind the sweep front beyond the band [mm]
   int behind_steps = 0;
   double sheet_penalty = 0;
+  double penalty() const { return heat_penalty + tip_up_penalty + sheet_penalty; }  // [objective unit]
 };
 
 // The SequenceCost of the pipeline: the problem's own price of the route (a prefix without the
@@ -148,16 +149,15 @@ class RuleCost {
                                      [](const auto& x, const auto& y) { return x.first < y.first; });
     if (it != known.end() && it->first == b) return it->second;
     const double d = r_.heat_distance_mm;
-    bool close = false;
-    for (const model::ContourId ia : touched_[static_cast<std::size_t>(a)]) {
-      const auto& ca = nest_.contours[ia];
-      for (const model::ContourId ib : touched_[static_cast<std::size_t>(b)]) {
-        const auto& cb = nest_.contours[ib];
-        close = ia == ib || (box_gap(ca.box, cb.box) < d && closer_than(ca.source.contour, cb.source.contour, cb.box, d));
-        if (close) break;
-      }
-      if (close) break;
-    }
+    auto pair_close = [&](model::ContourId ia, model::ContourId ib) {
+      const auto &ca = nest_.contours[ia], &cb = nest_.contours[ib];
+      return ia == ib || (box_gap(ca.box, cb.box) < d && closer_than(ca.source.contour, cb.source.contour, cb.box, d));
+    };
+    const auto& tb = touched_[static_cast<std::size_t>(b)];
+    const bool close = std::any_of(touched_[static_cast<std::size_t>(a)].begin(), touched_[static_cast<std::size_t>(a)].end(),
+                                   [&](model::ContourId ia) {
+                                     return std::any_of(tb.begin(), tb.end(), [&](model::ContourId ib) { return pair_close(ia, ib); });
+                                   });
     known.insert(it, {b, close});
     return close;
   }
@@ -354,11 +354,11 @@ std::vector<NodeId> reorder(const model::Nest& nest, const model::CutJob& job, c
   rc.price(route, &before);
   if (res.route.empty()) {
     report["route"] = effects_json(before, r);
-    penalty = before.heat_penalty + before.tip_up_penalty + before.sheet_penalty;
+    penalty = before.penalty();
     return route;
   }
   rc.price(res.route, &after);
-  penalty = after.heat_penalty + after.tip_up_penalty + after.sheet_penalty;
+  penalty = after.penalty();
   report["route"] = effects_json(after, r);
   report["search"] = {{"starts", starts.size()},
                       {"evaluations", res.evaluations},

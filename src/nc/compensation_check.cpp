@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <cutroute/nc/gcode_writer.hpp>
+
 namespace cutroute::nc {
 namespace {
 
@@ -32,12 +34,11 @@ void append_line(Vec2 a, Vec2 b, std::vector<Move>& out) {
 // Appends the moves of a segment's pieces as the writer emits them (gcode_writer.cpp: moves that
 // round to nothing are dropped, arcs below 0.02 mm radius are written as chords).
 void append_moves(const CutSegment& seg, std::vector<Move>& out) {
-  constexpr double kChordBelowMm = 0.02;
   for (const auto& piece : seg.pieces) {
     const std::size_t n = geometry::segment_count(piece.path);
     for (std::size_t i = 0; i < n; ++i) {
       const geometry::Segment s = geometry::segment(piece.path, i);
-      if (s.is_arc() && s.radius() >= kChordBelowMm) {
+      if (s.is_arc() && s.radius() >= kMinArcRadiusMm) {
         Move m;
         m.a = s.a;
         m.b = s.b;
@@ -98,7 +99,7 @@ CompensationHazards compensation_hazards(const Toolpath& path, double tool_radiu
   };
   for (std::size_t k = 0; k < path.segments.size(); ++k) {
     const CutSegment& seg = path.segments[k];
-    const bool continues = first && held_over_tabs && seg.after_tab && seg.kerf == first->kerf;
+    const bool continues = first && compensation_held(path.segments[k - 1], seg, held_over_tabs);
     if (!continues) close();
     if (seg.kerf == KerfSide::none) continue;
     if (continues) {  // the rapid over the gap, compensated too

@@ -17,13 +17,9 @@ using geometry::Vec2;
 // Largest arc radius written as G2/G3 (100 m). Such an arc over a whole 3-m sheet still bows 11 mm,
 // so larger ones are written as chords (flat_arc), and no I/J/R word goes beyond 1e5 mm.
 constexpr double kMaxArcRadiusMm = 1.0e5;
-// Smallest arc radius written as G2/G3. LinuxCNC refuses arcs below its tolerance (0.005 mm, 0.0005
-// in = 0.0127 mm in G20) as "zero-radius arc": spline fits leave arcs of 1-2 um at cusps (d2g_DRAAK,
-// d2g_Lueftergitter_R14), and the whole program was refused. Smaller ones are written as chords
-// that stay within kMicroArcChordMm of the arc (one move for the arcs of a micrometre or two:
-// chords within the output resolution took two or three, and the frame count sets V_on*(n):
-// d2g_Lueftergitter_R14 got 96 more frames and 1.9 % more T_cut).
-constexpr double kMinArcRadiusMm = 0.02;
+// Arcs below kMinArcRadiusMm (gcode_writer.hpp) are written as chords that stay within this of the
+// arc: one move for the arcs of a micrometre or two. Chords within the output resolution took two or
+// three, and the frame count sets V_on*(n): d2g_Lueftergitter_R14 got 96 more frames, 1.9 % more T_cut.
 constexpr double kMicroArcChordMm = 0.004;
 
 // Arc centre from end points and bulge: the chord's perpendicular bisector, offset by
@@ -108,8 +104,9 @@ class Emitter {
   }
 
   // An arc of radius beyond kMaxArcRadiusMm (or below kMinArcRadiusMm) as chords whose sagitta
-  // R (1 - cos(phi / 2)) ~ R phi^2 / 8 stays within the output resolution (or `sagitta_mm`). Nearly straight arcs (bulge 1e-8 on a 10-mm edge: I J of
-  // 2.5e9 mm) made centres that the controller's range, and our own reader, refuse. The chord ends
+  // R (1 - cos(phi / 2)) ~ R phi^2 / 8 stays within the output resolution (or `sagitta_mm`). Nearly
+  // straight arcs (bulge 1e-8 on a 10-mm edge: I J of 2.5e9 mm) made centres that the controller's
+  // range, and our own reader, refuse. The chord ends
   // come from the chord-based arc_point_at_sweep, which stays exact where the centre is far away.
   bool flat_arc(Vec2 q, double bulge, double radius, const std::string& feed_word, double sagitta_mm = 0.0) {
     const Vec2 a = pos_;
@@ -228,6 +225,9 @@ Vec2 tool_off_point(const CutSegment& s) {
   return s.pierce;
 }
 
+bool compensation_held(const CutSegment& from, const CutSegment& to, bool beam_switches) {
+  return beam_switches && from.kerf != KerfSide::none && to.after_tab && to.kerf == from.kerf;
+}
 
 WrittenProgram write_gcode(const Toolpath& path, const PostDialect& d, const GcodeWriteOptions& options) {
   WrittenProgram out;
@@ -255,8 +255,7 @@ WrittenProgram write_gcode(const Toolpath& path, const PostDialect& d, const Gco
     const bool comp = seg.kerf != KerfSide::none;
     if (comp && !held) e.codes(d.thc_on, path.pierce_time_s, seg.feed_mm_min);  // no outputs under G41/G42
     if (comp && !held) e.block(seg.kerf == KerfSide::left ? d.kerf_left : d.kerf_right);
-    const bool hold = comp && hold_over_tabs && k + 1 < path.segments.size() && path.segments[k + 1].after_tab &&
-                      path.segments[k + 1].kerf == seg.kerf;
+    const bool hold = k + 1 < path.segments.size() && compensation_held(seg, path.segments[k + 1], hold_over_tabs);
     std::string feed = e.feed_word(seg.feed_mm_min);
     bool thc = comp;
     for (const auto& piece : seg.pieces) {

@@ -27,9 +27,10 @@ struct CompensationHazards {
 // kerf 0.15 and 0.2 mm): the same count on every program but d2g_DRAAK, where it flags more (686
 // against 575, 696 against 585: spline arcs whose offsets LinuxCNC still joins); none flagged
 // that LinuxCNC accepts.
-// `held_over_tabs`: the writer keeps compensation on over micro-joint gaps (the dialect lets the
-// beam switch under it: beam_switches_under_compensation()); a contour and the pieces after its
-// tabs are then one block, with the rapids over the gaps, and only its first move is an entry.
+// `held_over_tabs`: beam_switches_under_compensation() of the dialect written with. Where the
+// writer keeps compensation on over micro-joint gaps (compensation_held()), a contour and the
+// pieces after its tabs are one block, with the rapids over the gaps, and only its first move is
+// an entry.
 CompensationHazards compensation_hazards(const Toolpath& path, double tool_radius_mm, bool held_over_tabs,
                                          std::size_t max_labels = 5);
 

@@ -22,6 +22,17 @@ struct WrittenProgram {
   double rapid_length_mm = 0.0;  // G0 path length [mm]
 };
 
+// Smallest arc radius written as G2/G3 [mm]; smaller arcs are written as chords. LinuxCNC refuses
+// arcs below its tolerance (0.005 mm, 0.0005 in = 0.0127 mm in G20) as "zero-radius arc": spline
+// fits leave arcs of 1-2 um at cusps (d2g_DRAAK, d2g_Lueftergitter_R14), and the whole program was
+// refused.
+inline constexpr double kMinArcRadiusMm = 0.02;
+
+// Does the writer keep G41/G42 on from segment `from` into the next one, `to`? When `to` resumes
+// `from`'s contour past a micro-joint gap (after_tab) on the same kerf side, and the dialect lets
+// the beam switch under compensation (beam_switches_under_compensation()).
+bool compensation_held(const CutSegment& from, const CutSegment& to, bool beam_switches);
+
 // Coordinates are rounded to the dialect's resolution before writing and the writer's idea of
 // the current position is the rounded one, so what the machine does is what we measured. Arc
 // centres are recomputed from the rounded end points (radius consistent to the resolution).

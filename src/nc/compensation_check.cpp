@@ -79,8 +79,7 @@ bool at_risk(const std::vector<Move>& ms, double side, double r) {
 
 }  // namespace
 
-CompensationHazards compensation_hazards(const Toolpath& path, double tool_radius_mm, bool held_over_tabs,
-                                         std::size_t max_labels) {
+CompensationHazards compensation_hazards(const Toolpath& path, double tool_radius_mm, bool held_over_tabs) {
   CompensationHazards h;
   if (!(tool_radius_mm > 0)) return h;
   std::vector<Move> block;
@@ -89,11 +88,7 @@ CompensationHazards compensation_hazards(const Toolpath& path, double tool_radiu
   auto close = [&] {
     if (!first) return;
     ++h.compensated;
-    if (at_risk(block, first->kerf == KerfSide::left ? 1.0 : -1.0, tool_radius_mm)) {
-      ++h.segments;
-      h.at.push_back(first_k);
-      if (h.labels.size() < max_labels) h.labels.push_back(first->label);
-    }
+    if (at_risk(block, first->kerf == KerfSide::left ? 1.0 : -1.0, tool_radius_mm)) h.at.push_back(first_k);
     block.clear();
     first = nullptr;
   };

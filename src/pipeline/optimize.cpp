@@ -607,17 +607,19 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   if (o.kerf_mode == nc::KerfMode::controller) {
     const nc::CompensationHazards h =
         nc::compensation_hazards(best_ev.toolpath, s.entries.kerf_mm / 2, nc::beam_switches_under_compensation(s.dialect));
-    compensation = {{"blocks", h.compensated}, {"at_risk", h.segments}, {"at_risk_segments", nlohmann::json::array()}};
+    compensation = {{"blocks", h.compensated}, {"at_risk", h.at.size()}, {"at_risk_segments", nlohmann::json::array()}};
     for (const std::size_t k : h.at) compensation["at_risk_segments"].push_back(k + 1);  // as the picture numbers them
-    if (h.segments > 0) {
+    if (!h.at.empty()) {
+      constexpr std::size_t kNamed = 5;
       std::string where;
-      for (const auto& l : h.labels) where += (where.empty() ? "" : ", ") + l;
+      for (std::size_t i = 0; i < std::min(kNamed, h.at.size()); ++i)
+        where += (where.empty() ? "" : ", ") + best_ev.toolpath.segments[h.at[i]].label;
       Diagnostic w = make_warning(
-          "cutter compensation: " + std::to_string(h.segments) + " of " + std::to_string(h.compensated) +
+          "cutter compensation: " + std::to_string(h.at.size()) + " of " + std::to_string(h.compensated) +
           " compensated cuts have details finer than the kerf (" + format_fixed(s.entries.kerf_mm, 3) +
           " mm) that the controller's offset cannot follow: inside corners between moves shorter than the offset needs, "
           "inside arcs tighter than half the kerf, or entry moves shorter than it (" + where +
-          (h.segments > static_cast<int>(h.labels.size()) ? ", ..." : "") +
+          (h.at.size() > kNamed ? ", ..." : "") +
           "); LinuxCNC refuses such blocks. --kerf-mode cam writes the offset path itself; "
           "scripts/check-compensation lists what LinuxCNC refuses");
       w.code = "kerf.controller_detail";

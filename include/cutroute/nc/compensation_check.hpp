@@ -1,7 +1,6 @@
 // compensation_hazards(): the cutting segments of a toolpath whose path a controller's cutter compensation cannot follow.
 #pragma once
 
-#include <string>
 #include <vector>
 
 #include <cutroute/nc/toolpath.hpp>
@@ -9,10 +8,8 @@
 namespace cutroute::nc {
 
 struct CompensationHazards {
-  int segments = 0;                 // compensated blocks (G41/G42 .. G40) at risk
-  int compensated = 0;              // compensated blocks in all
-  std::vector<std::string> labels;  // the first few at risk (the label of each block's first segment)
-  std::vector<std::size_t> at;      // every block at risk: the index of its first segment in the toolpath
+  int compensated = 0;          // compensated blocks (G41/G42 .. G40) in all
+  std::vector<std::size_t> at;  // the blocks at risk: the index of each one's first segment in the toolpath
 };
 
 // Under G41/G42 the controller offsets each move by the tool radius r to the kerf side and joins
@@ -31,7 +28,6 @@ struct CompensationHazards {
 // writer keeps compensation on over micro-joint gaps (compensation_held()), a contour and the
 // pieces after its tabs are one block, with the rapids over the gaps, and only its first move is
 // an entry.
-CompensationHazards compensation_hazards(const Toolpath& path, double tool_radius_mm, bool held_over_tabs,
-                                         std::size_t max_labels = 5);
+CompensationHazards compensation_hazards(const Toolpath& path, double tool_radius_mm, bool held_over_tabs);
 
 }  // namespace cutroute::nc

@@ -131,6 +131,13 @@ struct Site {
   double turn = 0;  // |turn angle| at a corner [rad]
 };
 
+// |Turn angle| of a closed contour's tangent at vertex i [rad]: 0 where it runs straight on.
+double turn_at_vertex(const Contour& c, std::size_t i) {
+  const std::size_t n = geometry::segment_count(c);
+  const Vec2 a = geometry::segment(c, (i + n - 1) % n).tangent_at(1), b = geometry::segment(c, i).tangent_at(0);
+  return std::abs(std::atan2(geometry::cross(a, b), geometry::dot(a, b)));
+}
+
 }  // namespace
 
 // Per contour, computed once and shared by planners of the same nest with other leads:
@@ -358,12 +365,9 @@ struct EntryPlanner::Impl {
     double acc = 0;
     const double min_turn = opt.corner_angle_deg * std::numbers::pi / 180.0;
     for (std::size_t i = 0; i < n; ++i) {
-      const auto in = geometry::segment(path, (i + n - 1) % n);
-      const auto out = geometry::segment(path, i);
-      const Vec2 a = in.tangent_at(1), b = out.tangent_at(0);
-      const double turn = std::abs(std::atan2(geometry::cross(a, b), geometry::dot(a, b)));
+      const double turn = turn_at_vertex(path, i);
       if (turn > min_turn) corners.push_back({acc, true, turn});
-      acc += out.length();
+      acc += geometry::segment(path, i).length();
     }
     const auto max_c = static_cast<std::size_t>(std::max(1, opt.max_candidates));
     std::stable_sort(corners.begin(), corners.end(), [](const Site& x, const Site& y) { return x.turn > y.turn; });
@@ -454,10 +458,7 @@ struct EntryPlanner::Impl {
     if (best == cum.size()) return std::nullopt;
     const std::size_t n = cum.size() - 1;  // segments; the last vertex is the first again
     const std::size_t v = best % n;
-    const Contour& c = nc(id).source.contour;
-    const Vec2 a = geometry::segment(c, (v + n - 1) % n).tangent_at(1), b = geometry::segment(c, v).tangent_at(0);
-    const double turn = std::abs(std::atan2(geometry::cross(a, b), geometry::dot(a, b)));
-    return std::pair{cum[v], turn > opt.corner_angle_deg * std::numbers::pi / 180.0};
+    return std::pair{cum[v], turn_at_vertex(nc(id).source.contour, v) > opt.corner_angle_deg * std::numbers::pi / 180.0};
   }
 
   // Builds the entry at arc length s of the oriented path; nullopt when not admissible.

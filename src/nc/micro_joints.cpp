@@ -38,66 +38,79 @@ Contour sub_path(const Contour& c, double s0, double s1) {
 MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const MicroJointOptions& o) {
   MicroJointStats st;
   if (o.tabs <= 0 || o.width_mm <= 0) return st;
+  const double w = o.width_mm;
+  const int n = o.tabs;
+  auto outer_piece = [&](const CutPiece& p) {
+    return p.role == PieceRole::contour && p.contour >= 0 &&
+           nest.contours[model::ContourId(p.contour)].role == model::ContourRole::outer;
+  };
   std::vector<CutSegment> out;
   out.reserve(path.segments.size());
-  for (auto& seg : path.segments) {
-    // The piece that cuts an outer contour (one per segment in the standard technique).
-    auto it = std::find_if(seg.pieces.begin(), seg.pieces.end(), [&](const CutPiece& p) {
-      return p.role == PieceRole::contour && p.contour >= 0 &&
-             nest.contours[model::ContourId(p.contour)].role == model::ContourRole::outer;
-    });
-    if (it == seg.pieces.end()) {
-      out.push_back(std::move(seg));
-      continue;
-    }
-    const double contour_len = geometry::length(nest.contours[model::ContourId(it->contour)].source.contour);
-    const double piece_len = geometry::length(it->path);
-    const double w = o.width_mm;
-    const int n = o.tabs;
-    if (n * 2 * w > std::min(contour_len, piece_len)) {
-      ++st.skipped;
-      out.push_back(std::move(seg));
-      continue;
-    }
-    ++st.contours;
-    st.tabs += n;
-    // Cut stretches between the gaps: [0, g0 - w/2], [g0 + w/2, g1 - w/2], ..., [g_{n-1} + w/2, piece end].
-    std::vector<std::pair<double, double>> keep;
-    double from = 0;
-    for (int k = 0; k < n; ++k) {
-      const double g = (k + 0.5) * contour_len / n;
-      keep.emplace_back(from, g - w / 2);
-      from = g + w / 2;
-    }
-    keep.emplace_back(from, piece_len);
-    const auto first = static_cast<std::size_t>(it - seg.pieces.begin());
-    for (std::size_t j = 0; j < keep.size(); ++j) {
-      CutSegment part;
-      part.kerf = seg.kerf;
-      part.feed_mm_min = seg.feed_mm_min;
-      Contour stretch = sub_path(it->path, keep[j].first, keep[j].second);
-      if (j == 0) {
-        part.pierce = seg.pierce;
-        part.label = seg.label;
-        part.rapid_via = seg.rapid_via;
-        part.pieces.assign(seg.pieces.begin(), seg.pieces.begin() + static_cast<std::ptrdiff_t>(first));
-      } else {
-        part.pierce = stretch.vertices.front().p;
-        part.label = seg.label + " after tab " + std::to_string(j);
-        part.after_tab = true;
-        // Under controller compensation the head crosses the gap on the offset path: along the
-        // contour's corners, not across them (an arc in the gap is crossed on its chord, which
-        // for a tab of a millimetre or two lies within a few hundredths of it).
-        if (seg.kerf != KerfSide::none) {
-          const Contour gap = sub_path(it->path, keep[j - 1].second, keep[j].first);
-          for (std::size_t v = 1; v + 1 < gap.vertices.size(); ++v) part.rapid_via.push_back(gap.vertices[v].p);
-        }
+  for (auto& whole : path.segments) {
+    // A segment cuts one outer contour (standard) or several joined by bridges (chain): each one's
+    // loop gets its gaps. What follows the last gap of a contour (its last stretch, the bridge, the
+    // next contour, the lead-out) is one segment, whose next outer contour is split in turn.
+    CutSegment seg = std::move(whole);
+    const std::string label = seg.label;
+    int tab_no = 0;  // gaps so far in this segment: the labels of the pieces after them
+    for (std::size_t from = 0;;) {
+      const auto it = std::find_if(seg.pieces.begin() + static_cast<std::ptrdiff_t>(from), seg.pieces.end(), outer_piece);
+      if (it == seg.pieces.end()) break;
+      const auto first = static_cast<std::size_t>(it - seg.pieces.begin());
+      const double contour_len = geometry::length(nest.contours[model::ContourId(it->contour)].source.contour);
+      const double piece_len = geometry::length(it->path);
+      if (n * 2 * w > std::min(contour_len, piece_len)) {
+        ++st.skipped;
+        from = first + 1;
+        continue;
       }
-      part.pieces.push_back({std::move(stretch), PieceRole::contour, it->contour});
-      if (j + 1 == keep.size())
-        part.pieces.insert(part.pieces.end(), seg.pieces.begin() + static_cast<std::ptrdiff_t>(first) + 1, seg.pieces.end());
-      out.push_back(std::move(part));
+      ++st.contours;
+      st.tabs += n;
+      // Cut stretches between the gaps: [0, g0 - w/2], [g0 + w/2, g1 - w/2], ..., [g_{n-1} + w/2, piece end].
+      std::vector<std::pair<double, double>> keep;
+      double at = 0;
+      for (int k = 0; k < n; ++k) {
+        const double g = (k + 0.5) * contour_len / n;
+        keep.emplace_back(at, g - w / 2);
+        at = g + w / 2;
+      }
+      keep.emplace_back(at, piece_len);
+      const CutPiece piece = *it;
+      const std::vector<CutPiece> after(seg.pieces.begin() + static_cast<std::ptrdiff_t>(first) + 1, seg.pieces.end());
+      for (std::size_t j = 0; j < keep.size(); ++j) {
+        CutSegment part;
+        part.kerf = seg.kerf;
+        part.feed_mm_min = seg.feed_mm_min;
+        Contour stretch = sub_path(piece.path, keep[j].first, keep[j].second);
+        if (j == 0) {
+          part.pierce = seg.pierce;
+          part.label = seg.label;
+          part.rapid_via = seg.rapid_via;
+          part.after_tab = seg.after_tab;
+          part.pieces.assign(seg.pieces.begin(), seg.pieces.begin() + static_cast<std::ptrdiff_t>(first));
+        } else {
+          part.pierce = stretch.vertices.front().p;
+          part.label = label + " after tab " + std::to_string(++tab_no);
+          part.after_tab = true;
+          // Under controller compensation the head crosses the gap on the offset path: along the
+          // contour's corners, not across them (an arc in the gap is crossed on its chord, which
+          // for a tab of a millimetre or two lies within a few hundredths of it).
+          if (seg.kerf != KerfSide::none) {
+            const Contour gap = sub_path(piece.path, keep[j - 1].second, keep[j].first);
+            for (std::size_t v = 1; v + 1 < gap.vertices.size(); ++v) part.rapid_via.push_back(gap.vertices[v].p);
+          }
+        }
+        part.pieces.push_back({std::move(stretch), PieceRole::contour, piece.contour});
+        if (j + 1 < keep.size()) {
+          out.push_back(std::move(part));
+          continue;
+        }
+        part.pieces.insert(part.pieces.end(), after.begin(), after.end());
+        from = part.pieces.size() - after.size();
+        seg = std::move(part);
+      }
     }
+    out.push_back(std::move(seg));
   }
   path.segments = std::move(out);
   return st;

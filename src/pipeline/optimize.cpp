@@ -312,6 +312,18 @@ Result<model::CutJob> build_job(const model::Nest& nest, const model::EntryPlann
   return make_error("no cut job for technique 'auto'");
 }
 
+// Why the shop rules cannot be written into a technique's program (nullopt: they can). Part
+// rigidity picks the corner each outer contour is entered at: only the standard technique enters
+// every contour by its own lead-in (a chain enters its later contours where a bridge lands). Tabs
+// split the loop each outer contour is cut in: the standard and chain techniques cut every contour
+// whole, in one piece; common lines and multi-segment cutting cut contours in several pieces. The
+// order rules (heat, tip-up, sheet rigidity) price any technique's segments.
+std::optional<std::string> rules_exclude(const ShopRules& r, Technique t) {
+  if (r.part_rigidity && t != Technique::standard) return "--part-rigidity works with --technique standard only";
+  if (r.tabs > 0 && t != Technique::standard && t != Technique::chain) return "--tabs works with --technique standard or chain only";
+  return std::nullopt;
+}
+
 // Does the job cut every contour on its own (nothing joined: the standard set again)?
 bool one_contour_each(const model::CutJob& job) {
   for (const auto& seg : job.segments)
@@ -472,18 +484,16 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   const model::Nest& cut_nest = o.kerf_mode == nc::KerfMode::cam ? kerf.nest : nest;
   // 2-6 for each alternative set of basic segments (GSCCP), the best kept.
   std::vector<Technique> wanted;
-  // Part rigidity and tabs are written for one pierce per contour: with either on, only the
-  // standard technique is built (asked for another one explicitly: an error, not a silent change).
-  // The order rules (heat, tip-up, sheet rigidity) work with every technique.
-  if (o.rules.standard_only() && o.technique != Technique::automatic && o.technique != Technique::standard)
-    return make_error(std::string("--part-rigidity and --tabs work with --technique standard only, not ") + to_string(o.technique));
-  if (o.rules.standard_only() && o.multi_segment)
-    return make_error("--part-rigidity and --tabs work with --technique standard only, not with --multi-segment");
+  // Asked for explicitly, a technique the rules cannot be written into is an error, not a silent
+  // change; `auto` builds only the ones they can.
+  if (o.technique != Technique::automatic)
+    if (auto why = rules_exclude(o.rules, o.technique)) return make_error(*why + ", not " + to_string(o.technique));
+  if (o.multi_segment)
+    if (auto why = rules_exclude(o.rules, Technique::multi)) return make_error(*why + ", not with --multi-segment");
   if (o.multi_segment && o.technique != Technique::automatic && o.technique != Technique::multi)
     return make_error(std::string("--multi-segment adds multi-segment cutting to --technique auto; not with --technique ") +
                       to_string(o.technique) + " (use --technique multi to cut with it alone)");
-  if (o.technique == Technique::automatic && !o.rules.standard_only()) wanted = {Technique::standard, Technique::chain, Technique::common};
-  else if (o.technique == Technique::automatic) wanted = {Technique::standard};
+  if (o.technique == Technique::automatic) wanted = {Technique::standard, Technique::chain, Technique::common};
   else wanted = {o.technique};
   if (o.technique == Technique::automatic && o.multi_segment) wanted.push_back(Technique::multi);  // ECP only when asked for
   // One planner (the per-contour geometry of the nest) for every job, the refinement and the leads.
@@ -494,6 +504,10 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   auto alternatives = nlohmann::json::array();
   double standard_job_s = 0;  // [s] building the standard job: a measure of this nest's geometric work
   for (Technique t : wanted) {
+    if (auto why = rules_exclude(o.rules, t)) {  // under auto only: asked for, it was refused above
+      alternatives.push_back({{"name", to_string(t)}, {"available", false}, {"reason", *why}});
+      continue;
+    }
     const auto t_job = Clock::now();
     auto job = build_job(cut_nest, planner, s.entries, o, t, built.empty() || built.front() != Technique::standard ? nullptr : &jobs.front());
     const double job_s = std::chrono::duration<double>(Clock::now() - t_job).count();

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cutroute/core/number_format.hpp>
+#include <cutroute/geometry/contour.hpp>
 #include <cutroute/io/nest_loader.hpp>
 
 #include "optimize_run.hpp"
@@ -370,6 +371,44 @@ TEST_P(CorpusOptimize, ChainAndAutoProgramsAreAdmissible) {
   for (const auto& a : alts)
     if (a["available"].get<bool>()) best = std::min(best, a["objective"].get<double>());
   EXPECT_EQ(autorun.report["t_cut_s"].get<double>(), best);  // time objective: the fastest is kept
+  fs::remove_all(dir);
+}
+
+// Micro-joints with chain cutting over the corpus: every outer contour long enough for its two
+// 1-mm tabs is cut in three runs, short of the gaps, the rest once and whole; the report counts
+// the tabs the drawing has room for, and LinuxCNC's interpreter reads the program.
+// On deepnestsharp_TopsNest only the counts are checked: its parts are placed edge to edge and
+// pierced on their contours (no scrap for a lead-in), so a piece between two tabs can lie wholly
+// on an edge two parts share, and nothing in the program says which of them it cuts.
+TEST_P(CorpusOptimize, ChainProgramsWithTabsAreAdmissible) {
+  const bool edge_to_edge = GetParam() == "deepnestsharp_TopsNest";
+  const std::string dxf = shared("data/dxf/" + GetParam() + ".dxf");
+  const auto dir = temp_dir(GetParam() + "-tabs");
+  const std::string extra = kOverlapping.count(GetParam()) ? "--allow-crossing " : "";
+  const OptRun run = optimize(dxf, dir, extra + "--technique chain --tabs 2", sanitized() ? "2" : "0.5");
+  ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
+  auto loaded = io::load_nest(dxf, io::NestLoadOptions{});
+  ASSERT_TRUE(loaded.ok());
+  ProgramCheckOptions opt;
+  opt.clearance_mm = 1.0;
+  opt.tabs = 2;
+  opt.tab_width_mm = 1.0;
+  const auto check = check_program(loaded->nest, run.program, opt);
+  if (!edge_to_edge)
+    for (const auto& f : check.failures) ADD_FAILURE() << f;
+  int room = 0, outers = 0;
+  for (const auto& c : loaded->nest.contours) {
+    if (c.role != model::ContourRole::outer) continue;
+    ++outers;
+    room += geometry::length(c.source.contour) >= 4.0;
+  }
+  const auto& tabs = run.report["rules"]["tabs"];
+  EXPECT_EQ(tabs["contours"].get<int>(), room);
+  EXPECT_EQ(tabs["contours_too_short"].get<int>(), outers - room);
+  EXPECT_EQ(run.report["pierces"].get<int>(), check.probe.pierces);
+  EXPECT_EQ(check.runs, run.report["basic_segments"].get<int>() + 2 * room);
+  EXPECT_NEAR(run.report["cut_length_mm"].get<double>(), check.cut_length, 1e-6 * check.cut_length + 1e-6);
+  expect_rs274_accepts(dir / "out.ngc");
   fs::remove_all(dir);
 }
 

@@ -122,9 +122,12 @@ Program optimize(const std::string& dxf, const fs::path& dir, const std::string&
 
 // `moved_start`: the program was made for a start point other than (0, 0), where the probe begins,
 // so its first rapid differs from the report's.
-void expect_admissible(const std::string& dxf, const Program& p, int tabs = 0, double tab_width = 0, bool moved_start = false) {
+ProgramCheck expect_admissible(const std::string& dxf, const Program& p, int tabs = 0, double tab_width = 0, bool moved_start = false) {
   auto loaded = io::load_nest(dxf, io::NestLoadOptions{});
-  ASSERT_TRUE(loaded.ok());
+  if (!loaded.ok()) {
+    ADD_FAILURE() << dxf << ": " << loaded.error().message;
+    return {};
+  }
   ProgramCheckOptions opt;
   opt.clearance_mm = 1.0;
   opt.tabs = tabs;
@@ -137,6 +140,7 @@ void expect_admissible(const std::string& dxf, const Program& p, int tabs = 0, d
     EXPECT_NEAR(p.report["rapid_length_mm"].get<double>(), check.rapid_length, 1e-6 * check.rapid_length + 1e-6);
   }
   EXPECT_EQ(p.report["frames"].get<int>(), check.probe.frames);
+  return check;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -592,6 +596,56 @@ TEST(ShopRules, TipUpRapidsGoAroundFreedChains) {
   fs::remove_all(dir);
 }
 
+// Micro-joints with chain cutting: each chained part's loop gets its gaps; the bridge still leaves
+// from where the loop ends and the compensation holds over the gaps and the bridge.
+TEST(ShopRules, TabsWorkWithChains) {
+  const auto dir = temp_dir("tabs_chain");
+  const auto parts = pairs_in_a_row(30);
+  const auto dxf = write_nest(dir, parts, 500, 100);
+  const int n = 2;
+  const double w = 1.5;
+  const Program p = optimize(dxf, dir, "--tabs 2 --tab-width 1.5", parts, "chain");
+  EXPECT_EQ(p.report["chosen"], "chain");
+  // 4 chains of 2 parts, each part in n + 1 runs: 4 pierces + one after each gap.
+  ASSERT_EQ(p.runs.size(), 4u + parts.size() * n);
+  EXPECT_EQ(p.report["pierces"].get<std::size_t>(), p.runs.size());
+  EXPECT_EQ(p.report["rules"]["tabs"]["tabs"], static_cast<int>(parts.size()) * n);
+  EXPECT_EQ(p.report["rules"]["tabs"]["contours"], static_cast<int>(parts.size()));
+  EXPECT_EQ(expect_admissible(dxf, p, n, w).bridges, 4);
+  // The runs of a chain: the first part's n + 1 runs, the bridge in its last one, then the second
+  // part's; every gap of a part lies between two of its own runs.
+  const auto runs = parts_of_runs(p, parts);
+  for (std::size_t i = 0; i < runs.size(); i += 2 * n + 1) {
+    ASSERT_LE(i + 2 * n + 1, runs.size());
+    ASSERT_EQ(runs[i].size(), 1u) << "run " << i;
+    const int a = runs[i].front();
+    for (std::size_t k = i; k < i + n; ++k) EXPECT_EQ(runs[k], std::vector<int>{a}) << "run " << k;
+    ASSERT_EQ(runs[i + n].size(), 2u) << "run " << i + n << " ends the first part and crosses the bridge";
+    const int b = runs[i + n][0] == a ? runs[i + n][1] : runs[i + n][0];
+    for (std::size_t k = i + n + 1; k < i + 2 * n + 1; ++k) EXPECT_EQ(runs[k], std::vector<int>{b}) << "run " << k;
+  }
+  // One G41 per chain, and LinuxCNC with the kerf as its tool accepts the program.
+  std::size_t g41 = 0;
+  for (auto at = p.text.find("\nG41\n"); at != std::string::npos; at = p.text.find("\nG41\n", at + 1)) ++g41;
+  EXPECT_EQ(g41, 4u);
+  if (std::system("command -v rs274 >/dev/null 2>&1") == 0) {
+    const auto rs = run_rs274((dir / "out.ngc").string(), p.report["kerf_mm"].get<double>());
+    EXPECT_EQ(rs.exit_code, 0) << rs.out;
+  }
+  // `auto` with tabs weighs standard and chain; common lines are listed with the reason.
+  const Program a = optimize(dxf, dir, "--tabs 2 --tab-width 1.5", parts, "auto");
+  std::vector<std::string> built;
+  for (const auto& alt : a.report["alternatives"]) {
+    if (alt["available"].get<bool>()) {
+      built.push_back(alt["name"]);
+    } else if (alt["name"] == "common") {
+      EXPECT_NE(alt["reason"].get<std::string>().find("--tabs"), std::string::npos);
+    }
+  }
+  EXPECT_EQ(built, (std::vector<std::string>{"standard", "chain"}));
+  fs::remove_all(dir);
+}
+
 TEST(ShopRules, AutoComparesTechniquesByTimePlusTheRulesPrice) {
   const auto dir = temp_dir("heat_auto");
   const auto parts = pairs_in_a_row(30);
@@ -623,13 +677,16 @@ TEST(ShopRules, BadRuleOptionsAreUsageErrors) {
     EXPECT_EQ(r.exit_code, 1) << bad;
     EXPECT_FALSE(fs::exists(dir / "x.ngc"));
   }
-  // Part rigidity and tabs are written for one pierce per contour: another technique asked for is
-  // refused (auto builds only the standard one).
-  for (const char* bad : {"--part-rigidity --technique chain", "--tabs 2 --technique common", "--tabs 1 --multi-segment",
-                          "--part-rigidity --heat-distance 5 --technique multi"}) {
+  // Part rigidity chooses each outer contour's entry, tabs split each outer contour's loop: a
+  // technique that lacks those, asked for, is refused with the reason.
+  for (const auto& [bad, why] : std::vector<std::pair<std::string, std::string>>{
+           {"--part-rigidity --technique chain", "--part-rigidity works with --technique standard only, not chain"},
+           {"--tabs 2 --technique common", "--tabs works with --technique standard or chain only, not common"},
+           {"--tabs 1 --multi-segment", "--tabs works with --technique standard or chain only, not with --multi-segment"},
+           {"--part-rigidity --heat-distance 5 --technique multi", "--part-rigidity works with --technique standard only, not multi"}}) {
     const auto r = run_command(cli_path() + " optimize " + dxf + " -o " + (dir / "x.ngc").string() + " --quiet " + bad);
     EXPECT_EQ(r.exit_code, 2) << bad;
-    EXPECT_NE(r.err.find("--technique standard only"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(why), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir / "x.ngc"));
   }
   fs::remove_all(dir);

@@ -233,7 +233,8 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
       continue;
     }
     // With micro-joints an outer contour is cut in tabs + 1 runs, short of tabs gaps.
-    const bool tabbed = opt.tabs > 0 && cut[k]->role == model::ContourRole::outer;
+    // A contour too short to leave a gap width of cut between its gaps (2 · tabs · w > length) is cut whole.
+    const bool tabbed = opt.tabs > 0 && cut[k]->role == model::ContourRole::outer && len >= 2 * opt.tabs * opt.tab_width_mm;
     const std::size_t want_runs = tabbed ? static_cast<std::size_t>(opt.tabs) + 1 : 1;
     const double gaps = tabbed ? opt.tabs * opt.tab_width_mm : 0.0;
     const std::size_t runs = runs_of[k].size();

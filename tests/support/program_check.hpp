@@ -20,7 +20,8 @@ struct ProgramCheckOptions {
   // a hole). 0: on the drawn contour.
   double kerf_offset_mm = 0.0;
   // Micro-joints: every outer contour is cut in tabs + 1 runs and left uncut over tabs gaps of
-  // tab_width_mm in total tabs * tab_width_mm (0: no tabs, each contour in one run, whole).
+  // tab_width_mm in total tabs * tab_width_mm (0: no tabs, each contour in one run, whole); one
+  // shorter than 2 · tabs · tab_width_mm is cut whole.
   int tabs = 0;
   double tab_width_mm = 0.0;      // [mm]
   // Multi-segment cutting: a contour may be cut in up to this many runs (pieces), which together

@@ -18,8 +18,10 @@ struct MicroJointStats {
 };
 
 // Every contour piece of an outer contour (of length L, the overcut past it excluded) gets its
-// tabs centred at (k + 1/2) L / N from the entry point, k = 0..N-1, so none sits at the entry
-// where the lead-in joins or at the end where the part drops last. The segment is split there:
+// tabs centred at (k + 1/2) L / N from the point where that piece enters it, k = 0..N-1, so none
+// sits at the entry where the lead-in (or a chain's bridge) joins or at the end where the part
+// drops last. Each piece is a whole loop: a segment of the standard technique cuts one, a chain
+// several joined by bridges (each loop gets its gaps). The segment is split there:
 // the beam goes off before each gap, the head moves over the gap, and the next piece is a new
 // segment pierced on the contour (no lead-in) with the same feed and kerf side, marked `after_tab`
 // (with controller compensation its rapid follows the gap's corners). The lead-in stays

@@ -52,10 +52,6 @@ struct ShopRules {
 
   bool orders() const { return heat_distance_mm > 0 || (avoid_tip_up && tabs <= 0) || sheet_clamp.has_value(); }
   bool any() const { return orders() || avoid_tip_up || part_rigidity || tabs > 0; }
-  // Part rigidity (corner entries of each outer contour) and tabs (gaps in each outer contour's
-  // cut) are written for one pierce per contour: only the standard technique has that. The
-  // order rules (heat, tip-up, sheet rigidity) price any technique's segments.
-  bool standard_only() const { return part_rigidity || tabs > 0; }
 };
 
 // Human-readable problems with the rules (empty when valid), e.g. "--tab-width must be > 0".

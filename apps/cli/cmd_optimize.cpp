@@ -47,6 +47,7 @@ struct Opts {
   InputOptions input;
   pipeline::ShopRules rules;  // shop rules (docs/SHOP-RULES.md)
   std::string sheet_clamp;
+  std::string tab_lead_in = "auto";
 };
 
 struct Outputs {
@@ -113,6 +114,7 @@ int run(const Opts& o) {
   po.multi = o.multi;
   po.rules = o.rules;  // shop rules
   if (!o.sheet_clamp.empty()) po.rules.sheet_clamp = pipeline::parse_clamp_side(o.sheet_clamp);
+  po.rules.tab_lead_in = pipeline::parse_tab_lead_in(o.tab_lead_in).value_or(pipeline::TabLeadIn::automatic);
 
   // Output paths: one nest -> -o is the program file; several -> -o is a folder for all outputs.
   const bool batch = o.nests.size() > 1;
@@ -185,8 +187,9 @@ int run(const Opts& o) {
         continue;
       }
       for (Diagnostic d : res->diagnostics) {
-        // Printed: rapids left over freed parts, and cuts the controller's compensation may refuse.
-        if (d.code != "tip_up.time_limit" && d.code != "kerf.controller_detail") continue;
+        // Printed: rapids left over freed parts, cuts the controller's compensation may refuse, and
+        // cuts after a tab that resume on the part's edge although lead-ins were asked for.
+        if (d.code != "tip_up.time_limit" && d.code != "kerf.controller_detail" && d.code != "tabs.resumed_on_path") continue;
         if (d.file.empty()) d.file = o.nests[i];
         warnings[i] += "cutroute: " + format(d) + "\n";
       }
@@ -223,7 +226,7 @@ int run(const Opts& o) {
 }
 
 // Shop rules (docs/SHOP-RULES.md): every rule off unless asked for.
-void add_shop_rule_options(CLI::App* app, pipeline::ShopRules& r, std::string& clamp) {
+void add_shop_rule_options(CLI::App* app, pipeline::ShopRules& r, std::string& clamp, std::string& tab_lead_in) {
   const char* g = "Shop rules";
   app->add_option("--heat-distance", r.heat_distance_mm, "Heat: consecutive cuts at least this far apart where possible [mm] (0: off)")
       ->check(finite_range(0.0, 1e5))->group(g);
@@ -243,10 +246,14 @@ void add_shop_rule_options(CLI::App* app, pipeline::ShopRules& r, std::string& c
       ->check(finite_range(0.0, 1e6))->capture_default_str()->group(g);
   app->add_option("--sheet-band", r.sheet_band_mm, "Sheet rigidity: allowed step back behind the front [mm]")
       ->check(finite_range(0.0, 1e6))->capture_default_str()->group(g);
-  app->add_option("--tabs", r.tabs, "Micro-joints: uncut tabs per outer contour (0: off; standard technique only)")
+  app->add_option("--tabs", r.tabs, "Micro-joints: uncut tabs per outer contour (0: off; standard and chain techniques)")
       ->check(CLI::Range(0, 64))->group(g);
   app->add_option("--tab-width", r.tab_width_mm, "Micro-joints: tab width [mm]")
       ->check(finite_range(0.001, 1e3))->capture_default_str()->group(g);
+  app->add_option("--tab-lead-in", tab_lead_in,
+                  "Micro-joints: each cut after a tab starts with a lead-in from scrap (on), on the path (off), or "
+                  "auto: with a lead-in where the dialect cannot keep compensation on over the tab (plasma)")
+      ->check(CLI::IsMember({"auto", "on", "off"}))->capture_default_str()->group(g);
 }
 
 }  // namespace
@@ -306,7 +313,7 @@ void add_optimize(CLI::App& root, Commands& out) {
       ->check(CLI::Range(2, 8))
       ->capture_default_str();
   app->add_flag("-q,--quiet", o->quiet, "No progress and no summary");
-  add_shop_rule_options(app, o->rules, o->sheet_clamp);
+  add_shop_rule_options(app, o->rules, o->sheet_clamp, o->tab_lead_in);
   add_input_options(app, o->input);
   out.push_back({app, [o] { return run(*o); }});
 }

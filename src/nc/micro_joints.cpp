@@ -88,10 +88,17 @@ MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const 
           part.rapid_via = seg.rapid_via;
           part.after_tab = seg.after_tab;
           part.pieces.assign(seg.pieces.begin(), seg.pieces.begin() + static_cast<std::ptrdiff_t>(first));
+        } else if (auto lead = o.lead_in ? o.lead_in(piece.contour, stretch) : std::nullopt) {
+          lead->vertices.back().p = stretch.vertices.front().p;  // the lead ends where the cut resumes, to the bit
+          part.pierce = lead->vertices.front().p;
+          part.label = label + " after tab " + std::to_string(++tab_no);
+          part.pieces.push_back({std::move(*lead), PieceRole::lead_in, -1});
+          ++st.lead_ins;
         } else {
           part.pierce = stretch.vertices.front().p;
           part.label = label + " after tab " + std::to_string(++tab_no);
           part.after_tab = true;
+          st.on_path += o.lead_in != nullptr;
           // Under controller compensation the head crosses the gap on the offset path: along the
           // contour's corners, not across them (an arc in the gap is crossed on its chord, which
           // for a tab of a millimetre or two lies within a few hundredths of it).

@@ -125,9 +125,10 @@ nlohmann::json lead_json(const std::string& lead_in, const Evaluated& ev) {
   return j;
 }
 
-// `detour_stop`: where the shop rules' tip-up detour searches stop (see RunLimit).
-Evaluated evaluate(const model::Nest& nest, const std::vector<model::EntryCandidate>& seq, const Setup& s,
-                   const OptimizeOptions& o, const StopToken& detour_stop) {
+// `detour_stop`: where the shop rules' tip-up detour searches stop (see RunLimit). `planner`:
+// the nest's entry planner (the shop rules plan lead-ins after micro-joint gaps with it).
+Evaluated evaluate(const model::Nest& nest, const model::EntryPlanner& planner, const std::vector<model::EntryCandidate>& seq,
+                   const Setup& s, const OptimizeOptions& o, const StopToken& detour_stop) {
   std::vector<const model::EntryCandidate*> ptrs;
   ptrs.reserve(seq.size());
   for (const auto& e : seq) ptrs.push_back(&e);
@@ -140,7 +141,7 @@ Evaluated evaluate(const model::Nest& nest, const std::vector<model::EntryCandid
   Evaluated ev;
   ev.toolpath = nc::build_toolpath(nest, ptrs, to);
   if (o.rules.any()) {  // shop rules
-    ev.rules = rules::apply_to_toolpath(ev.toolpath, nest, o.rules, detour_stop);
+    ev.rules = rules::apply_to_toolpath(ev.toolpath, nest, o.rules, detour_stop, {planner, s.entries, s.dialect});
     if (ev.rules.contains("tip_up_program")) ev.detours_left = ev.rules["tip_up_program"]["unavoidable_left_at_time_limit"].get<int>();
   }
   ev.program = nc::write_gcode(ev.toolpath, s.dialect, nc::GcodeWriteOptions{o.title, true});
@@ -392,7 +393,7 @@ Result<Alternative> solve_alternative(const model::Nest& nest, const model::CutJ
 
   // 5-6. Program, frames, V_on*(n) with the lead type asked for (the others: compare_leads()).
   alt.detour_stop = run.detours(stop);
-  alt.best = evaluate(nest, seq, s, o, alt.detour_stop);
+  alt.best = evaluate(nest, planner, seq, s, o, alt.detour_stop);
   alt.lead_name = model::to_string(s.entries.lead.in_kind);
   alt.leads_json = nlohmann::json::array();
   alt.leads_json.push_back(lead_json(alt.lead_name, alt.best));
@@ -433,7 +434,7 @@ void compare_leads(const model::Nest& nest, const model::EntryPlanner& planner, 
     }
     if (const auto penalty = rules::tip_up_entry_penalty(nest, alt_seq, o.rules); penalty && o.refine_entries)
       refine_entries(other, s.prices, s.start, s.start, alt_seq, 2, alt.refine_stop, penalty);
-    Evaluated ev = evaluate(nest, alt_seq, s, o, alt.detour_stop);
+    Evaluated ev = evaluate(nest, planner, alt_seq, s, o, alt.detour_stop);
     alt.leads_json.push_back(lead_json(model::to_string(kind), ev));
     if (better(ev, alt.best)) {
       alt.best = std::move(ev);
@@ -465,6 +466,11 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   auto st = setup(o);
   if (!st) return st.error();
   Setup s = std::move(st).value();
+  // Each cut's kerf reaches half its width past the cut's end, into the gap on either side: a
+  // tab is w - kerf wide, and one no wider than the kerf is no tab at all.
+  if (o.rules.tabs > 0 && o.rules.tab_width_mm <= s.entries.kerf_mm)
+    return make_error("--tab-width " + format_fixed(o.rules.tab_width_mm, 3) + " mm is not wider than the kerf (" +
+                      format_fixed(s.entries.kerf_mm, 3) + " mm): the beam would cut every tab away");
   OptimizeResult result;
   for (const auto& w : s.conditions.warnings) result.diagnostics.push_back(make_warning(w));
   if (progress) progress({"entries", -1, {}});
@@ -612,6 +618,25 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
         (stop.cancelled() ? std::string("the run was interrupted before their detours were found")
                           : std::string("the time limit ran out before their detours were found (a longer --time-limit routes them around)")));
     w.code = "tip_up.time_limit";
+    result.diagnostics.push_back(std::move(w));
+  }
+
+  // Micro-joints asked to resume with lead-ins: the cuts after a tab where no lead-in fitted.
+  if (const auto* tabs = best_ev.rules.is_object() && best_ev.rules.contains("tabs") ? &best_ev.rules["tabs"] : nullptr;
+      tabs && (*tabs)["lead_in_after_tab"].get<bool>() && (*tabs)["resumed_on_path"].get<int>() > 0) {
+    constexpr int kNamed = 5;
+    std::string where;
+    int named = 0;
+    for (const auto& seg : best_ev.toolpath.segments)
+      if (seg.after_tab && named++ < kNamed) where += (where.empty() ? "" : ", ") + seg.label;
+    Diagnostic w = make_warning(
+        "micro-joints: " + std::to_string((*tabs)["resumed_on_path"].get<int>()) + " of " + std::to_string((*tabs)["tabs"].get<int>()) +
+        " cuts after a tab resume on the contour, with no room in the scrap for a lead-in (" + where +
+        (named > kNamed ? ", ..." : "") + "): the pierce marks the part's edge there" +
+        (nc::beam_switches_under_compensation(s.dialect) || o.kerf_mode != nc::KerfMode::controller
+             ? std::string()
+             : std::string(", and the compensation's entry move starts on it")));
+    w.code = "tabs.resumed_on_path";
     result.diagnostics.push_back(std::move(w));
   }
 

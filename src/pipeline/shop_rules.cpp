@@ -35,6 +35,21 @@ std::optional<ClampSide> parse_clamp_side(const std::string& s) {
   return std::nullopt;
 }
 
+const char* to_string(TabLeadIn t) {
+  switch (t) {
+    case TabLeadIn::automatic: return "auto";
+    case TabLeadIn::on: return "on";
+    case TabLeadIn::off: return "off";
+  }
+  return "auto";
+}
+
+std::optional<TabLeadIn> parse_tab_lead_in(const std::string& s) {
+  for (TabLeadIn t : {TabLeadIn::automatic, TabLeadIn::on, TabLeadIn::off})
+    if (s == to_string(t)) return t;
+  return std::nullopt;
+}
+
 std::vector<std::string> check(const ShopRules& r) {
   std::vector<std::string> e;
   auto finite_nonneg = [&](double v, const char* name) {
@@ -422,7 +437,13 @@ int place_rigid_entries(const model::Nest& nest, const model::CutJob& job, std::
   return corners;
 }
 
-nlohmann::json apply_to_toolpath(nc::Toolpath& path, const model::Nest& nest, const ShopRules& r, const StopToken& stop) {
+bool lead_in_after_tabs(const ShopRules& r, const nc::PostDialect& dialect) {
+  if (r.tabs <= 0 || r.tab_lead_in == TabLeadIn::off) return false;
+  return r.tab_lead_in == TabLeadIn::on || !nc::beam_switches_under_compensation(dialect);
+}
+
+nlohmann::json apply_to_toolpath(nc::Toolpath& path, const model::Nest& nest, const ShopRules& r, const StopToken& stop,
+                                 const ToolpathContext& context) {
   nlohmann::json j;
   if (r.avoid_tip_up && r.tabs <= 0) {
     const nc::DetourStats st = nc::route_rapids_around_freed_parts(path, nest, r.tip_up_margin_mm, stop);
@@ -434,9 +455,41 @@ nlohmann::json apply_to_toolpath(nc::Toolpath& path, const model::Nest& nest, co
                            {"detour_extra_mm", st.extra_mm}};
   }
   if (r.tabs > 0) {
-    const nc::MicroJointStats st = nc::add_micro_joints(path, nest, {r.tabs, r.tab_width_mm});
+    nc::MicroJointOptions mj{r.tabs, r.tab_width_mm, {}};
+    const bool lead_ins = lead_in_after_tabs(r, context.dialect);
+    // Straight lead-ins of the job's length, else of half of it where that is still longer than
+    // half the kerf (a compensation entry move must be): tight scrap between notches or parts.
+    std::vector<std::unique_ptr<model::EntryPlanner>> planners;
+    for (double scale : {1.0, 0.5}) {
+      model::EntryOptions straight = context.entries;
+      straight.lead.in_kind = model::LeadKind::line;
+      straight.lead.in_length_mm *= scale;
+      if (lead_ins && (scale == 1.0 || straight.lead.in_length_mm > context.entries.kerf_mm / 2 + tol::kSamePointMm))
+        planners.push_back(std::make_unique<model::EntryPlanner>(context.planner, straight));
+    }
+    // A straight lead-in at the point where the cut resumes, in its direction of travel: the
+    // planner checks it as any entry (pierce in scrap, clearance from every other contour).
+    if (lead_ins)
+      mj.lead_in = [&](std::int32_t contour, const geometry::Contour& resumed) -> std::optional<geometry::Contour> {
+        const model::ContourId id(contour);
+        const model::EntryPlanner& any = *planners.front();
+        const Vec2 at = resumed.vertices.front().p;
+        const double s = any.closest(id, at).first, len = any.contour_length(id);
+        // Travelling along the stored contour's orientation or against it: a point a little
+        // further along the resumed cut is the contour's point a little ahead of s or behind it.
+        const double d = std::min(0.05, geometry::length(resumed) / 4);
+        const Vec2 next = geometry::point_at_length(resumed, d);
+        const bool along = geometry::distance(next, any.point_at(id, std::fmod(s + d, len))) <
+                           geometry::distance(next, any.point_at(id, std::fmod(s - d + len, len)));
+        const bool stored_cw = geometry::orientation(nest.contours[id].source.contour) == geometry::Orientation::cw;
+        for (const auto& planner : planners)
+          if (auto e = planner->entry_at(id, s, along == stored_cw); e && e->lead_in.vertices.size() >= 2) return std::move(e->lead_in);
+        return std::nullopt;
+      };
+    const nc::MicroJointStats st = nc::add_micro_joints(path, nest, mj);
     j["tabs"] = {{"per_outer_contour", r.tabs}, {"width_mm", r.tab_width_mm}, {"contours", st.contours},
-                 {"tabs", st.tabs}, {"contours_too_short", st.skipped}};
+                 {"tabs", st.tabs}, {"contours_too_short", st.skipped}, {"lead_in_after_tab", lead_ins},
+                 {"lead_ins", st.lead_ins}, {"resumed_on_path", lead_ins ? st.on_path : st.tabs}};
   }
   return j;
 }
@@ -461,7 +514,7 @@ nlohmann::json report(const ShopRules& r, const nlohmann::json& order, const nlo
   }
   if (r.tabs > 0) {
     active.push_back("tabs");
-    settings["tabs"] = {{"count", r.tabs}, {"width_mm", r.tab_width_mm}};
+    settings["tabs"] = {{"count", r.tabs}, {"width_mm", r.tab_width_mm}, {"lead_in", to_string(r.tab_lead_in)}};
   }
   j["active"] = active;
   j["settings"] = settings;

@@ -9,6 +9,7 @@
 #include <cutroute/cost/route_problem.hpp>
 #include <cutroute/model/cut_job.hpp>
 #include <cutroute/model/nest.hpp>
+#include <cutroute/nc/post_dialect.hpp>
 #include <cutroute/nc/toolpath.hpp>
 #include <cutroute/pipeline/shop_rules.hpp>
 #include <cutroute/solve/problem.hpp>
@@ -57,10 +58,26 @@ EntryPenalty tip_up_entry_penalty(const model::Nest& nest, const std::vector<mod
 int place_rigid_entries(const model::Nest& nest, const model::CutJob& job, std::vector<model::EntryCandidate>& seq,
                         const ShopRules& r);
 
+// Does each cut after a micro-joint gap start with a lead-in (ShopRules::tab_lead_in, `auto`
+// resolved for this post dialect)?
+bool lead_in_after_tabs(const ShopRules& r, const nc::PostDialect& dialect);
+
+// What the toolpath step needs besides the nest: lead-ins after micro-joint gaps are planned as
+// entries, by the job's planner and entry options; the post dialect decides `auto`.
+struct ToolpathContext {
+  const model::EntryPlanner& planner;
+  const model::EntryOptions& entries;
+  const nc::PostDialect& dialect;
+};
+
 // Step 5 (toolpath): detours around freed parts, then tabs. Returns the report of both. The
 // detour searches stop when `stop` requests it (deadline or cancel): the rapids not yet routed
-// stay straight and are counted in tip_up_program.unavoidable_left_at_time_limit.
-nlohmann::json apply_to_toolpath(nc::Toolpath& path, const model::Nest& nest, const ShopRules& r, const StopToken& stop);
+// stay straight and are counted in tip_up_program.unavoidable_left_at_time_limit. Where
+// lead_in_after_tabs(), each cut after a gap is entered by a straight lead-in along the contour's
+// normal (the job's lead-in length), where one is admissible: a tangential lead-in would start
+// beside the gap and cut the tab off the skeleton.
+nlohmann::json apply_to_toolpath(nc::Toolpath& path, const model::Nest& nest, const ShopRules& r, const StopToken& stop,
+                                 const ToolpathContext& context);
 
 // The report's "rules" object: the active rules with their settings, and what they did (the
 // search's and the final route's effects, the toolpath passes, corner entries).

@@ -49,7 +49,7 @@ TEST(MicroJoints, CircleGetsNGapsOfWidthWAlongTheArc) {
   Toolpath tp = whole_contours(nest);
   const int n = 4;
   const double w = 2.0;
-  const auto st = add_micro_joints(tp, nest, {n, w});
+  const auto st = add_micro_joints(tp, nest, {n, w, {}});
   EXPECT_EQ(st.contours, 1);
   EXPECT_EQ(st.tabs, n);
   ASSERT_EQ(tp.segments.size(), static_cast<std::size_t>(n + 1));
@@ -90,7 +90,7 @@ TEST(MicroJoints, TooShortContoursStayWholeAndHolesAreNeverTabbed) {
   ASSERT_TRUE(hole_id.valid());
   hs.pieces.push_back({h, PieceRole::contour, hole_id.value()});
   tp.segments.insert(tp.segments.begin(), hs);
-  const auto st = add_micro_joints(tp, nest, {2, 4.0});  // tiny: 12 mm < 2 * 2 * 4 mm
+  const auto st = add_micro_joints(tp, nest, {2, 4.0, {}});  // tiny: 12 mm < 2 * 2 * 4 mm
   EXPECT_EQ(st.contours, 1);
   EXPECT_EQ(st.skipped, 1);
   EXPECT_EQ(tp.segments.size(), 1u + 3u + 1u);

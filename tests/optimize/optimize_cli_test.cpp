@@ -376,7 +376,9 @@ TEST_P(CorpusOptimize, ChainAndAutoProgramsAreAdmissible) {
 
 // Micro-joints with chain cutting over the corpus: every outer contour long enough for its two
 // 1-mm tabs is cut in three runs, short of the gaps, the rest once and whole; the report counts
-// the tabs the drawing has room for, and LinuxCNC's interpreter reads the program.
+// the tabs the drawing has room for, and LinuxCNC's interpreter reads the program. The laser
+// dialect resumes each cut on the path (compensation held over the gap), the plasma one with a
+// lead-in from scrap where one fits (the checker then finds it at the start of the run).
 // On deepnestsharp_TopsNest only the counts are checked: its parts are placed edge to edge and
 // pierced on their contours (no scrap for a lead-in), so a piece between two tabs can lie wholly
 // on an edge two parts share, and nothing in the program says which of them it cuts.
@@ -385,30 +387,45 @@ TEST_P(CorpusOptimize, ChainProgramsWithTabsAreAdmissible) {
   const std::string dxf = shared("data/dxf/" + GetParam() + ".dxf");
   const auto dir = temp_dir(GetParam() + "-tabs");
   const std::string extra = kOverlapping.count(GetParam()) ? "--allow-crossing " : "";
-  const OptRun run = optimize(dxf, dir, extra + "--technique chain --tabs 2", sanitized() ? "2" : "0.5");
-  ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
   auto loaded = io::load_nest(dxf, io::NestLoadOptions{});
   ASSERT_TRUE(loaded.ok());
-  ProgramCheckOptions opt;
-  opt.clearance_mm = 1.0;
-  opt.tabs = 2;
-  opt.tab_width_mm = 1.0;
-  const auto check = check_program(loaded->nest, run.program, opt);
-  if (!edge_to_edge)
-    for (const auto& f : check.failures) ADD_FAILURE() << f;
   int room = 0, outers = 0;
   for (const auto& c : loaded->nest.contours) {
     if (c.role != model::ContourRole::outer) continue;
     ++outers;
     room += geometry::length(c.source.contour) >= 4.0;
   }
-  const auto& tabs = run.report["rules"]["tabs"];
-  EXPECT_EQ(tabs["contours"].get<int>(), room);
-  EXPECT_EQ(tabs["contours_too_short"].get<int>(), outers - room);
-  EXPECT_EQ(run.report["pierces"].get<int>(), check.probe.pierces);
-  EXPECT_EQ(check.runs, run.report["basic_segments"].get<int>() + 2 * room);
-  EXPECT_NEAR(run.report["cut_length_mm"].get<double>(), check.cut_length, 1e-6 * check.cut_length + 1e-6);
-  expect_rs274_accepts(dir / "out.ngc");
+  for (const char* dialect : {"generic", "plasma-thc"}) {
+    SCOPED_TRACE(dialect);
+    const OptRun run = optimize(dxf, dir, extra + "--technique chain --tabs 2 --dialect " + dialect, sanitized() ? "2" : "0.5");
+    ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
+    ProgramCheckOptions opt;
+    opt.clearance_mm = 1.0;
+    opt.tabs = 2;
+    opt.tab_width_mm = 1.0;
+    const auto check = check_program(loaded->nest, run.program, opt);
+    if (!edge_to_edge)
+      for (const auto& f : check.failures) ADD_FAILURE() << f;
+    const auto& tabs = run.report["rules"]["tabs"];
+    EXPECT_EQ(tabs["contours"].get<int>(), room);
+    EXPECT_EQ(tabs["contours_too_short"].get<int>(), outers - room);
+    EXPECT_EQ(tabs["lead_ins"].get<int>() + tabs["resumed_on_path"].get<int>(), 2 * room);
+    if (std::string(dialect) == "generic") {
+      EXPECT_EQ(tabs["lead_ins"].get<int>(), 0);
+    }
+    // Where a lead-in was asked for and did not fit, a warning says how many cuts resume on the edge.
+    int warned = 0;
+    for (const auto& d : run.report["diagnostics"])
+      if (d.value("code", "") == "tabs.resumed_on_path") {
+        ++warned;
+        EXPECT_EQ(d["message"].get<std::string>().rfind("micro-joints: " + std::to_string(tabs["resumed_on_path"].get<int>()) + " of ", 0), 0u);
+      }
+    EXPECT_EQ(warned, tabs["lead_in_after_tab"].get<bool>() && tabs["resumed_on_path"].get<int>() > 0 ? 1 : 0);
+    EXPECT_EQ(run.report["pierces"].get<int>(), check.probe.pierces);
+    EXPECT_EQ(check.runs, run.report["basic_segments"].get<int>() + 2 * room);
+    EXPECT_NEAR(run.report["cut_length_mm"].get<double>(), check.cut_length, 1e-6 * check.cut_length + 1e-6);
+    expect_rs274_accepts(dir / "out.ngc");
+  }
   fs::remove_all(dir);
 }
 

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -441,6 +442,115 @@ TEST(ShopRules, TabsLeaveNGapsOfWidthW) {
   fs::remove_all(dir);
 }
 
+// The tool centre's path while the beam is on, as LinuxCNC's interpreter computes it with the kerf
+// loaded as the tool (G41/G42 applied): the closest it comes to a part's edge, and how many of its
+// samples lie inside a part. From the interpreter's canonical commands alone.
+struct KerfReach {
+  double closest = 1e300;  // [mm]
+  int inside = 0;
+};
+
+std::vector<double> canon_args(const std::string& line, const std::string& call) {
+  std::vector<double> v;
+  const auto at = line.find(call + "(");
+  if (at == std::string::npos) return v;
+  std::stringstream in(line.substr(at + call.size() + 1));
+  for (std::string field; std::getline(in, field, ',');) v.push_back(std::atof(field.c_str()));
+  return v;
+}
+
+KerfReach kerf_reach(const std::string& canon, const std::vector<Rect>& parts) {
+  KerfReach k;
+  Vec2 at{0, 0};
+  bool beam = false;
+  auto sample = [&](Vec2 q) {
+    for (const Rect& r : parts) {
+      k.closest = std::min(k.closest, r.boundary_distance(q));
+      k.inside += r.strictly_inside(q, 0.0);
+    }
+  };
+  std::stringstream in(canon);
+  for (std::string line; std::getline(in, line);) {
+    if (line.find("START_SPINDLE_CLOCKWISE") != std::string::npos) {
+      beam = true;
+      sample(at);  // the pierce
+    } else if (line.find("STOP_SPINDLE_TURNING") != std::string::npos) {
+      beam = false;
+    } else if (const auto t = canon_args(line, "STRAIGHT_TRAVERSE"); t.size() >= 2) {
+      at = {t[0], t[1]};
+    } else if (const auto f = canon_args(line, "STRAIGHT_FEED"); f.size() >= 2) {
+      const Vec2 to{f[0], f[1]};
+      for (int i = 1; i <= 50 && beam; ++i) sample(at + (to - at) * (i / 50.0));
+      at = to;
+    } else if (const auto a = canon_args(line, "ARC_FEED"); a.size() >= 5) {
+      const Vec2 to{a[0], a[1]}, c{a[2], a[3]};
+      const double a0 = std::atan2(at.y - c.y, at.x - c.x), a1 = std::atan2(to.y - c.y, to.x - c.x);
+      const double turn = 2 * std::numbers::pi, rad = std::hypot(at.x - c.x, at.y - c.y);
+      double sweep = a[4] > 0 ? std::fmod(a1 - a0 + 2 * turn, turn) : -std::fmod(a0 - a1 + 2 * turn, turn);
+      if (std::abs(sweep) < 1e-12) sweep = a[4] > 0 ? turn : -turn;
+      for (int i = 1; i <= 50 && beam; ++i) {
+        const double u = a0 + sweep * i / 50.0;
+        sample({c.x + rad * std::cos(u), c.y + rad * std::sin(u)});
+      }
+      at = to;
+    }
+  }
+  return k;
+}
+
+// After a tab a plasma program (torch-height codes: compensation off over the gap) resumes with a
+// straight lead-in from scrap: the compensation's entry move then starts off the part, and the
+// pierce leaves no mark on its edge. Pierced on the contour, the torch starts on the part's edge.
+TEST(ShopRules, TabsOnPlasmaResumeWithALeadInSoTheKerfNeverTouchesAPart) {
+  const auto dir = temp_dir("tab_leads");
+  const auto parts = grid(3, 2);
+  const auto dxf = write_nest(dir, parts, 220, 160);
+  const double kerf = 1.5;
+  const std::string plasma = "--dialect plasma-thc --kerf 1.5 --tabs 2 --tab-width 3 ";
+  const Program led = optimize(dxf, dir, plasma, parts);
+  const auto& tabs = led.report["rules"]["tabs"];
+  EXPECT_TRUE(tabs["lead_in_after_tab"].get<bool>());
+  EXPECT_EQ(tabs["lead_ins"], static_cast<int>(parts.size()) * 2);
+  EXPECT_EQ(tabs["resumed_on_path"], 0);
+  ASSERT_EQ(led.runs.size(), parts.size() * 3);
+  const std::string led_text = led.text;
+  for (const auto& r : led.runs) {  // every pierce in scrap, more than half a kerf off the parts
+    const Vec2 pierce{r.moves.front()->x0, r.moves.front()->y0};
+    for (const Rect& part : parts) EXPECT_GT(part.boundary_distance(pierce), kerf / 2) << pierce.x << " " << pierce.y;
+  }
+  const Program on_path = optimize(dxf, dir, plasma + "--tab-lead-in off", parts);
+  EXPECT_EQ(on_path.report["rules"]["tabs"]["lead_ins"], 0);
+  EXPECT_EQ(on_path.report["rules"]["tabs"]["resumed_on_path"], static_cast<int>(parts.size()) * 2);
+  EXPECT_LT(on_path.report["t_cut_s"].get<double>(), led.report["t_cut_s"].get<double>()) << "the leads cost time";
+  if (std::system("command -v rs274 >/dev/null 2>&1") == 0) {
+    const auto prog = dir / "check.ngc";
+    std::ofstream(prog) << led_text;
+    const auto rs = run_rs274(prog.string(), kerf);
+    ASSERT_EQ(rs.exit_code, 0) << rs.out;
+    const KerfReach k = kerf_reach(rs.out, parts);
+    EXPECT_EQ(k.inside, 0);
+    EXPECT_GT(k.closest, kerf / 2 - 2e-3) << "the kerf reaches into a part";
+    std::ofstream(prog) << on_path.text;
+    const auto rs_off = run_rs274(prog.string(), kerf);
+    ASSERT_EQ(rs_off.exit_code, 0) << rs_off.out;
+    EXPECT_LT(kerf_reach(rs_off.out, parts).closest, 0.01) << "pierced on the contour, the torch starts on the part's edge";
+  }
+  // A laser dialect keeps compensation on over the gap and pierces on the path unless asked.
+  const Program laser = optimize(dxf, dir, "--tabs 2 --tab-width 3", parts);
+  EXPECT_FALSE(laser.report["rules"]["tabs"]["lead_in_after_tab"].get<bool>());
+  EXPECT_EQ(laser.text, optimize(dxf, dir, "--tabs 2 --tab-width 3 --tab-lead-in off", parts).text);
+  const Program laser_led = optimize(dxf, dir, "--tabs 2 --tab-width 3 --tab-lead-in on", parts);
+  EXPECT_EQ(laser_led.report["rules"]["tabs"]["lead_ins"], static_cast<int>(parts.size()) * 2);
+  expect_admissible(dxf, laser_led, 2, 3.0);
+  // A tab no wider than the kerf would be cut away: refused.
+  const auto narrow = run_command(cli_path() + " optimize " + dxf + " -o " + (dir / "x.ngc").string() +
+                                  " --quiet --kerf 1.5 --tabs 2 --tab-width 1.5");
+  EXPECT_EQ(narrow.exit_code, 2);
+  EXPECT_NE(narrow.err.find("not wider than the kerf"), std::string::npos) << narrow.err;
+  EXPECT_FALSE(fs::exists(dir / "x.ngc"));
+  fs::remove_all(dir);
+}
+
 TEST(ShopRules, OffMeansOffAndAllRulesTogetherStayAdmissibleAndDeterministic) {
   const auto dir = temp_dir("all");
   const auto parts = grid(3, 3);
@@ -672,7 +782,8 @@ TEST(ShopRules, AutoComparesTechniquesByTimePlusTheRulesPrice) {
 TEST(ShopRules, BadRuleOptionsAreUsageErrors) {
   const auto dir = temp_dir("bad");
   const auto dxf = write_nest(dir, grid(2, 1), 160, 100);
-  for (const char* bad : {"--sheet-clamp middle", "--tabs -1", "--heat-distance -3", "--tab-width 0", "--heat-memory 0"}) {
+  for (const char* bad : {"--sheet-clamp middle", "--tabs -1", "--heat-distance -3", "--tab-width 0", "--heat-memory 0",
+                          "--tabs 2 --tab-lead-in sometimes"}) {
     const auto r = run_command(cli_path() + " optimize " + dxf + " -o " + (dir / "x.ngc").string() + " --quiet " + bad);
     EXPECT_EQ(r.exit_code, 1) << bad;
     EXPECT_FALSE(fs::exists(dir / "x.ngc"));

@@ -1,20 +1,34 @@
 // Micro-joints (tabs): a post-pass that leaves N uncut gaps of width w on every outer contour of a toolpath.
 #pragma once
 
+#include <cstdint>
+#include <functional>
+#include <optional>
+
 #include <cutroute/model/nest.hpp>
 #include <cutroute/nc/toolpath.hpp>
 
 namespace cutroute::nc {
 
+// A lead-in for a cut resumed after a gap: the open path from a pierce in scrap to the start of
+// `resumed` (the stretch of nest contour `contour` cut next, in its direction of travel), or
+// nullopt where none is admissible. The pipeline makes it with the job's own leads.
+using ResumeLeadIn = std::function<std::optional<geometry::Contour>(std::int32_t contour, const geometry::Contour& resumed)>;
+
 struct MicroJointOptions {
   int tabs = 0;              // tabs per outer contour; 0: off
   double width_mm = 1.0;     // length of each uncut gap, measured along the programmed path [mm]
+  // Empty: each cut after a gap is pierced on the path. Else it starts with this lead-in where
+  // one is admissible (and on the path where none is).
+  ResumeLeadIn lead_in;
 };
 
 struct MicroJointStats {
   int contours = 0;          // outer contours that got tabs
   int tabs = 0;              // gaps left in total
   int skipped = 0;           // outer contours too short for their tabs (left whole)
+  int lead_ins = 0;          // cuts after a gap entered by a lead-in
+  int on_path = 0;           // cuts after a gap pierced on the path although a lead-in was asked for
 };
 
 // Every contour piece of an outer contour (of length L, the overcut past it excluded) gets its
@@ -23,10 +37,13 @@ struct MicroJointStats {
 // drops last. Each piece is a whole loop: a segment of the standard technique cuts one, a chain
 // several joined by bridges (each loop gets its gaps). The segment is split there:
 // the beam goes off before each gap, the head moves over the gap, and the next piece is a new
-// segment pierced on the contour (no lead-in) with the same feed and kerf side, marked `after_tab`
-// (with controller compensation its rapid follows the gap's corners). The lead-in stays
-// on the first piece, the lead-out (and the overcut) on the last. A contour whose gaps would not
-// leave at least one gap width of cut between them (N · 2w > L) is left whole and counted.
+// segment with the same feed and kerf side: pierced on the contour (no lead-in) and marked
+// `after_tab` (with controller compensation its rapid follows the gap's corners), or, with
+// `lead_in`, entered from scrap like any cut (a pierce off the part: no pierce mark on its edge,
+// and a compensation entry move where the controller cannot hold the offset over the gap). The
+// first lead-in stays on the first piece, the lead-out (and the overcut) on the last. A contour
+// whose gaps would not leave at least one gap width of cut between them (N · 2w > L) is left
+// whole and counted.
 MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const MicroJointOptions& options);
 
 }  // namespace cutroute::nc

@@ -11,6 +11,13 @@ enum class ClampSide { left, right, bottom, top };
 const char* to_string(ClampSide s);
 std::optional<ClampSide> parse_clamp_side(const std::string& s);
 
+// How a cut resumes after a micro-joint gap: pierced on the path (off), or entered from scrap by
+// the job's lead-in (on); automatic: with a lead-in where the post dialect cannot keep controller
+// compensation on over the gap (torch-height or M62-M68 codes: plasma), on the path elsewhere.
+enum class TabLeadIn { automatic, on, off };
+const char* to_string(TabLeadIn t);  // "auto", "on", "off"
+std::optional<TabLeadIn> parse_tab_lead_in(const std::string& s);
+
 // Every rule is off by default; a default run is byte-identical to a run without rules. Weights
 // are in the objective's unit (seconds for --objective time, cost units for cost) and are added
 // to the route's price only while sequencing: the report's T_cut stays the machine time.
@@ -46,6 +53,10 @@ struct ShopRules {
   // Parts held by tabs do not fall or tip: with tabs no part counts as cut free for tip-up.
   int tabs = 0;
   double tab_width_mm = 1.0;        // [mm]
+  // A cut resumed on the path after a gap starts with a pierce mark on the part's edge and, where
+  // the controller switched compensation off over the gap, with an entry move from half a kerf
+  // inside the part; a lead-in from scrap avoids both, at the price of its length.
+  TabLeadIn tab_lead_in = TabLeadIn::automatic;
 
   // Evaluation budget of the history-dependent local search (solve/history_search.hpp).
   long long search_evaluations = 400000;

@@ -7,6 +7,7 @@
 
 #include <cutroute/core/number_format.hpp>
 #include <cutroute/core/stop.hpp>
+#include <cutroute/io/batch_summary.hpp>
 #include <cutroute/io/output_file.hpp>
 #include <cutroute/io/route_picture.hpp>
 #include <cutroute/pipeline/optimize.hpp>
@@ -147,6 +148,7 @@ int run(const Opts& o) {
   std::vector<int> codes(o.nests.size(), kOk);
   std::vector<std::string> messages(o.nests.size());
   std::vector<std::string> warnings(o.nests.size());  // printed even with --quiet: the program is less safe or less sure to run than asked for
+  std::vector<nlohmann::json> reports(o.nests.size());  // of the nests cut (null for the others): the batch summary
   std::atomic<std::size_t> next{0};
   auto work = [&] {
     for (std::size_t i = next++; i < o.nests.size(); i = next++) {
@@ -194,6 +196,7 @@ int run(const Opts& o) {
         warnings[i] += "cutroute: " + format(d) + "\n";
       }
       const auto& r = res->report;
+      if (batch) reports[i] = r;
       messages[i] = o.nests[i] + ": " + std::to_string(r["pierces"].get<std::size_t>()) + " pierces, cut " +
                     format_fixed(r["cut_length_mm"].get<double>(), 1) + " mm, rapid " +
                     format_fixed(r["rapid_length_mm"].get<double>(), 1) + " mm, " +
@@ -221,6 +224,23 @@ int run(const Opts& o) {
     } else if (!o.quiet) {
       std::cout << messages[i] << '\n';
     }
+  }
+  // A batch's sheets in one table with their totals, for a quote or a shift plan.
+  if (batch) {
+    std::vector<io::BatchEntry> entries(o.nests.size());
+    double t_cut = 0;
+    std::size_t cut = 0;
+    for (std::size_t i = 0; i < o.nests.size(); ++i) {
+      entries[i] = {o.nests[i], codes[i] == kOk ? outs[i].program : std::string(), reports[i], codes[i] == kOk ? std::string() : messages[i]};
+      if (reports[i].is_object()) t_cut += reports[i]["t_cut_s"].get<double>(), ++cut;
+    }
+    const auto summary = (std::filesystem::path(o.out) / "summary.csv").string();
+    if (const Status st = io::write_file_atomic(summary, io::batch_summary_csv(entries)); !st) {
+      std::cerr << "cutroute: " << format(st.error()) << '\n';
+      return kInputError;
+    }
+    if (!o.quiet)
+      std::cout << cut << " of " << o.nests.size() << " nests cut, T_cut " << format_fixed(t_cut, 2) << " s in all -> " << summary << '\n';
   }
   return code;
 }
@@ -297,7 +317,7 @@ void add_optimize(CLI::App& root, Commands& out) {
                   "Basic segments: standard (one per contour), chain (neighbouring parts joined by bridges), "
                   "common (shared edges cut once), multi (long contours cut in pieces, ECP), auto (each available "
                   "one solved, the fastest kept, with shop rules the fastest plus the rules' price; multi only with "
-                  "--multi-segment; only standard with --part-rigidity or --tabs)")
+                  "--multi-segment; only standard with --part-rigidity, standard and chain with --tabs)")
       ->check(CLI::IsMember({"standard", "chain", "common", "multi", "auto"}))
       ->capture_default_str();
   app->add_option("--chain-gap", o->chain_gap, "Chain cutting: largest gap between parts bridged [mm]")

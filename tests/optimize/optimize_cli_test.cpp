@@ -1,11 +1,13 @@
 // `cutroute optimize` end to end: the written program re-parsed and checked against the nest.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 #include <nlohmann/json.hpp>
 
@@ -315,6 +317,88 @@ TEST(OptimizeCli, SeveralNestsInParallelEachToItsOwnOutputs) {
       EXPECT_TRUE(fs::exists(out / (std::string(stem) + ext))) << stem << ext;
     }
   }
+  fs::remove_all(dir);
+}
+
+// RFC 4180 rows: quoted fields may hold commas, doubled quotes and line breaks.
+std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
+  std::vector<std::vector<std::string>> rows(1);
+  std::string cell;
+  bool quoted = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') cell += '"', ++i;
+      else if (c == '"') quoted = false;
+      else cell += c;
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      rows.back().push_back(cell), cell.clear();
+    } else if (c == '\n') {
+      rows.back().push_back(cell), cell.clear();
+      rows.emplace_back();
+    } else {
+      cell += c;
+    }
+  }
+  if (rows.back().empty()) rows.pop_back();
+  return rows;
+}
+
+TEST(OptimizeCli, BatchSummaryListsEverySheetAndTheirTotals) {
+  const auto dir = temp_dir("batch-summary");
+  const auto a = (dir / "a.dxf").string(), b = (dir / "sheet,1.dxf").string(), bad = (dir / "bad.dxf").string();
+  ASSERT_EQ(run_command(cli_path() + " demo " + a).exit_code, 0);
+  std::ofstream(b) << read_text(a);
+  std::ofstream(bad) << "0\nSECTION\nbroken\n";
+  const auto out = dir / "out";
+  const auto r = run_command(cli_path() + " optimize " + a + " " + bad + " " + b + " -o " + out.string() + " --time-limit 1");
+  EXPECT_EQ(r.exit_code, 2) << "one nest failed";
+  EXPECT_NE(r.out.find("2 of 3 nests cut"), std::string::npos) << r.out;
+  const auto rows = parse_csv(read_text(out / "summary.csv"));
+  ASSERT_EQ(rows.size(), 5u);
+  const std::vector<std::string> header = {"nest", "status", "technique", "material", "thickness_mm", "pierces", "cut_length_mm",
+                                           "rapid_length_mm", "frames", "t_cut_s", "t_cut_const_speed_s", "cost", "cost_unit",
+                                           "route", "program", "error"};
+  ASSERT_EQ(rows[0], header);
+  for (const auto& row : rows) ASSERT_EQ(row.size(), header.size());
+  auto col = [&](const char* name) { return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin()); };
+  // One row per nest in the order given, each with what its report says.
+  double pierces = 0, t_cut = 0, cut = 0;
+  for (const auto& [row, nest, stem] : {std::tuple{1, a, "a"}, std::tuple{3, b, "sheet,1"}}) {
+    const auto& cells = rows[static_cast<std::size_t>(row)];
+    EXPECT_EQ(cells[col("nest")], nest);
+    EXPECT_EQ(cells[col("status")], "ok");
+    EXPECT_EQ(cells[col("program")], (out / (std::string(stem) + ".ngc")).string());
+    const auto rep = nlohmann::json::parse(read_text(out / (std::string(stem) + ".json")));
+    EXPECT_EQ(cells[col("technique")], rep["chosen"]);
+    EXPECT_EQ(std::stoi(cells[col("pierces")]), rep["pierces"].get<int>());
+    EXPECT_EQ(std::stoi(cells[col("frames")]), rep["frames"].get<int>());
+    EXPECT_NEAR(std::stod(cells[col("t_cut_s")]), rep["t_cut_s"].get<double>(), 0.005);
+    EXPECT_NEAR(std::stod(cells[col("cut_length_mm")]), rep["cut_length_mm"].get<double>(), 0.05);
+    // Proven optimal when the search had the time, else the gap to the lower bound.
+    if (rep["solver"]["status"] == "optimal") {
+      EXPECT_EQ(cells[col("route")], "optimal");
+    } else {
+      EXPECT_EQ(cells[col("route")].rfind("gap ", 0), 0u) << cells[col("route")];
+    }
+    pierces += rep["pierces"].get<double>();
+    t_cut += rep["t_cut_s"].get<double>();
+    cut += rep["cut_length_mm"].get<double>();
+  }
+  EXPECT_EQ(rows[2][col("nest")], bad);
+  EXPECT_EQ(rows[2][col("status")], "error");
+  EXPECT_NE(rows[2][col("error")].find("bad.dxf"), std::string::npos);
+  EXPECT_EQ(rows[2][col("program")], "");
+  EXPECT_FALSE(fs::exists(out / "bad.ngc"));
+  // The totals of the sheets that were cut.
+  const auto& total = rows[4];
+  EXPECT_EQ(total[col("nest")], "total");
+  EXPECT_EQ(total[col("status")], "2 of 3 cut");
+  EXPECT_EQ(std::stod(total[col("pierces")]), pierces);
+  EXPECT_NEAR(std::stod(total[col("t_cut_s")]), t_cut, 0.005);
+  EXPECT_NEAR(std::stod(total[col("cut_length_mm")]), cut, 0.05);
   fs::remove_all(dir);
 }
 

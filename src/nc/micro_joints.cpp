@@ -66,16 +66,36 @@ MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const 
       }
       ++st.contours;
       st.tabs += n;
+      const CutPiece piece = *it;
+      // Gap k centred at g_k = (k + 1/2) L / N. With lead-ins, a gap whose resumed cut has no room
+      // for one is moved along the contour, by up to a quarter of the spacing less a gap width
+      // either way, to the nearest place that has (notches, a neighbour close to that edge).
+      std::vector<double> centre(static_cast<std::size_t>(n));
+      std::vector<std::optional<Contour>> lead(static_cast<std::size_t>(n) + 1);
+      const double spacing = contour_len / n, step = std::max(w, 1.0), reach = spacing / 4 - w;
+      for (int k = 0; k < n; ++k) {
+        const double g = (k + 0.5) * spacing;
+        centre[static_cast<std::size_t>(k)] = g;
+        if (!o.lead_in) continue;
+        for (int t = 0; t <= 6; ++t) {
+          const double shift = (t + 1) / 2 * step * (t % 2 ? 1 : -1);
+          if (std::abs(shift) > reach && t > 0) break;
+          const double resume = g + shift + w / 2;
+          if (auto l = o.lead_in(piece.contour, sub_path(piece.path, resume, std::min(resume + step, piece_len)))) {
+            centre[static_cast<std::size_t>(k)] = g + shift;
+            lead[static_cast<std::size_t>(k) + 1] = std::move(l);
+            break;
+          }
+        }
+      }
       // Cut stretches between the gaps: [0, g0 - w/2], [g0 + w/2, g1 - w/2], ..., [g_{n-1} + w/2, piece end].
       std::vector<std::pair<double, double>> keep;
       double at = 0;
-      for (int k = 0; k < n; ++k) {
-        const double g = (k + 0.5) * contour_len / n;
+      for (const double g : centre) {
         keep.emplace_back(at, g - w / 2);
         at = g + w / 2;
       }
       keep.emplace_back(at, piece_len);
-      const CutPiece piece = *it;
       const std::vector<CutPiece> after(seg.pieces.begin() + static_cast<std::ptrdiff_t>(first) + 1, seg.pieces.end());
       for (std::size_t j = 0; j < keep.size(); ++j) {
         CutSegment part;
@@ -88,11 +108,11 @@ MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const 
           part.rapid_via = seg.rapid_via;
           part.after_tab = seg.after_tab;
           part.pieces.assign(seg.pieces.begin(), seg.pieces.begin() + static_cast<std::ptrdiff_t>(first));
-        } else if (auto lead = o.lead_in ? o.lead_in(piece.contour, stretch) : std::nullopt) {
-          lead->vertices.back().p = stretch.vertices.front().p;  // the lead ends where the cut resumes, to the bit
-          part.pierce = lead->vertices.front().p;
+        } else if (auto& l = lead[j]) {
+          l->vertices.back().p = stretch.vertices.front().p;  // the lead ends where the cut resumes, to the bit
+          part.pierce = l->vertices.front().p;
           part.label = label + " after tab " + std::to_string(++tab_no);
-          part.pieces.push_back({std::move(*lead), PieceRole::lead_in, -1});
+          part.pieces.push_back({std::move(*l), PieceRole::lead_in, -1});
           ++st.lead_ins;
         } else {
           part.pierce = stretch.vertices.front().p;

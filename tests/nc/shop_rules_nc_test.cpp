@@ -96,6 +96,54 @@ TEST(MicroJoints, TooShortContoursStayWholeAndHolesAreNeverTabbed) {
   EXPECT_EQ(tp.segments.size(), 1u + 3u + 1u);
 }
 
+// With lead-ins the cut after each gap starts with the lead-in the callback gives; a gap whose
+// resumed cut gets none is moved along the contour (by a gap width or 1 mm at a time, further on
+// first, up to a quarter of the spacing less a gap width) to the nearest place that gets one.
+TEST(MicroJoints, LeadInsAfterGapsAndGapsMovedToWhereOneFits) {
+  const auto nest = nest_of({geometry::rectangle({0, 0, 100, 100})});
+  Toolpath tp = whole_contours(nest);
+  const geometry::Contour loop = tp.segments.front().pieces.front().path;  // 400 mm from its first vertex
+  auto along = [&](Vec2 p) { return geometry::closest_point(loop, p).length_along; };
+  const double w = 2.0;
+  // The callback stands for the entry planner: a 3-mm lead wherever the cut resumes 90-100 mm or
+  // 290-310 mm along the loop, no room elsewhere.
+  std::vector<double> asked;
+  MicroJointOptions o{2, w, [&](std::int32_t, const geometry::Contour& resumed) -> std::optional<geometry::Contour> {
+                        const double s = along(resumed.vertices.front().p);
+                        asked.push_back(s);
+                        if (!((s >= 90 && s < 100) || (s >= 290 && s <= 310))) return std::nullopt;
+                        geometry::Contour lead;
+                        lead.closed = false;
+                        lead.vertices = {{resumed.vertices.front().p + Vec2{0, -3}, 0.0}, {resumed.vertices.front().p, 0.0}};
+                        return lead;
+                      }};
+  const auto st = add_micro_joints(tp, nest, o);
+  EXPECT_EQ(st.tabs, 2);
+  EXPECT_EQ(st.lead_ins, 2);
+  EXPECT_EQ(st.on_path, 0);
+  // Gap 1 (centre 100: the cut resumes at 101) moves: 103 refused, then 99; gap 2 (301) stays.
+  ASSERT_EQ(asked.size(), 4u);
+  EXPECT_NEAR(asked[0], 101, 1e-9);
+  EXPECT_NEAR(asked[1], 103, 1e-9);
+  EXPECT_NEAR(asked[2], 99, 1e-9);
+  EXPECT_NEAR(asked[3], 301, 1e-9);
+  ASSERT_EQ(tp.segments.size(), 3u);
+  for (std::size_t k = 1; k < tp.segments.size(); ++k) {
+    const auto& seg = tp.segments[k];
+    ASSERT_EQ(seg.pieces.size(), 2u);
+    EXPECT_EQ(seg.pieces[0].role, PieceRole::lead_in);
+    EXPECT_FALSE(seg.after_tab);
+    EXPECT_EQ(seg.pierce, seg.pieces[0].path.vertices.front().p);
+    const Vec2 resume = seg.pieces[1].path.vertices.front().p;
+    EXPECT_EQ(seg.pieces[0].path.vertices.back().p, resume) << "the lead ends where the cut resumes";
+    // Every gap is w long along the loop, wherever it went.
+    const Vec2 end_before = tp.segments[k - 1].pieces.back().path.vertices.back().p;
+    EXPECT_NEAR(along(resume) - along(end_before), w, 1e-9);
+    EXPECT_NEAR(along(resume), k == 1 ? 99 : 301, 1e-9);
+  }
+  EXPECT_NEAR(along(tp.segments.back().pieces.back().path.vertices.back().p), 0, 1e-9) << "the last piece ends the loop";
+}
+
 TEST(RapidDetours, CrossingIsDetectedCornerToCornerAndDetourKeepsClear) {
   const auto nest = nest_of({geometry::rectangle({10, 10, 30, 30}), geometry::rectangle({50, 50, 70, 70})});
   const PartObstacles obs(nest, 2.0);

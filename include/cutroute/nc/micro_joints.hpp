@@ -32,7 +32,9 @@ struct MicroJointStats {
 };
 
 // Every contour piece of an outer contour (of length L, the overcut past it excluded) gets its
-// tabs centred at (k + 1/2) L / N from the point where that piece enters it, k = 0..N-1, so none
+// tabs centred at (k + 1/2) L / N from the point where that piece enters it, k = 0..N-1 (with
+// `lead_in`, a gap whose resumed cut gets none moves by steps of max(w, 1 mm), further on first,
+// up to L / 4N - w either way, to the nearest place whose resumed cut gets one), so none
 // sits at the entry where the lead-in (or a chain's bridge) joins or at the end where the part
 // drops last. Each piece is a whole loop: a segment of the standard technique cuts one, a chain
 // several joined by bridges (each loop gets its gaps). The segment is split there:

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <numbers>
 #include <sstream>
+#include <tuple>
 
 #include <nlohmann/json.hpp>
 
@@ -664,6 +665,31 @@ TEST(ShopRules, SheetRigiditySweepsChainsAwayFromTheClamp) {
   ASSERT_EQ(top.runs.size(), 12u);
   EXPECT_TRUE(row_order_down(top));
   EXPECT_EQ(top.report["rules"]["route"]["sheet"]["steps_behind_front"], 0);
+  fs::remove_all(dir);
+}
+
+// A chain is measured against the sweep front by its part nearest the clamp and moves the front
+// to its farthest part. Clamped left: a chain of two squares at x = 100 and 145 and a lone square,
+// in two rows. With the lone square at x = 140 the chain goes first (then 5 mm back to 140; the
+// square first would leave the chain's 100 40 mm behind); with it at x = 105 the square goes first
+// (5 mm back against 40). A chain priced by its farthest part only gets the first case wrong (the
+// square first is then free), by its nearest part only the second (the chain first is then free).
+TEST(ShopRules, SheetRigidityMeasuresAChainByItsNearestPartAndMovesTheFrontToItsFarthest) {
+  const auto dir = temp_dir("sheet_chain_ends");
+  for (const auto& [lone_x, chain_y, lone_y, chain_goes_first] : {std::tuple{140.0, 130.0, 50.0, true}, std::tuple{105.0, 50.0, 130.0, false}}) {
+    SCOPED_TRACE("lone square at x = " + std::to_string(lone_x));
+    const std::vector<Rect> parts = {{80, chain_y - 20, 120, chain_y + 20},
+                                     {125, chain_y - 20, 165, chain_y + 20},
+                                     {lone_x - 20, lone_y - 20, lone_x + 20, lone_y + 20}};
+    const auto dxf = write_nest(dir, parts, 250, 200);
+    auto chain_first = [&](const Program& p) {
+      const auto runs = parts_of_runs(p, parts);
+      EXPECT_EQ(runs.size(), 2u);
+      return !runs.empty() && runs.front().size() == 2;
+    };
+    const Program left = optimize(dxf, dir, "--sheet-clamp left --sheet-weight 2", parts, "chain");
+    EXPECT_EQ(chain_first(left), chain_goes_first);
+  }
   fs::remove_all(dir);
 }
 

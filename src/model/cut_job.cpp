@@ -329,6 +329,17 @@ struct EntryPlanner::Impl {
     return lead;
   }
 
+  // Does the lead start with a move longer than min_lead_mm, and is each of its arcs wider?
+  bool long_enough(const Contour& lead) const {
+    if (opt.min_lead_mm <= 0 || geometry::segment_count(lead) == 0) return true;
+    if (!(geometry::segment(lead, 0).length() > opt.min_lead_mm)) return false;
+    for (std::size_t i = 0; i < geometry::segment_count(lead); ++i) {
+      const geometry::Segment seg = geometry::segment(lead, i);
+      if (seg.is_arc() && !(seg.radius() > opt.min_lead_mm)) return false;
+    }
+    return true;
+  }
+
   // `variant` 0: the normal shape; 1: straight along the scrap normal; 2: along `alt` (the
   // bisector at a corner). Tried in this order when the first one is not admissible.
   Contour lead_out(Vec2 p, Vec2 t, Vec2 n, bool left, double scale, int variant = 0, Vec2 alt = {}) const {
@@ -590,6 +601,7 @@ std::vector<EntryCandidate> EntryPlanner::candidates(ContourId id, Diagnostics& 
       const double total = impl_->length[id.index()];
       for (const auto& site : impl_->sites(path)) {
         if (auto e = impl_->build(id, path, site.s, cw, site.corner, scale, total)) {
+          if (scale < 1.0 && !impl_->long_enough(e->lead_in)) continue;
           if (scale < 1.0) e->fallback = Fallback::short_lead;
           out.push_back(std::move(*e));
         }

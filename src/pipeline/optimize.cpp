@@ -47,6 +47,7 @@ struct Setup {
   model::EntryOptions entries;
   cost::RoutePrices prices;
   geometry::Vec2 start;
+  std::vector<Diagnostic> diagnostics;  // what the set-up changed of what was asked for
 };
 
 Result<Setup> setup(const OptimizeOptions& o) {
@@ -79,6 +80,30 @@ Result<Setup> setup(const OptimizeOptions& o) {
     s.entries.lead.in_arc_radius_mm = tech->lead_in_mm / 2;
   }
   if (tech && tech->lead_out_mm > 0) s.entries.lead.out_length_mm = tech->lead_out_mm;
+  // Controller compensation needs leads that are long against half the kerf, r: LinuxCNC refuses
+  // an entry move no longer than r, an inside arc of radius r or less, and a move into an inside
+  // corner shorter than r tan(θ/2) (a lead-out at a corner turns back by up to 135°: 2.4 r). The
+  // profile's leads are sized for its own kerf; a wider one (a plasma kerf with the laser profile:
+  // lead-in arcs of the kerf's half, 22 blocks of vrs_Lv10_SHEET_004 refused) scales them up.
+  if (o.kerf_mode == nc::KerfMode::controller) {
+    const double r = s.entries.kerf_mm / 2;
+    model::LeadSpec& lead = s.entries.lead;
+    const model::LeadSpec asked = lead;
+    lead.in_length_mm = std::max(lead.in_length_mm, 2 * r);
+    lead.in_arc_radius_mm = std::max(lead.in_arc_radius_mm, 2 * r);
+    lead.out_length_mm = std::max(lead.out_length_mm, 3 * r);
+    s.entries.min_lead_mm = r;  // shortened leads of tight spots too
+    if (lead.in_length_mm != asked.in_length_mm || lead.in_arc_radius_mm != asked.in_arc_radius_mm ||
+        lead.out_length_mm != asked.out_length_mm) {
+      Diagnostic d = make_warning("leads lengthened for controller compensation with a " + format_fixed(s.entries.kerf_mm, 3) +
+                                  " mm kerf: lead-in " + format_fixed(asked.in_length_mm, 3) + " -> " + format_fixed(lead.in_length_mm, 3) +
+                                  " mm, its arc radius " + format_fixed(asked.in_arc_radius_mm, 3) + " -> " +
+                                  format_fixed(lead.in_arc_radius_mm, 3) + " mm, lead-out " + format_fixed(asked.out_length_mm, 3) +
+                                  " -> " + format_fixed(lead.out_length_mm, 3) + " mm (at least the kerf, the kerf, 1.5 kerf)");
+      d.code = "leads.kerf";
+      s.diagnostics.push_back(std::move(d));
+    }
+  }
   s.entries.entry_step_mm = o.entry_step_mm;
   s.entries.max_candidates = o.max_candidates;
   s.entries.outer_clockwise = s.dialect.outer_clockwise;
@@ -473,6 +498,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
                       format_fixed(s.entries.kerf_mm, 3) + " mm): the beam would cut every tab away");
   OptimizeResult result;
   for (const auto& w : s.conditions.warnings) result.diagnostics.push_back(make_warning(w));
+  for (const auto& d : s.diagnostics) result.diagnostics.push_back(d);
   if (progress) progress({"entries", -1, {}});
 
   // 2. Cut job, on the path the torch centre follows: with cam kerf the offset contours.

@@ -168,6 +168,35 @@ TEST(OptimizeCli, WarnsWhereControllerCompensationCannotFollowTheDrawing) {
   fs::remove_all(dir);
 }
 
+// A plasma kerf with the laser profile's leads: lead-in arcs of the kerf's half and lead-outs at
+// corners shorter than the turn needs, which LinuxCNC refused (22 blocks of this sheet). The leads
+// grow with the kerf (warning leads.kerf), shortened leads of tight spots stay longer than half
+// the kerf, and the interpreter, with the kerf loaded as the tool, accepts the whole program.
+TEST(OptimizeCli, LeadsGrowWithAPlasmaKerfSoTheControllerAcceptsTheProgram) {
+  const auto dir = temp_dir("plasma-leads");
+  const OptRun run = optimize(shared("data/dxf/vrs_Lv10_SHEET_004.dxf"), dir,
+                              "--dialect plasma-thc --kerf 1.5 --material St10kp --thickness 3 --threads 2");
+  ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
+  int lengthened = 0;
+  for (const auto& d : run.report["diagnostics"]) {
+    if (d.value("code", "") != "leads.kerf") continue;
+    ++lengthened;
+    EXPECT_NE(d["message"].get<std::string>().find("lead-out 1 -> 2.25 mm"), std::string::npos) << d["message"];
+  }
+  EXPECT_EQ(lengthened, 1);
+  EXPECT_EQ(run.report["compensation"]["at_risk"], 0);
+  EXPECT_EQ(run.cmd.err.find("cutter compensation"), std::string::npos) << run.cmd.err;
+  if (std::system("command -v rs274 >/dev/null 2>&1") == 0) {
+    const auto rs = run_rs274((dir / "out.ngc").string(), 1.5);
+    EXPECT_EQ(rs.exit_code, 0) << rs.out.substr(0, 2000);
+  }
+  // The profile's own kerf keeps the profile's leads.
+  const OptRun laser = optimize(shared("data/dxf/vrs_Lv10_SHEET_004.dxf"), dir, "--material St10kp --thickness 3 --threads 2");
+  ASSERT_EQ(laser.cmd.exit_code, 0) << laser.cmd.err;
+  for (const auto& d : laser.report["diagnostics"]) EXPECT_NE(d.value("code", ""), "leads.kerf");
+  fs::remove_all(dir);
+}
+
 TEST(OptimizeCli, SameSeedSameBytes) {
   const auto dir = temp_dir("det");
   const auto dxf = (dir / "demo.dxf").string();

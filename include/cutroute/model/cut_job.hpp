@@ -38,6 +38,10 @@ struct EntryOptions {
   bool free_direction = false;     // offer both directions (when the kerf side allows it)
   double corner_angle_deg = 15.0;  // a vertex whose tangent turns more than this is a corner
   double small_hole_mm = 0.0;      // holes narrower than this are pierced at their centre; 0 = auto (3 × lead)
+  // Controller compensation (half the kerf): the controller refuses an entry move no longer than
+  // this and a compensated arc no wider, so a lead shortened for want of room never goes that
+  // short (the next fallback is taken instead). 0: no limit.
+  double min_lead_mm = 0.0;
   // --kerf-mode cam: the drawn nest, when entries are planned on its kerf offset. Pierces, leads
   // and bridges keep clearance − kerf/2 from its contours too: where a toolpath cannot follow the
   // drawing (an acute inside corner, a slot narrower than the kerf) the drawn edge lies beyond

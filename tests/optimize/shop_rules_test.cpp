@@ -530,11 +530,7 @@ TEST(ShopRules, TabsOnPlasmaResumeWithALeadInNotOnThePartsEdge) {
     ASSERT_EQ(rs.exit_code, 0) << rs.out;
     const KerfReach k = kerf_reach(rs.out, parts);
     EXPECT_EQ(k.inside, 0);
-    // A corner entry whose lead runs on along the first edge (a 2-mm lead here) gets its
-    // compensation by a slanted entry move that passes a corner at L r / sqrt(L^2 + r^2): 53 um
-    // short of r for this plasma kerf (0.05 um for a laser's 0.15 mm), not a pierce on the edge.
-    const double r = kerf / 2, lead = 2.0, corner_pass = lead * r / std::hypot(lead, r);
-    EXPECT_GT(k.closest, corner_pass - 2e-3) << "the kerf reaches into a part";
+    EXPECT_GT(k.closest, kerf / 2 - 2e-3) << "the kerf reaches into a part";
     std::ofstream(prog) << on_path.text;
     const auto rs_off = run_rs274(prog.string(), kerf);
     ASSERT_EQ(rs_off.exit_code, 0) << rs_off.out;

@@ -458,13 +458,14 @@ nlohmann::json apply_to_toolpath(nc::Toolpath& path, const model::Nest& nest, co
     nc::MicroJointOptions mj{r.tabs, r.tab_width_mm, {}};
     const bool lead_ins = lead_in_after_tabs(r, context.dialect);
     // Straight lead-ins of the job's length, else of half of it where that is still longer than
-    // half the kerf (a compensation entry move must be): tight scrap between notches or parts.
+    // a compensation entry move must be (EntryOptions::min_lead_mm): tight scrap between notches
+    // or parts.
     std::vector<std::unique_ptr<model::EntryPlanner>> planners;
     for (double scale : {1.0, 0.5}) {
       model::EntryOptions straight = context.entries;
       straight.lead.in_kind = model::LeadKind::line;
       straight.lead.in_length_mm *= scale;
-      if (lead_ins && (scale == 1.0 || straight.lead.in_length_mm > context.entries.kerf_mm / 2 + tol::kSamePointMm))
+      if (lead_ins && (scale == 1.0 || straight.lead.in_length_mm > context.entries.min_lead_mm))
         planners.push_back(std::make_unique<model::EntryPlanner>(context.planner, straight));
     }
     // A straight lead-in at the point where the cut resumes, in its direction of travel: the

@@ -18,6 +18,8 @@ struct Move {
   double bulge = 0;  // 0: a line (arcs the writer turns into chords included)
   double length = 0;
   double radius = 0;
+  Vec2 centre;       // arcs
+  double sweep = 0;  // arcs: signed [rad]
   Vec2 t0, t1;  // unit tangents at the start and the end
 };
 
@@ -45,6 +47,8 @@ void append_moves(const CutSegment& seg, std::vector<Move>& out) {
         m.bulge = s.bulge;
         m.length = s.length();
         m.radius = s.radius();
+        m.centre = s.center();
+        m.sweep = s.sweep();
         m.t0 = s.tangent_at(0);
         m.t1 = s.tangent_at(1);
         if (m.length > kDropMm) out.push_back(m);
@@ -53,6 +57,75 @@ void append_moves(const CutSegment& seg, std::vector<Move>& out) {
       }
     }
   }
+}
+
+// How far along move m (0 at its start, its length at its end) the point x of its offset lies:
+// the projection on a line, the arc length to x's angle on an arc.
+double offset_param(const Move& m, Vec2 x) {
+  if (m.bulge == 0) return geometry::dot(x - m.a, m.t0);
+  const double a0 = std::atan2(m.a.y - m.centre.y, m.a.x - m.centre.x), ax = std::atan2(x.y - m.centre.y, x.x - m.centre.x);
+  double turn = m.sweep > 0 ? ax - a0 : a0 - ax;  // in the arc's direction
+  turn = std::remainder(turn - std::abs(m.sweep) / 2, 2 * std::numbers::pi) + std::abs(m.sweep) / 2;
+  return turn * m.radius;
+}
+
+// An inside corner where an arc meets a move: the offsets (a line and a circle, or two circles)
+// must cross, and where they cross the tool stops, which must lie on both moves. On lines that is
+// r tan(θ/2) of each (the need[] below); where an arc meets the corner the offsets may not cross
+// at all (a straight lead from the centre of a hole little wider than the tool), or cross beyond
+// a short arc's end. LinuxCNC refuses both ("... in concave corner cannot be reached by the tool
+// without gouging").
+bool arc_corner_reachable(const Move& in, const Move& out, double side, double r) {
+  constexpr double kTangentMm = 1e-6;
+  struct Offset {
+    bool circle = false;
+    Vec2 p, d;        // line: a point and the unit direction
+    Vec2 c;           // circle: centre
+    double rho = 0;   // circle: radius
+  };
+  auto offset = [&](const Move& m) {
+    Offset o;
+    if (m.bulge == 0) {
+      o.p = m.a + geometry::perp(m.t0) * (side * r);
+      o.d = m.t0;
+    } else {
+      o.circle = true;
+      o.c = m.centre;
+      o.rho = m.bulge * side > 0 ? m.radius - r : m.radius + r;  // the tool inside the arc, or outside
+    }
+    return o;
+  };
+  const Offset f = offset(in), g = offset(out);
+  std::vector<Vec2> xs;
+  auto line_circle = [&](const Offset& l, const Offset& c) {
+    const Vec2 w = l.p - c.c;
+    const double b = geometry::dot(w, l.d), disc = b * b - (geometry::dot(w, w) - c.rho * c.rho);
+    if (disc < -kTangentMm * c.rho) return;  // a line tangent to the circle, to rounding, still touches it
+    const double root = std::sqrt(std::max(0.0, disc));
+    for (double u : {-b - root, -b + root}) xs.push_back(l.p + l.d * u);
+  };
+  if (!f.circle) line_circle(f, g);
+  else if (!g.circle) line_circle(g, f);
+  else {
+    const Vec2 dc = g.c - f.c;
+    const double dist = geometry::norm(dc);
+    if (dist > 1e-12) {
+      const double along = (dist * dist + f.rho * f.rho - g.rho * g.rho) / (2 * dist), h2 = f.rho * f.rho - along * along;
+      if (h2 >= -kTangentMm * f.rho) {  // circles tangent to rounding (a tangent arc lead) touch
+        const Vec2 mid = f.c + dc * (along / dist), up = geometry::perp(dc) * (std::sqrt(std::max(0.0, h2)) / dist);
+        xs.push_back(mid + up);
+        xs.push_back(mid - up);
+      }
+    }
+  }
+  if (xs.empty()) return false;
+  // The crossing at the corner: the one nearest to it.
+  const Vec2 corner = in.b;
+  const Vec2 x = *std::min_element(xs.begin(), xs.end(), [&](Vec2 p, Vec2 q) {
+    return geometry::distance(p, corner) < geometry::distance(q, corner);
+  });
+  constexpr double kTol = 1e-6;
+  return offset_param(in, x) >= -kTol && offset_param(out, x) <= out.length + kTol;
 }
 
 // One G41/G42 .. G40 block: the segments it holds (a contour and the pieces after its tabs when the
@@ -68,6 +141,10 @@ bool at_risk(const std::vector<Move>& ms, double side, double r) {
   for (std::size_t i = 0; i + 1 < ms.size(); ++i) {
     const double theta = std::atan2(geometry::cross(ms[i].t1, ms[i + 1].t0), geometry::dot(ms[i].t1, ms[i + 1].t0));
     if (theta * side <= 1e-9) continue;  // straight on, or turning away from the tool
+    if (ms[i].bulge != 0 || ms[i + 1].bulge != 0) {
+      if (!arc_corner_reachable(ms[i], ms[i + 1], side, r)) return true;
+      continue;
+    }
     const double back = r * std::tan(std::min(std::abs(theta), std::numbers::pi - 1e-3) / 2);
     need[i] += back;
     need[i + 1] += back;

@@ -54,6 +54,12 @@ Contour hole(std::vector<Vertex> corner) {
   return c;
 }
 
+// A round hole of radius `radius` around (10, 10), counter-clockwise from (10 + radius, 10) in two
+// half circles.
+Contour round_hole(double radius) {
+  return Contour{{Vertex{{10 + radius, 10}, 1.0}, Vertex{{10 - radius, 10}, 1.0}, Vertex{{10 + radius, 10}, 0}}, false};
+}
+
 bool refused_by_linuxcnc(const Toolpath& tp, const char* dialect = "generic") {
   auto d = find_post_dialect(dialect);
   EXPECT_TRUE(d.ok());
@@ -82,6 +88,10 @@ TEST(CompensationCheck, AgreesWithLinuxCncOnDetailsFinerThanTheKerf) {
       {"an inside fillet of radius 0.05 mm", cut(hole(fillet(0.05, 1)), inside), true},
       {"an inside fillet of radius 0.5 mm", cut(hole(fillet(0.5, 1)), inside), false},
       {"a lead-in of 0.05 mm", cut(hole({{{20, 20}, 0}}), {0.035, 0.035}), true},
+      // A straight lead from the centre of a round hole: the offset lead (0.1 mm beside the centre
+      // line) must cross the offset circle (radius R - 0.1), which it misses when R < 0.2 mm.
+      {"a hole of radius 0.15 mm entered from its centre", cut(round_hole(0.15), {10, 10}), true},
+      {"a hole of radius 0.5 mm entered from its centre", cut(round_hole(0.5), {10, 10}), false},
   };
   for (const auto& c : cases) {
     const CompensationHazards h = compensation_hazards(c.path, kKerf / 2, true);

@@ -19,11 +19,14 @@ struct CompensationHazards {
 //   - its first move (the entry move) is no longer than r, or an arc of radius at most r;
 //   - an arc curving toward the tool side (the inside of the arc) has a radius of at most r;
 //   - a later move is shorter than the offset intersections at its ends need: at each inside
-//     corner (turning toward the tool side by theta) r tan(theta / 2) on both moves.
-// Measured against LinuxCNC's interpreter on the 25 corpus programs (scripts/check-compensation,
-// kerf 0.15 and 0.2 mm): the same count on every program but d2g_DRAAK, where it flags more (686
-// against 575, 696 against 585: spline arcs whose offsets LinuxCNC still joins); none flagged
-// that LinuxCNC accepts.
+//     corner (turning toward the tool side by theta) between lines r tan(theta / 2) on both
+//     moves; where an arc meets the corner, the offsets (a line and a circle of radius R -/+ r,
+//     or two circles) must cross, and on both moves (a straight lead from the centre of a hole
+//     little wider than the tool misses the offset circle).
+// Measured against LinuxCNC's interpreter on the 27 corpus programs (scripts/check-compensation):
+// at kerf 0.15 mm the same count on every program but d2g_DRAAK, where it flags more (685 against
+// 575: spline arcs whose offsets LinuxCNC still joins); with a plasma kerf of 1.5 mm (St10kp 3 mm,
+// plasma-thc) the same on 24, DRAAK 732 / 618, pongbox 48 / 47, odometer 5 / 6.
 // `held_over_tabs`: beam_switches_under_compensation() of the dialect written with. Where the
 // writer keeps compensation on over micro-joint gaps (compensation_held()), a contour and the
 // pieces after its tabs are one block, with the rapids over the gaps, and only its first move is

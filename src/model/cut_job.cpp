@@ -343,13 +343,16 @@ struct EntryPlanner::Impl {
     return lead;
   }
 
-  // Does the lead start with a move longer than min_lead_mm, and is each of its arcs wider?
+  // Does the lead start with a move longer than min_lead_mm, and is each of its arcs wider? By a
+  // micrometre at least: the program's coordinates are rounded to it, and a lead-in arc of half a
+  // 1.5-mm lead (0.75 mm, to the last bit of its double) was refused by LinuxCNC for r = 0.75.
   bool long_enough(const Contour& lead) const {
     if (opt.min_lead_mm <= 0 || geometry::segment_count(lead) == 0) return true;
-    if (!(geometry::segment(lead, 0).length() > opt.min_lead_mm)) return false;
+    const double least = opt.min_lead_mm + 1e-3;
+    if (!(geometry::segment(lead, 0).length() > least)) return false;
     for (std::size_t i = 0; i < geometry::segment_count(lead); ++i) {
       const geometry::Segment seg = geometry::segment(lead, i);
-      if (seg.is_arc() && !(seg.radius() > opt.min_lead_mm)) return false;
+      if (seg.is_arc() && !(seg.radius() > least)) return false;
     }
     return true;
   }

@@ -12,6 +12,7 @@ namespace {
 using geometry::Vec2;
 
 constexpr double kDropMm = 1e-4;
+constexpr double kRoundingMm = 1e-3;  // the writer's coordinate resolution (generic dialect)
 
 struct Move {
   Vec2 a, b;
@@ -132,10 +133,13 @@ bool arc_corner_reachable(const Move& in, const Move& out, double side, double r
 // compensation stays on over them), with the rapids over the gaps between them.
 bool at_risk(const std::vector<Move>& ms, double side, double r) {
   if (ms.empty()) return false;
-  // The entry move: the controller moves from the uncompensated point onto the offset path.
-  if (ms.front().length <= r || (ms.front().bulge != 0 && ms.front().radius <= r)) return true;
+  // The entry move: the controller moves from the uncompensated point onto the offset path. Both
+  // limits with a micrometre to spare: the written coordinates are rounded to it (an arc of radius
+  // r to the last bit of its double was refused).
+  const double at_most = r + kRoundingMm;
+  if (ms.front().length <= at_most || (ms.front().bulge != 0 && ms.front().radius <= at_most)) return true;
   for (const Move& m : ms)
-    if (m.bulge * side > 0 && m.radius <= r) return true;  // curving toward the tool: inside the arc
+    if (m.bulge * side > 0 && m.radius <= at_most) return true;  // curving toward the tool: inside the arc
   // Each inside corner needs r tan(theta / 2) of both moves at it for the offsets to intersect.
   std::vector<double> need(ms.size(), 0.0);
   for (std::size_t i = 0; i + 1 < ms.size(); ++i) {

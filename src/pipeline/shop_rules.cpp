@@ -465,7 +465,7 @@ nlohmann::json apply_to_toolpath(nc::Toolpath& path, const model::Nest& nest, co
       model::EntryOptions straight = context.entries;
       straight.lead.in_kind = model::LeadKind::line;
       straight.lead.in_length_mm *= scale;
-      if (lead_ins && (scale == 1.0 || straight.lead.in_length_mm > context.entries.min_lead_mm))
+      if (lead_ins && (scale == 1.0 || straight.lead.in_length_mm > context.entries.min_lead_mm + 1e-3))
         planners.push_back(std::make_unique<model::EntryPlanner>(context.planner, straight));
     }
     // A straight lead-in at the point where the cut resumes, in its direction of travel: the

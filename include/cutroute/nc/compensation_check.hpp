@@ -26,7 +26,8 @@ struct CompensationHazards {
 // Measured against LinuxCNC's interpreter on the 27 corpus programs (scripts/check-compensation):
 // at kerf 0.15 mm the same count on every program but d2g_DRAAK, where it flags more (685 against
 // 575: spline arcs whose offsets LinuxCNC still joins); with a plasma kerf of 1.5 mm (St10kp 3 mm,
-// plasma-thc) the same on 24, DRAAK 732 / 618, pongbox 48 / 47, odometer 5 / 6.
+// plasma-thc) the same on 25, DRAAK 732 / 618, pongbox 48 / 47. Radii and the entry move's length
+// are compared with a micrometre to spare (the program's resolution).
 // `held_over_tabs`: beam_switches_under_compensation() of the dialect written with. Where the
 // writer keeps compensation on over micro-joint gaps (compensation_held()), a contour and the
 // pieces after its tabs are one block, with the rapids over the gaps, and only its first move is

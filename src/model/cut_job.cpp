@@ -427,7 +427,11 @@ struct EntryPlanner::Impl {
     const auto at = detail::at_length(path, measured(id, clockwise), s_path);
     Vec2 n = left ? geometry::perp(at.tangent) : -geometry::perp(at.tangent);
     if (corner) {
-      // At a corner, lead in along the bisector of the two scrap-side normals.
+      // At a corner, lead in along the bisector of the two scrap-side normals. Caution: at_length()
+      // gives an exact vertex the tangent of the segment ending there, so `at` and `before` are
+      // both the incoming edge's, and the lead runs along its normal (in line with the outgoing
+      // edge at a right angle); only vertex 0 gets the bisector. lead_in() copes with that under
+      // compensation (t_out); changing it would move every corner entry.
       const auto before = detail::at_length(path, measured(id, clockwise), s_path - 1e-6 * std::max(1.0, total_len));
       const Vec2 n0 = left ? geometry::perp(before.tangent) : -geometry::perp(before.tangent);
       const Vec2 sum = n + n0;

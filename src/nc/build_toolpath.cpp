@@ -56,7 +56,9 @@ Toolpath build_toolpath(const model::Nest& nest, const std::vector<const model::
     if (e->lead_in.vertices.size() >= 2) s.pieces.push_back({e->lead_in, PieceRole::lead_in, -1});
     for (const auto& piece : e->pieces) {
       const bool bridge = piece.kind == model::PieceKind::bridge;
-      s.pieces.push_back({piece.path, bridge ? PieceRole::bridge : PieceRole::contour, bridge ? -1 : piece.contour.value()});
+      const bool shared = piece.kind == model::PieceKind::common_edge && piece.other.valid();
+      s.pieces.push_back({piece.path, bridge ? PieceRole::bridge : PieceRole::contour, bridge ? -1 : piece.contour.value(),
+                          shared ? piece.other.value() : -1});
     }
     if (e->lead_out.vertices.size() >= 2) s.pieces.push_back({e->lead_out, PieceRole::lead_out, -1});
     tp.segments.push_back(std::move(s));

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <cutroute/core/tolerances.hpp>
 
@@ -33,6 +34,17 @@ Contour sub_path(const Contour& c, double s0, double s1) {
   return out;
 }
 
+// The gaps planned on one contour piece: their centres along it, ascending, and the lead-in of
+// the cut resumed after each (lead[k + 1] after gap k; nullopt: pierced on the path).
+struct PieceGaps {
+  std::vector<double> centre;
+  std::vector<std::optional<Contour>> lead;
+};
+
+struct PieceRef {
+  std::size_t segment, piece;
+};
+
 }  // namespace
 
 MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const MicroJointOptions& o) {
@@ -40,104 +52,167 @@ MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const 
   if (o.tabs <= 0 || o.width_mm <= 0) return st;
   const double w = o.width_mm;
   const int n = o.tabs;
-  auto outer_piece = [&](const CutPiece& p) {
-    return p.role == PieceRole::contour && p.contour >= 0 &&
-           nest.contours[model::ContourId(p.contour)].role == model::ContourRole::outer;
+  const auto outer = [&](std::int32_t c) {
+    return c >= 0 && nest.contours[model::ContourId(c)].role == model::ContourRole::outer;
   };
-  std::vector<CutSegment> out;
-  out.reserve(path.segments.size());
-  for (auto& whole : path.segments) {
-    // A segment cuts one outer contour (standard) or several joined by bridges (chain): each one's
-    // loop gets its gaps. What follows the last gap of a contour (its last stretch, the bridge, the
-    // next contour, the lead-out) is one segment, whose next outer contour is split in turn.
-    CutSegment seg = std::move(whole);
-    const std::string label = seg.label;
-    int tab_no = 0;  // gaps so far in this segment: the labels of the pieces after them
-    for (std::size_t from = 0;;) {
-      const auto it = std::find_if(seg.pieces.begin() + static_cast<std::ptrdiff_t>(from), seg.pieces.end(), outer_piece);
-      if (it == seg.pieces.end()) break;
-      const auto first = static_cast<std::size_t>(it - seg.pieces.begin());
-      const double contour_len = geometry::length(nest.contours[model::ContourId(it->contour)].source.contour);
-      const double piece_len = geometry::length(it->path);
-      if (n * 2 * w > std::min(contour_len, piece_len)) {
+  // Each outer contour's own pieces (not a common line) in cutting order, and the contours a
+  // common line runs along.
+  std::vector<std::vector<PieceRef>> own(nest.contours.size());
+  std::vector<char> shares(nest.contours.size(), 0);
+  std::vector<std::vector<PieceGaps>> gaps(path.segments.size());
+  for (std::size_t s = 0; s < path.segments.size(); ++s) {
+    const auto& pieces = path.segments[s].pieces;
+    gaps[s].resize(pieces.size());
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      const CutPiece& p = pieces[i];
+      if (p.role != PieceRole::contour || p.contour < 0) continue;
+      if (p.shared_with >= 0) {
+        shares[static_cast<std::size_t>(p.contour)] = shares[static_cast<std::size_t>(p.shared_with)] = 1;
+      } else if (outer(p.contour)) {
+        own[static_cast<std::size_t>(p.contour)].push_back({s, i});
+      }
+    }
+  }
+  const double step = std::max(w, 1.0);
+  // Gap centred at g on the piece, or (with lead-ins) moved by up to `reach` either way, within
+  // [lo, hi], to the nearest place whose resumed cut has room for a lead-in (notches, a
+  // neighbour close to that edge).
+  const auto place = [&](PieceRef ref, double g, double reach, double lo, double hi) {
+    const CutPiece& piece = path.segments[ref.segment].pieces[ref.piece];
+    PieceGaps& pg = gaps[ref.segment][ref.piece];
+    pg.centre.push_back(g);
+    pg.lead.resize(pg.centre.size() + 1);
+    if (!o.lead_in) return;
+    const double piece_len = geometry::length(piece.path);
+    for (int t = 0; t <= 6; ++t) {
+      const double shift = (t + 1) / 2 * step * (t % 2 ? 1 : -1);
+      if (std::abs(shift) > reach && t > 0) break;
+      if (g + shift < lo || g + shift > hi) continue;
+      const double resume = g + shift + w / 2;
+      if (auto l = o.lead_in(piece.contour, sub_path(piece.path, resume, std::min(resume + step, piece_len)))) {
+        pg.centre.back() = g + shift;
+        pg.lead.back() = std::move(l);
+        return;
+      }
+    }
+  };
+  constexpr double kAnywhere = std::numeric_limits<double>::infinity();
+  for (std::size_t c = 0; c < own.size(); ++c) {
+    const auto& pieces = own[c];
+    if (pieces.empty()) {
+      // A part whose whole outline is shared with its neighbours has no edge on the skeleton.
+      if (shares[c] && outer(static_cast<std::int32_t>(c))) {
         ++st.skipped;
-        from = first + 1;
+        st.enclosed.push_back(static_cast<std::int32_t>(c));
+      }
+      continue;
+    }
+    if (pieces.size() == 1 && !shares[c]) {
+      // The whole loop in one piece (standard, chain, a part without common lines): gap k centred
+      // at (k + 1/2) L / N from where the piece enters the contour, so none sits at the entry
+      // (lead-in or bridge) or at the end where the part drops last.
+      const CutPiece& piece = path.segments[pieces[0].segment].pieces[pieces[0].piece];
+      const double contour_len = geometry::length(nest.contours[model::ContourId(piece.contour)].source.contour);
+      if (n * 2 * w > std::min(contour_len, geometry::length(piece.path))) {
+        ++st.skipped;
         continue;
       }
-      ++st.contours;
-      st.tabs += n;
-      const CutPiece piece = *it;
-      // Gap k centred at g_k = (k + 1/2) L / N. With lead-ins, a gap whose resumed cut has no room
-      // for one is moved along the contour, by up to a quarter of the spacing less a gap width
-      // either way, to the nearest place that has (notches, a neighbour close to that edge).
-      std::vector<double> centre(static_cast<std::size_t>(n));
-      std::vector<std::optional<Contour>> lead(static_cast<std::size_t>(n) + 1);
-      const double spacing = contour_len / n, step = std::max(w, 1.0), reach = spacing / 4 - w;
+      const double spacing = contour_len / n;
+      for (int k = 0; k < n; ++k) place(pieces[0], (k + 0.5) * spacing, spacing / 4 - w, -kAnywhere, kAnywhere);
+    } else {
+      // Common lines: the part is held only by its own edges, the stretches of the group's outline
+      // between junctions. The gaps are spread over them, at least max(w, 1 mm) from a junction
+      // (where a neighbour's cut meets the edge), at (k + 1/2) U / N along the usable length U.
+      const double margin = step + w / 2;
+      double usable = 0;
+      for (const PieceRef r : pieces) usable += std::max(0.0, geometry::length(path.segments[r.segment].pieces[r.piece].path) - 2 * margin);
+      if (usable < n * 2 * w) {
+        ++st.skipped;
+        continue;
+      }
+      const double spacing = usable / n;
+      std::size_t at = 0;
+      double before = 0;  // usable length of the pieces before pieces[at]
       for (int k = 0; k < n; ++k) {
-        const double g = (k + 0.5) * spacing;
-        centre[static_cast<std::size_t>(k)] = g;
-        if (!o.lead_in) continue;
-        for (int t = 0; t <= 6; ++t) {
-          const double shift = (t + 1) / 2 * step * (t % 2 ? 1 : -1);
-          if (std::abs(shift) > reach && t > 0) break;
-          const double resume = g + shift + w / 2;
-          if (auto l = o.lead_in(piece.contour, sub_path(piece.path, resume, std::min(resume + step, piece_len)))) {
-            centre[static_cast<std::size_t>(k)] = g + shift;
-            lead[static_cast<std::size_t>(k) + 1] = std::move(l);
+        const double u = (k + 0.5) * spacing;
+        for (;;) {
+          const double len = geometry::length(path.segments[pieces[at].segment].pieces[pieces[at].piece].path);
+          const double here = std::max(0.0, len - 2 * margin);
+          if (u < before + here || at + 1 == pieces.size()) {
+            place(pieces[at], margin + (u - before), spacing / 4 - w, margin, len - margin);
             break;
           }
+          before += here;
+          ++at;
         }
       }
+    }
+    ++st.contours;
+    st.tabs += n;
+  }
+
+  std::vector<CutSegment> out;
+  out.reserve(path.segments.size());
+  for (std::size_t s = 0; s < path.segments.size(); ++s) {
+    CutSegment& whole = path.segments[s];
+    if (std::all_of(gaps[s].begin(), gaps[s].end(), [](const PieceGaps& g) { return g.centre.empty(); })) {
+      out.push_back(std::move(whole));
+      continue;
+    }
+    // What follows a gap (the rest of the piece, the pieces after it, the lead-out) is a new
+    // segment, split in turn at the next piece with gaps.
+    std::vector<CutPiece> pieces = std::move(whole.pieces);
+    CutSegment cur = std::move(whole);  // the first keeps the segment's pierce, rapid and label
+    cur.pieces.clear();
+    const KerfSide kerf = cur.kerf;
+    const double feed = cur.feed_mm_min;
+    const std::string label = cur.label;
+    int tab_no = 0;  // gaps so far in this segment: the labels of the pieces after them
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      PieceGaps& pg = gaps[s][i];
+      if (pg.centre.empty()) {
+        cur.pieces.push_back(std::move(pieces[i]));
+        continue;
+      }
+      const CutPiece& piece = pieces[i];
       // Cut stretches between the gaps: [0, g0 - w/2], [g0 + w/2, g1 - w/2], ..., [g_{n-1} + w/2, piece end].
       std::vector<std::pair<double, double>> keep;
       double at = 0;
-      for (const double g : centre) {
+      for (const double g : pg.centre) {
         keep.emplace_back(at, g - w / 2);
         at = g + w / 2;
       }
-      keep.emplace_back(at, piece_len);
-      const std::vector<CutPiece> after(seg.pieces.begin() + static_cast<std::ptrdiff_t>(first) + 1, seg.pieces.end());
+      keep.emplace_back(at, geometry::length(piece.path));
       for (std::size_t j = 0; j < keep.size(); ++j) {
-        CutSegment part;
-        part.kerf = seg.kerf;
-        part.feed_mm_min = seg.feed_mm_min;
         Contour stretch = sub_path(piece.path, keep[j].first, keep[j].second);
-        if (j == 0) {
-          part.pierce = seg.pierce;
-          part.label = seg.label;
-          part.rapid_via = seg.rapid_via;
-          part.after_tab = seg.after_tab;
-          part.pieces.assign(seg.pieces.begin(), seg.pieces.begin() + static_cast<std::ptrdiff_t>(first));
-        } else if (auto& l = lead[j]) {
-          l->vertices.back().p = stretch.vertices.front().p;  // the lead ends where the cut resumes, to the bit
-          part.pierce = l->vertices.front().p;
-          part.label = label + " after tab " + std::to_string(++tab_no);
-          part.pieces.push_back({std::move(*l), PieceRole::lead_in, -1});
-          ++st.lead_ins;
-        } else {
-          part.pierce = stretch.vertices.front().p;
-          part.label = label + " after tab " + std::to_string(++tab_no);
-          part.after_tab = true;
-          st.on_path += o.lead_in != nullptr;
-          // Under controller compensation the head crosses the gap on the offset path: along the
-          // contour's corners, not across them (an arc in the gap is crossed on its chord, which
-          // for a tab of a millimetre or two lies within a few hundredths of it).
-          if (seg.kerf != KerfSide::none) {
-            const Contour gap = sub_path(piece.path, keep[j - 1].second, keep[j].first);
-            for (std::size_t v = 1; v + 1 < gap.vertices.size(); ++v) part.rapid_via.push_back(gap.vertices[v].p);
+        if (j > 0) {
+          out.push_back(std::move(cur));
+          cur = CutSegment{};
+          cur.kerf = kerf;
+          cur.feed_mm_min = feed;
+          cur.label = label + " after tab " + std::to_string(++tab_no);
+          if (auto& l = pg.lead[j]) {
+            l->vertices.back().p = stretch.vertices.front().p;  // the lead ends where the cut resumes, to the bit
+            cur.pierce = l->vertices.front().p;
+            cur.pieces.push_back({std::move(*l), PieceRole::lead_in, -1, -1});
+            ++st.lead_ins;
+          } else {
+            cur.pierce = stretch.vertices.front().p;
+            cur.after_tab = true;
+            st.on_path += o.lead_in != nullptr;
+            // Under controller compensation the head crosses the gap on the offset path: along the
+            // contour's corners, not across them (an arc in the gap is crossed on its chord, which
+            // for a tab of a millimetre or two lies within a few hundredths of it).
+            if (kerf != KerfSide::none) {
+              const Contour gap = sub_path(piece.path, keep[j - 1].second, keep[j].first);
+              for (std::size_t v = 1; v + 1 < gap.vertices.size(); ++v) cur.rapid_via.push_back(gap.vertices[v].p);
+            }
           }
         }
-        part.pieces.push_back({std::move(stretch), PieceRole::contour, piece.contour});
-        if (j + 1 < keep.size()) {
-          out.push_back(std::move(part));
-          continue;
-        }
-        part.pieces.insert(part.pieces.end(), after.begin(), after.end());
-        from = part.pieces.size() - after.size();
-        seg = std::move(part);
+        cur.pieces.push_back({std::move(stretch), PieceRole::contour, piece.contour, -1});
       }
     }
-    out.push_back(std::move(seg));
+    out.push_back(std::move(cur));
   }
   path.segments = std::move(out);
   return st;

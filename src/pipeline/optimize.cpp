@@ -341,12 +341,13 @@ Result<model::CutJob> build_job(const model::Nest& nest, const model::EntryPlann
 // Why the shop rules cannot be written into a technique's program (nullopt: they can). Part
 // rigidity picks the corner each outer contour is entered at: only the standard technique enters
 // every contour by its own lead-in (a chain enters its later contours where a bridge lands). Tabs
-// split the loop each outer contour is cut in: the standard and chain techniques cut every contour
-// whole, in one piece; common lines and multi-segment cutting cut contours in several pieces. The
-// order rules (heat, tip-up, sheet rigidity) price any technique's segments.
+// go on the edges that hold a part to the skeleton: its whole loop (standard, chain) or, with
+// common lines, its stretches of the group's outline. Multi-segment cutting already splits long
+// contours between pierces, where its gaps would meet the tabs'. The order rules (heat, tip-up,
+// sheet rigidity) price any technique's segments.
 std::optional<std::string> rules_exclude(const ShopRules& r, Technique t) {
   if (r.part_rigidity && t != Technique::standard) return "--part-rigidity works with --technique standard only";
-  if (r.tabs > 0 && t != Technique::standard && t != Technique::chain) return "--tabs works with --technique standard or chain only";
+  if (r.tabs > 0 && t == Technique::multi) return "--tabs works with --technique standard, chain or common only";
   return std::nullopt;
 }
 
@@ -663,6 +664,18 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
              ? std::string()
              : std::string(", and the compensation's entry move starts on it")));
     w.code = "tabs.resumed_on_path";
+    result.diagnostics.push_back(std::move(w));
+  }
+
+  // Micro-joints with common lines: parts whose whole outline is shared have no edge for a tab.
+  if (const auto* tabs = best_ev.rules.is_object() && best_ev.rules.contains("tabs") ? &best_ev.rules["tabs"] : nullptr;
+      tabs && tabs->contains("parts_without_skeleton_edge")) {
+    std::string parts;
+    for (const auto& k : (*tabs)["parts_without_skeleton_edge"]) parts += (parts.empty() ? "" : ", ") + std::to_string(k.get<int>());
+    Diagnostic w = make_warning("micro-joints: part(s) " + parts +
+                                " share their whole outline with neighbours: no edge on the skeleton for a tab, nothing "
+                                "holds them once their common lines are cut");
+    w.code = "tabs.part_without_skeleton_edge";
     result.diagnostics.push_back(std::move(w));
   }
 

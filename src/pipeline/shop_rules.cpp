@@ -491,6 +491,11 @@ nlohmann::json apply_to_toolpath(nc::Toolpath& path, const model::Nest& nest, co
     j["tabs"] = {{"per_outer_contour", r.tabs}, {"width_mm", r.tab_width_mm}, {"contours", st.contours},
                  {"tabs", st.tabs}, {"contours_too_short", st.skipped}, {"lead_in_after_tab", lead_ins},
                  {"lead_ins", st.lead_ins}, {"resumed_on_path", lead_ins ? st.on_path : st.tabs}};
+    if (!st.enclosed.empty()) {
+      auto parts = nlohmann::json::array();
+      for (const std::int32_t c : st.enclosed) parts.push_back(nest.contours[model::ContourId(c)].part.value() + 1);
+      j["tabs"]["parts_without_skeleton_edge"] = std::move(parts);
+    }
   }
   return j;
 }

@@ -200,6 +200,138 @@ TEST(CommonOptimize, OrderRulesKeepTheProgramAdmissible) {
   std::filesystem::remove_all(dir);
 }
 
+// The drawn contours (the sheet excluded, in nest order, as check_common_program() counts them):
+// outer or not, and whose part.
+struct DrawnContour {
+  bool outer;
+  int part;  // 1-based, as the report names parts
+};
+std::vector<DrawnContour> drawn_contours(const model::Nest& nest) {
+  std::vector<DrawnContour> v;
+  for (const auto& c : nest.contours)
+    if (c.role != model::ContourRole::sheet) v.push_back({c.role == model::ContourRole::outer, c.part.value() + 1});
+  return v;
+}
+
+// Micro-joints with common lines: each part is held to the skeleton by N gaps of width w on its own
+// edges (its stretches of the group's outline, away from the junctions), never on a common line or
+// a hole; the common lines are still cut whole and before the outline. Measured on the program.
+TEST(CommonOptimize, TabsHoldEachPartByItsOwnEdges) {
+  const auto dir = fresh_temp_dir("common-tabs");
+  const Layout l = grid(dir, 3, 2, 120, 80, 15);
+  const auto rep = dir / "out.json";
+  const int n = 2;
+  const double w = 2.0;
+  const OptRun run = optimize(l.dxf, dir, "--technique common --tabs 2 --tab-width 2 --threads 1 --report " + rep.string());
+  ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
+  const auto nest = load(l.dxf);
+  const auto check = check_common_program(nest, run.program, 0.005, true, w);
+  for (const auto& f : check.failures) ADD_FAILURE() << f;
+  const auto contours = drawn_contours(nest);
+  ASSERT_EQ(check.uncut.size(), contours.size());
+  for (std::size_t k = 0; k < contours.size(); ++k) {
+    if (!contours[k].outer) {
+      EXPECT_TRUE(check.uncut[k].empty()) << "hole " << k;
+      continue;
+    }
+    ASSERT_EQ(check.uncut[k].size(), static_cast<std::size_t>(n)) << "part " << contours[k].part;
+    for (const double gap : check.uncut[k]) EXPECT_NEAR(gap, w, 0.05) << "part " << contours[k].part;
+  }
+  EXPECT_NEAR(check.boundary_cut_mm, l.perimeters - l.shared - 6 * n * w, 0.05);
+  // 6 holes, 3 common lines and the outline, which resumes after each of the 12 gaps.
+  EXPECT_EQ(check.runs, 6 + 3 + 1 + 6 * n);
+  const auto report = nlohmann::json::parse(read_text(rep));
+  const auto& tabs = report["rules"]["tabs"];
+  EXPECT_EQ(tabs["contours"], 6);
+  EXPECT_EQ(tabs["tabs"], 6 * n);
+  EXPECT_EQ(tabs["contours_too_short"], 0);
+  EXPECT_FALSE(tabs.contains("parts_without_skeleton_edge"));
+  EXPECT_EQ(report["pierces"], check.runs);
+  // The outline keeps the controller's compensation over its gaps (one G41/G42 for it), which
+  // LinuxCNC, with the kerf as its tool, accepts; the common lines are cut without.
+  EXPECT_EQ(compensated_runs(run.program), 6 + 1);
+  if (std::system("command -v rs274 >/dev/null 2>&1") == 0) {
+    const auto rs = run_rs274((dir / "out.ngc").string(), report["kerf_mm"].get<double>());
+    EXPECT_EQ(rs.exit_code, 0) << rs.out;
+  }
+
+  // Plasma: every cut after a gap enters from the scrap by a lead-in, none pierces the edge.
+  const OptRun plasma = optimize(l.dxf, dir, "--technique common --tabs 2 --tab-width 2 --threads 1 --dialect plasma-thc "
+                                             "--kerf 1.5 --report " + rep.string());
+  ASSERT_EQ(plasma.cmd.exit_code, 0) << plasma.cmd.err;
+  const auto pc = check_common_program(nest, plasma.program, 0.005, true, w);
+  for (const auto& f : pc.failures) ADD_FAILURE() << "plasma: " << f;
+  const auto preport = nlohmann::json::parse(read_text(rep));
+  EXPECT_EQ(preport["rules"]["tabs"]["lead_ins"], 6 * n);
+  EXPECT_EQ(preport["rules"]["tabs"]["resumed_on_path"], 0);
+  EXPECT_EQ(pc.pierces_on_a_cut, 0);
+  for (std::size_t k = 0; k < contours.size(); ++k)
+    EXPECT_EQ(pc.uncut[k].size(), contours[k].outer ? static_cast<std::size_t>(n) : 0u) << "plasma, contour " << k;
+  std::filesystem::remove_all(dir);
+}
+
+// A part whose whole outline is shared (the middle of 3 x 3 parts drawn touching) has no edge on
+// the skeleton: it gets no tab, the report and a warning name it, its neighbours get theirs.
+TEST(CommonOptimize, TabsNamePartsWithoutAnEdgeOnTheSkeleton) {
+  const auto dir = fresh_temp_dir("common-tabs-enclosed");
+  const Layout l = grid(dir, 3, 3, 100, 60, 0);
+  const auto rep = dir / "out.json";
+  const OptRun run = optimize(l.dxf, dir, "--technique common --tabs 1 --tab-width 2 --threads 1 --report " + rep.string());
+  ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
+  const auto nest = load(l.dxf);
+  const auto report = nlohmann::json::parse(read_text(rep));
+  const auto& tabs = report["rules"]["tabs"];
+  ASSERT_TRUE(tabs.contains("parts_without_skeleton_edge")) << tabs;
+  ASSERT_EQ(tabs["parts_without_skeleton_edge"].size(), 1u);
+  const int middle = tabs["parts_without_skeleton_edge"][0].get<int>();
+  const auto centre = nest.contours[nest.parts[model::PartId(middle - 1)].outer].box.center();
+  EXPECT_NEAR(centre.x, 100 + 150, 1e-9);
+  EXPECT_NEAR(centre.y, 100 + 90, 1e-9);
+  EXPECT_EQ(tabs["tabs"], 8);
+  EXPECT_EQ(tabs["contours_too_short"], 1);
+  bool warned = false;
+  for (const auto& d : report["diagnostics"]) warned |= d.value("code", "") == "tabs.part_without_skeleton_edge";
+  EXPECT_TRUE(warned) << report["diagnostics"];
+  const auto check = check_common_program(nest, run.program, 0.005, true, 2.0);
+  for (const auto& f : check.failures) ADD_FAILURE() << f;
+  const auto contours = drawn_contours(nest);
+  for (std::size_t k = 0; k < contours.size(); ++k)
+    EXPECT_EQ(check.uncut[k].size(), contours[k].part == middle ? 0u : 1u) << "part " << contours[k].part;
+  std::filesystem::remove_all(dir);
+}
+
+// deepnestsharp_TopsNest (113 parts, many placed edge to edge) with common lines and two 1-mm tabs
+// each: every part gets its two gaps on its own edges, each 1 mm wide, none on a common line or
+// within half a tab of another part, and the program stays admissible (everything else cut,
+// holes and common lines first).
+TEST(CommonOptimize, TabsOnTopsNestStayOffTheCommonLines) {
+  const auto dir = fresh_temp_dir("common-tabs-tops");
+  const std::string dxf = shared("data/dxf/deepnestsharp_TopsNest.dxf");
+  const auto rep = dir / "out.json";
+  const OptRun run = optimize(dxf, dir, "--technique common --tabs 2 --threads 1 --report " + rep.string());
+  ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
+  const auto nest = load(dxf);
+  const auto check = check_common_program(nest, run.program, 0.005, true, 1.0);
+  for (const auto& f : check.failures) ADD_FAILURE() << f;
+  const auto report = nlohmann::json::parse(read_text(rep));
+  const auto& tabs = report["rules"]["tabs"];
+  const auto contours = drawn_contours(nest);
+  int outers = 0;
+  for (std::size_t k = 0; k < contours.size(); ++k) {
+    if (!contours[k].outer) {
+      EXPECT_TRUE(check.uncut[k].empty()) << "contour " << k + 1;
+      continue;
+    }
+    ++outers;
+    ASSERT_EQ(check.uncut[k].size(), 2u) << "part " << contours[k].part;
+    for (const double gap : check.uncut[k]) EXPECT_NEAR(gap, 1.0, 0.05) << "part " << contours[k].part;
+  }
+  EXPECT_EQ(tabs["contours"], outers);
+  EXPECT_EQ(tabs["tabs"], 2 * outers);
+  EXPECT_EQ(report["pierces"], check.runs);
+  std::filesystem::remove_all(dir);
+}
+
 // A row of four parts drawn one kerf apart: the common cuts run on the centre lines of the gaps.
 TEST(CommonOptimize, KerfApartRow) {
   const auto dir = fresh_temp_dir("common-kerf");

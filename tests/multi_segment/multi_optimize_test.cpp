@@ -277,7 +277,7 @@ TEST(MultiOptimize, BadCombinationsAreRefused) {
   const std::string base = cli_path() + " optimize " + dxf + " -o " + prog + " --quiet --time-limit 0.2 ";
   auto r = run_command(base + "--technique multi --tabs 2");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("--tabs works with --technique standard or chain only, not multi"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--tabs works with --technique standard, chain or common only, not multi"), std::string::npos) << r.err;
   r = run_command(base + "--multi-segment --part-rigidity");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("not with --multi-segment"), std::string::npos) << r.err;

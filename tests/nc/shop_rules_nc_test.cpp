@@ -72,6 +72,73 @@ TEST(MicroJoints, CircleGetsNGapsOfWidthWAlongTheArc) {
   EXPECT_NEAR(cut, 2 * std::numbers::pi * r - n * w, 1e-9);
 }
 
+geometry::Contour open_path(std::initializer_list<Vec2> points) {
+  geometry::Contour c;
+  c.closed = false;
+  for (const Vec2 p : points) c.vertices.push_back({p, 0.0});
+  return c;
+}
+
+// Common lines: parts A (0..100 x 0..50) and B (100..200 x 0..50) share the edge x = 100, cut once
+// by a trail; the group's outline runs A's own edges from (100, 0), a 2-mm piece first (the loop's
+// entry stretch), then B's. Each part's gaps are spread over its own pieces' usable length, at
+// least max(w, 1 mm) + w/2 from a piece's ends: A (w = 2, N = 2): pieces of 2 and 248 mm, the
+// first too short, usable 248 - 6 = 242, gaps centred 3 + 60.5 and 3 + 181.5 mm into the second.
+// The common line keeps no gap.
+TEST(MicroJoints, CommonLinesGapsGoOnEachPartsOwnEdgesAwayFromTheJunctions) {
+  const auto nest = nest_of({geometry::rectangle({0, 0, 100, 50}), geometry::rectangle({100, 0, 200, 50})});
+  ASSERT_EQ(nest.parts.size(), 2u);
+  const std::int32_t a = nest.parts[model::PartId(0)].outer.value(), b = nest.parts[model::PartId(1)].outer.value();
+  ASSERT_LT(nest.contours[model::ContourId(a)].box.xmax, 150);
+  Toolpath tp;
+  CutSegment trail;
+  trail.pierce = {100, -3};
+  trail.pieces.push_back({open_path({{100, -3}, {100, 0}}), PieceRole::lead_in, -1});
+  trail.pieces.push_back({open_path({{100, 0}, {100, 50}}), PieceRole::contour, a, b});
+  tp.segments.push_back(trail);
+  CutSegment loop;
+  loop.pierce = {100, -3};
+  loop.pieces.push_back({open_path({{100, -3}, {100, 0}}), PieceRole::lead_in, -1});
+  loop.pieces.push_back({open_path({{100, 0}, {98, 0}}), PieceRole::contour, a});
+  loop.pieces.push_back({open_path({{98, 0}, {0, 0}, {0, 50}, {100, 50}}), PieceRole::contour, a});
+  loop.pieces.push_back({open_path({{100, 50}, {200, 50}, {200, 0}, {100, 0}}), PieceRole::contour, b});
+  tp.segments.push_back(loop);
+  const auto st = add_micro_joints(tp, nest, {2, 2.0, {}});
+  EXPECT_EQ(st.contours, 2);
+  EXPECT_EQ(st.tabs, 4);
+  EXPECT_EQ(st.skipped, 0);
+  EXPECT_TRUE(st.enclosed.empty());
+  // The trail, then the outline in 5 segments (4 gaps).
+  ASSERT_EQ(tp.segments.size(), 1u + 5u);
+  EXPECT_EQ(tp.segments[0].pieces.size(), 2u);
+  std::vector<Vec2> centres;
+  for (std::size_t k = 2; k < tp.segments.size(); ++k) {
+    const Vec2 end = tp.segments[k - 1].pieces.back().path.vertices.back().p, resume = tp.segments[k].pierce;
+    EXPECT_NEAR(geometry::distance(end, resume), 2.0, 1e-9);
+    EXPECT_TRUE(tp.segments[k].after_tab);
+    centres.push_back((end + resume) * 0.5);
+  }
+  // B: one piece of 250 mm, usable 244, gaps 3 + 61 and 3 + 183 mm into it.
+  const std::vector<Vec2> want{{98 - 63.5, 0}, {36.5, 50}, {164, 50}, {164, 0}};
+  ASSERT_EQ(centres.size(), want.size());
+  for (std::size_t k = 0; k < want.size(); ++k) {
+    EXPECT_NEAR(centres[k].x, want[k].x, 1e-9) << k;
+    EXPECT_NEAR(centres[k].y, want[k].y, 1e-9) << k;
+  }
+
+  // A part whose whole outline is shared gets none, and is named.
+  Toolpath shared;
+  CutSegment all;
+  all.pierce = {0, 0};
+  all.pieces.push_back({open_path({{0, 0}, {100, 0}, {100, 50}, {0, 50}, {0, 0}}), PieceRole::contour, a, b});
+  shared.segments.push_back(all);
+  const auto none = add_micro_joints(shared, nest, {2, 2.0, {}});
+  EXPECT_EQ(none.tabs, 0);
+  EXPECT_EQ(none.skipped, 2);
+  EXPECT_EQ(none.enclosed, (std::vector<std::int32_t>{a, b}));
+  EXPECT_EQ(shared.segments.size(), 1u);
+}
+
 TEST(MicroJoints, TooShortContoursStayWholeAndHolesAreNeverTabbed) {
   auto outer = geometry::rectangle({0, 0, 100, 100});
   auto hole = geometry::rectangle({40, 40, 60, 60});

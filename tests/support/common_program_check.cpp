@@ -27,7 +27,7 @@ struct UnionFind {
 }  // namespace
 
 CommonProgramCheck check_common_program(const model::Nest& nest, const std::string& gcode, double on_mm,
-                                        bool group_rule) {
+                                        bool group_rule, double tab_width_mm) {
   CommonProgramCheck out;
   out.probe = probe_gcode(gcode);
   const auto& moves = out.probe.moves;
@@ -136,17 +136,34 @@ CommonProgramCheck check_common_program(const model::Nest& nest, const std::stri
   std::vector<std::vector<Vec2>> samples(parts.size());
   std::vector<std::vector<std::size_t>> cut_at(parts.size());
   std::vector<std::size_t> done(parts.size(), 0);
+  const bool tabs = tab_width_mm > 0;
+  if (tabs) out.uncut.resize(parts.size());
   for (std::size_t k = 0; k < parts.size(); ++k) {
-    samples[k] = boundary_samples(parts[k]->source.contour, 0.5);
+    const bool tabbed = tabs && parts[k]->role == model::ContourRole::outer;
+    samples[k] = boundary_samples(parts[k]->source.contour, tabbed ? 0.02 : 0.5);
+    const double spacing = geometry::length(parts[k]->source.contour) / static_cast<double>(samples[k].size());
+    bool open_run = false;  // the previous sample was left uncut
     for (const Vec2 q : samples[k]) {
       const std::size_t first = move_index.first_within(q, on_mm);
-      if (first == cuts.size()) {
+      cut_at[k].push_back(first);
+      if (first < cuts.size()) {
+        done[k] = std::max(done[k], first);
+        open_run = false;
+        continue;
+      }
+      if (!tabbed || near_parts(q, tab_width_mm / 2).size() > 1) {
         out.failures.push_back("contour " + std::to_string(k + 1) + ": boundary point (" + std::to_string(q.x) + ", " +
                                std::to_string(q.y) + ") is never cut");
         break;
       }
-      cut_at[k].push_back(first);
-      done[k] = std::max(done[k], first);
+      if (!open_run) out.uncut[k].push_back(0.0);
+      out.uncut[k].back() += spacing;
+      open_run = true;
+    }
+    // A stretch running through the first sample began at the end of the boundary.
+    if (tabbed && out.uncut[k].size() >= 2 && open_run && cut_at[k].front() == cuts.size()) {
+      out.uncut[k].front() += out.uncut[k].back();
+      out.uncut[k].pop_back();
     }
   }
   if (!out.failures.empty()) return out;
@@ -170,13 +187,14 @@ CommonProgramCheck check_common_program(const model::Nest& nest, const std::stri
   std::vector<std::vector<char>> shared(parts.size());
   for (std::size_t k = 0; k < parts.size(); ++k) {
     shared[k].assign(samples[k].size(), 0);
-    for (std::size_t s = 0; s < samples[k].size(); ++s) shared[k][s] = !common_of[cut_at[k][s]].empty();
+    for (std::size_t s = 0; s < samples[k].size(); ++s) shared[k][s] = cut_at[k][s] < cuts.size() && !common_of[cut_at[k][s]].empty();
   }
   std::vector<std::size_t> outer_done(parts.size(), 0), shared_done(parts.size(), 0);
   std::vector<char> has_shared(parts.size(), 0);
   for (std::size_t k = 0; k < parts.size(); ++k) {
     const std::size_t g = uf.find(k);
     for (std::size_t s = 0; s < samples[k].size(); ++s) {
+      if (cut_at[k][s] == cuts.size()) continue;  // a tab
       if (shared[k][s]) {
         has_shared[g] = 1;
         shared_done[g] = std::max(shared_done[g], cut_at[k][s]);

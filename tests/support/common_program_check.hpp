@@ -16,6 +16,9 @@ struct CommonProgramCheck {
   int runs = 0;                       // beam-on runs (= pierces)
   int pierces_on_a_cut = 0;           // runs starting on a drawn boundary (no lead-in)
   double boundary_cut_mm = 0;         // beam-on length lying on drawn part boundaries [mm]
+  // With `tab_width_mm` > 0: per drawn contour (the sheet excluded, in nest order), the widths of
+  // the stretches of its boundary left uncut (micro-joints), in sampling order [mm].
+  std::vector<std::vector<double>> uncut;
 };
 
 // Independently of the route data, from the program text alone:
@@ -32,7 +35,12 @@ struct CommonProgramCheck {
 // `group_rule` false: skip the third check. Drawings whose contours touch along stretches that
 // are not common lines (cut twice, e.g. d2g_DRAAK) make "a move lying on two boundaries" an
 // ambiguous sign of a common line there.
+// `tab_width_mm` > 0 (micro-joints): an outer contour's boundary may stay uncut where it lies
+// farther than half of `tab_width_mm` from every other contour (its own edges, away from junctions; never
+// on a common line or a hole); the boundary is then sampled every 0.02 mm and the uncut stretches
+// are measured (`uncut`), an uncut stretch elsewhere is a failure. Its parts count as done when
+// the rest of their boundary is.
 CommonProgramCheck check_common_program(const model::Nest& nest, const std::string& gcode, double on_mm,
-                                        bool group_rule = true);
+                                        bool group_rule = true, double tab_width_mm = 0.0);
 
 }  // namespace cutroute::test

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <vector>
 
 #include <cutroute/model/nest.hpp>
 #include <cutroute/nc/toolpath.hpp>
@@ -26,7 +27,10 @@ struct MicroJointOptions {
 struct MicroJointStats {
   int contours = 0;          // outer contours that got tabs
   int tabs = 0;              // gaps left in total
-  int skipped = 0;           // outer contours too short for their tabs (left whole)
+  int skipped = 0;           // outer contours too short for their tabs (left whole), enclosed ones included
+  // Common lines: outer contours whose whole outline is shared with neighbours (no edge on the
+  // skeleton for a tab: nothing holds the part once its lines are cut), in nest order.
+  std::vector<std::int32_t> enclosed;
   int lead_ins = 0;          // cuts after a gap entered by a lead-in
   int on_path = 0;           // cuts after a gap pierced on the path although a lead-in was asked for
 };
@@ -37,7 +41,11 @@ struct MicroJointStats {
 // up to L / 4N - w either way, to the nearest place whose resumed cut gets one), so none
 // sits at the entry where the lead-in (or a chain's bridge) joins or at the end where the part
 // drops last. Each piece is a whole loop: a segment of the standard technique cuts one, a chain
-// several joined by bridges (each loop gets its gaps). The segment is split there:
+// several joined by bridges (each loop gets its gaps). With common lines a part is held only by
+// its own edges (its pieces of the group's outline, `CutPiece::shared_with` < 0): its N gaps are
+// spread over them at (k + 1/2) U / N along their usable length U, at least max(w, 1 mm) from
+// each piece's ends (junctions with a neighbour's cut, the loop's entry), never on a common line;
+// a part whose usable length is under 2·N·w is left whole and counted. The segment is split there:
 // the beam goes off before each gap, the head moves over the gap, and the next piece is a new
 // segment with the same feed and kerf side: pierced on the contour (no lead-in) and marked
 // `after_tab` (with controller compensation its rapid follows the gap's corners), or, with

@@ -20,6 +20,9 @@ struct CutPiece {
   geometry::Contour path;   // open, in the order of travel [mm]
   PieceRole role = PieceRole::contour;
   std::int32_t contour = -1;  // the nest contour this piece cuts (contour pieces), else -1
+  // Common-line cutting: the neighbouring contour whose boundary this piece cuts too (one cut for
+  // both parts), else -1.
+  std::int32_t shared_with = -1;
 };
 
 // One cutting segment of the source paper: pierce -> lead-in -> contour(s) -> lead-out -> tool off.

@@ -211,7 +211,7 @@ int run_estimate(const EstimateOptions& o) {
     j["warnings"] = nlohmann::json::array();
     for (const auto& w : conditions->warnings) j["warnings"].push_back(w);
     for (const auto& w : stats->warnings) j["warnings"].push_back(format(w));
-    std::cout << j.dump(2) << '\n';
+    std::cout << json_text(j) << '\n';
     return kOk;
   }
   std::cout << o.program << ": " << conditions->material << ' ' << fixed(thickness, 2) << " mm on "

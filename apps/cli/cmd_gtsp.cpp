@@ -69,7 +69,7 @@ int run_gtsp(const GtspOptions& o) {
     for (auto v : s.route) tour.push_back(v.value() + 1);
     j["tour"] = tour;
     if (s.lower_bound) j["lower_bound"] = *s.lower_bound;
-    std::cout << j.dump() << '\n';
+    std::cout << json_text(j, -1) << '\n';
   } else {
     std::cout << "instance:  " << inst->name << '\n';
     if (!s.route.empty()) std::cout << "objective: " << s.cost << '\n';

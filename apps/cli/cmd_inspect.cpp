@@ -38,7 +38,7 @@ void add_inspect(CLI::App& root, Commands& out) {
 
     const nlohmann::json report = io::inspect_report(*loaded);
     if (opts->json) {
-      std::cout << report.dump(2) << '\n';
+      std::cout << json_text(report) << '\n';
     } else {
       std::cout << io::inspect_text(report);
     }

@@ -75,7 +75,7 @@ int run_machining(const MachiningOptions& o) {
   }
   if (o.json) {
     if (!parts->is_list) {
-      std::cout << reports[0].dump(2) << '\n';
+      std::cout << json_text(reports[0]) << '\n';
     } else {
       // CT of the part is the sum over its transitions (each carries its own fixed share).
       nlohmann::json j;
@@ -83,7 +83,7 @@ int run_machining(const MachiningOptions& o) {
       j["status"] = status;
       j["total_cost_cu"] = status == "infeasible" ? nlohmann::json(nullptr) : nlohmann::json(total);
       j["transitions"] = reports;
-      std::cout << j.dump(2) << '\n';
+      std::cout << json_text(j) << '\n';
     }
   } else {
     std::cout << text_out;

@@ -3,6 +3,7 @@
 #include <atomic>
 #include <filesystem>
 #include <iostream>
+#include <set>
 #include <thread>
 
 #include <cutroute/core/number_format.hpp>
@@ -129,9 +130,13 @@ int run(const Opts& o) {
     return kUsageError;
   }
   std::vector<Outputs> outs(o.nests.size());
+  std::set<std::string> stems;  // batch: each nest's outputs under a name of its own
   for (std::size_t i = 0; i < o.nests.size(); ++i) {
-    const std::string stem = std::filesystem::path(o.nests[i]).stem().string();
+    std::string stem = std::filesystem::path(o.nests[i]).stem().string();
     if (batch) {
+      // Sheets of the same name from different folders (job1/sheet.dxf, job2/sheet.dxf) get
+      // sheet.ngc, sheet-2.ngc, ... in the order given; summary.csv says which is which.
+      for (int k = 2; !stems.insert(stem).second; ++k) stem = std::filesystem::path(o.nests[i]).stem().string() + "-" + std::to_string(k);
       std::error_code ec;
       std::filesystem::create_directories(o.out, ec);
       const auto base = (std::filesystem::path(o.out) / stem).string();
@@ -150,63 +155,80 @@ int run(const Opts& o) {
   std::vector<std::string> warnings(o.nests.size());  // printed even with --quiet: the program is less safe or less sure to run than asked for
   std::vector<nlohmann::json> reports(o.nests.size());  // of the nests cut (null for the others): the batch summary
   std::atomic<std::size_t> next{0};
+  auto cut_one = [&](std::size_t i) {
+    // After Ctrl-C the nests already under way still write their best program; the rest do not start.
+    if (StopToken::global().cancelled()) {
+      messages[i] = o.nests[i] + ": not started (interrupted)";
+      codes[i] = kInputError;
+      return;
+    }
+    auto loaded = io::load_nest(o.nests[i], *load_options);
+    if (!loaded) {
+      messages[i] = format(loaded.error());
+      codes[i] = kInputError;
+      return;
+    }
+    pipeline::OptimizeOptions mine = po;
+    mine.title = "cutroute " + std::filesystem::path(o.nests[i]).filename().string();
+    auto res = pipeline::optimize_nest(*loaded, mine, StopToken::global(), progress.for_job(o.nests[i]));
+    if (!res) {
+      Diagnostic d = res.error();
+      if (d.file.empty()) d.file = o.nests[i];
+      messages[i] = format(d);
+      codes[i] = kInputError;
+      return;
+    }
+    // All outputs or none: a report or picture that fails to write leaves no program behind, and
+    // a program that fails leaves no report of it.
+    io::RoutePictureOptions pic{1400, std::filesystem::path(o.nests[i]).filename().string(), {}};
+    pic.compensation_at_risk = io::compensation_at_risk(res->report);
+    std::vector<io::OutputFile> files;
+    if (!outs[i].report.empty()) files.push_back({outs[i].report, json_text(res->report) + "\n"});
+    if (!outs[i].svg.empty()) files.push_back({outs[i].svg, io::route_to_svg(loaded->nest, res->toolpath, pic)});
+    if (!outs[i].html.empty())
+      files.push_back({outs[i].html, io::route_to_html(loaded->nest, res->toolpath, io::report_summary(res->report), pic)});
+    files.push_back({outs[i].program, res->program.text});
+    if (const Status st = io::write_files_atomic(files); !st) {
+      messages[i] = format(st.error());
+      codes[i] = kInputError;
+      return;
+    }
+    for (Diagnostic d : res->diagnostics) {
+      // Printed: rapids left over freed parts, cuts the controller's compensation may refuse, cuts
+      // after a tab that resume on the part's edge although lead-ins were asked for, and parts no
+      // tab holds.
+      if (d.code != "tip_up.time_limit" && d.code != "kerf.controller_detail" && d.code != "tabs.resumed_on_path" &&
+          d.code != "tabs.part_without_skeleton_edge")
+        continue;
+      if (d.file.empty()) d.file = o.nests[i];
+      warnings[i] += "cutroute: " + format(d) + "\n";
+    }
+    const auto& r = res->report;
+    if (batch) reports[i] = r;
+    messages[i] = o.nests[i] + ": " + std::to_string(r["pierces"].get<std::size_t>()) + " pierces, cut " +
+                  format_fixed(r["cut_length_mm"].get<double>(), 1) + " mm, rapid " +
+                  format_fixed(r["rapid_length_mm"].get<double>(), 1) + " mm, " +
+                  std::to_string(r["frames"].get<std::size_t>()) + " frames, T_cut " +
+                  format_fixed(r["t_cut_s"].get<double>(), 2) + " s (" +
+                  format_fixed(r["t_cut_const_speed_s"].get<double>(), 2) + " s at the set speed), technique " +
+                  r["chosen"].get<std::string>();
+    // How far from the best route this one can be at most, as the HTML page says it.
+    if (const std::string q = io::route_quality(r); !q.empty()) messages[i] += ", route " + q;
+    messages[i] += " -> " + outs[i].program;
+  };
+  // An exception (out of memory, a bug) fails its nest, not the batch: thrown in a worker thread
+  // it would end the process without a word.
   auto work = [&] {
     for (std::size_t i = next++; i < o.nests.size(); i = next++) {
-      // After Ctrl-C the nests already under way still write their best program; the rest do not start.
-      if (StopToken::global().cancelled()) {
-        messages[i] = o.nests[i] + ": not started (interrupted)";
+      try {
+        cut_one(i);
+      } catch (const std::bad_alloc&) {
+        messages[i] = o.nests[i] + ": error: out of memory";
         codes[i] = kInputError;
-        continue;
-      }
-      auto loaded = io::load_nest(o.nests[i], *load_options);
-      if (!loaded) {
-        messages[i] = format(loaded.error());
+      } catch (const std::exception& e) {
+        messages[i] = o.nests[i] + ": error: internal error: " + e.what();
         codes[i] = kInputError;
-        continue;
       }
-      pipeline::OptimizeOptions mine = po;
-      mine.title = "cutroute " + std::filesystem::path(o.nests[i]).filename().string();
-      auto res = pipeline::optimize_nest(*loaded, mine, StopToken::global(), progress.for_job(o.nests[i]));
-      if (!res) {
-        Diagnostic d = res.error();
-        if (d.file.empty()) d.file = o.nests[i];
-        messages[i] = format(d);
-        codes[i] = kInputError;
-        continue;
-      }
-      // The program last: a report or picture that fails to write leaves no program behind.
-      io::RoutePictureOptions pic{1400, std::filesystem::path(o.nests[i]).filename().string(), {}};
-      pic.compensation_at_risk = io::compensation_at_risk(res->report);
-      Status st = Ok{};
-      if (st && !outs[i].report.empty()) st = io::write_file_atomic(outs[i].report, res->report.dump(2) + "\n");
-      if (st && !outs[i].svg.empty()) st = io::write_file_atomic(outs[i].svg, io::route_to_svg(loaded->nest, res->toolpath, pic));
-      if (st && !outs[i].html.empty())
-        st = io::write_file_atomic(outs[i].html, io::route_to_html(loaded->nest, res->toolpath, io::report_summary(res->report), pic));
-      if (st) st = io::write_file_atomic(outs[i].program, res->program.text);
-      if (!st) {
-        messages[i] = format(st.error());
-        codes[i] = kInputError;
-        continue;
-      }
-      for (Diagnostic d : res->diagnostics) {
-        // Printed: rapids left over freed parts, cuts the controller's compensation may refuse, and
-        // cuts after a tab that resume on the part's edge although lead-ins were asked for.
-        if (d.code != "tip_up.time_limit" && d.code != "kerf.controller_detail" && d.code != "tabs.resumed_on_path") continue;
-        if (d.file.empty()) d.file = o.nests[i];
-        warnings[i] += "cutroute: " + format(d) + "\n";
-      }
-      const auto& r = res->report;
-      if (batch) reports[i] = r;
-      messages[i] = o.nests[i] + ": " + std::to_string(r["pierces"].get<std::size_t>()) + " pierces, cut " +
-                    format_fixed(r["cut_length_mm"].get<double>(), 1) + " mm, rapid " +
-                    format_fixed(r["rapid_length_mm"].get<double>(), 1) + " mm, " +
-                    std::to_string(r["frames"].get<std::size_t>()) + " frames, T_cut " +
-                    format_fixed(r["t_cut_s"].get<double>(), 2) + " s (" +
-                    format_fixed(r["t_cut_const_speed_s"].get<double>(), 2) + " s at the set speed), technique " +
-                    r["chosen"].get<std::string>();
-      // How far from the best route this one can be at most, as the HTML page says it.
-      if (const std::string q = io::route_quality(r); !q.empty()) messages[i] += ", route " + q;
-      messages[i] += " -> " + outs[i].program;
     }
   };
   std::vector<std::thread> pool;

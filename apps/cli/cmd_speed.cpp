@@ -49,7 +49,7 @@ int run_speed(const SpeedOptions& o) {
     j["measured"] = q->measured;
     j["interpolated"] = q->interpolated;
     j["warnings"] = q->warnings;
-    std::cout << j.dump(2) << '\n';
+    std::cout << json_text(j) << '\n';
   } else {
     std::cout << q->material << ' ' << fixed(o.thickness_mm, 2) << " mm, n = " << o.frames
               << " frames (n0 = " << fixed(n0, 0) << "): " << cost::to_string(s.regime) << " regime\n"

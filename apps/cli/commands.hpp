@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include <cutroute/core/diagnostic.hpp>
 
@@ -30,6 +31,9 @@ void add_optimize(CLI::App& root, Commands& out);
 
 // Prints "cutroute: <diagnostic>" to stderr and returns kInputError.
 int fail(const Diagnostic& d);
+// JSON text of a report (indent < 0: one line). Strings that are not UTF-8 (a file name in a
+// legacy encoding) come out with U+FFFD instead of making the dump throw.
+std::string json_text(const nlohmann::json& j, int indent = 2);
 // True when stderr is a terminal and --quiet was not given: progress may be shown.
 bool show_progress(bool quiet);
 

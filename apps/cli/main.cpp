@@ -16,6 +16,10 @@ int fail(const Diagnostic& d) {
   return kInputError;
 }
 
+std::string json_text(const nlohmann::json& j, int indent) {
+  return j.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 bool show_progress(bool quiet) { return !quiet && ::isatty(STDERR_FILENO); }
 
 }  // namespace cutroute::cli

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <cutroute/core/text.hpp>
+
 namespace cutroute {
 
 const char* to_string(Severity s) {
@@ -41,12 +43,13 @@ std::string format(const Diagnostic& d) {
   return out;
 }
 
+// Messages quote input (a DXF value, a G-code line) that may not be UTF-8; reports and pictures need it.
 Diagnostic make_error(std::string message, std::string file, std::optional<long> line) {
-  return Diagnostic{Severity::error, std::move(message), std::move(file), line, {}, {}, {}};
+  return Diagnostic{Severity::error, to_utf8(message), std::move(file), line, {}, {}, {}};
 }
 
 Diagnostic make_warning(std::string message, std::string file, std::optional<long> line) {
-  return Diagnostic{Severity::warning, std::move(message), std::move(file), line, {}, {}, {}};
+  return Diagnostic{Severity::warning, to_utf8(message), std::move(file), line, {}, {}, {}};
 }
 
 bool has_errors(const Diagnostics& ds) {

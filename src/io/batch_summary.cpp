@@ -1,12 +1,14 @@
 #include <cutroute/io/batch_summary.hpp>
 
 #include <cutroute/core/number_format.hpp>
+#include <cutroute/core/text.hpp>
 #include <cutroute/io/route_picture.hpp>
 
 namespace cutroute::io {
 namespace {
 
-std::string field(const std::string& s) {
+std::string field(const std::string& raw) {
+  const std::string s = to_utf8(raw);  // file names and messages may not be UTF-8; the table is
   if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
   std::string q = "\"";
   for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);

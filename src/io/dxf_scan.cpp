@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <string>
 
+#include <cutroute/core/text.hpp>
 #include <cutroute/core/units.hpp>
 
 namespace cutroute::io::detail {
@@ -32,6 +34,54 @@ Kind kind_of(int code) {
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
   while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+  return s;
+}
+
+// The iconv charset of a $DWGCODEPAGE value: "ANSI_1252" -> "CP1252" (likewise 874, 932, 936,
+// 949, 950, 1250-1258), "DOS850" -> "IBM850"; anything else -> "CP1252", AutoCAD's default.
+std::string iconv_charset(std::string_view page) {
+  std::string up;
+  for (const char c : page) up += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  const auto digits = [](std::string_view d) {
+    return !d.empty() && d.size() <= 5 && std::all_of(d.begin(), d.end(), [](char c) { return c >= '0' && c <= '9'; });
+  };
+  const std::string_view u(up);
+  if (u.starts_with("ANSI_") && digits(u.substr(5))) return "CP" + std::string(u.substr(5));
+  if (u.starts_with("DOS") && digits(u.substr(3))) return "IBM" + std::string(u.substr(3));
+  return "CP1252";
+}
+
+// A name as the drawing wrote it, in UTF-8: bytes in the drawing's code page converted (files
+// before AutoCAD 2007 are in one; later ones in UTF-8, kept), and the "\U+XXXX" escapes AutoCAD
+// 2000-2004 write for characters outside their code page decoded.
+std::string drawing_text(std::string_view v, const char* charset) {
+  std::string s = to_utf8(v, charset);
+  const auto hex = [](char c) {
+    return c >= '0' && c <= '9' ? c - '0' : c >= 'A' && c <= 'F' ? c - 'A' + 10 : c >= 'a' && c <= 'f' ? c - 'a' + 10 : -1;
+  };
+  for (std::size_t at = s.find("\\U+"); at != std::string::npos; at = s.find("\\U+", at + 1)) {
+    if (at + 7 > s.size()) break;
+    unsigned cp = 0;
+    bool ok = true;
+    for (std::size_t k = at + 3; k < at + 7; ++k) {
+      const int h = hex(s[k]);
+      ok = ok && h >= 0;
+      cp = cp * 16 + static_cast<unsigned>(std::max(h, 0));
+    }
+    if (!ok || cp == 0 || (cp >= 0xD800 && cp <= 0xDFFF)) continue;
+    std::string u;
+    if (cp < 0x80) {
+      u += static_cast<char>(cp);
+    } else if (cp < 0x800) {
+      u += static_cast<char>(0xC0 | (cp >> 6));
+      u += static_cast<char>(0x80 | (cp & 0x3F));
+    } else {
+      u += static_cast<char>(0xE0 | (cp >> 12));
+      u += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+      u += static_cast<char>(0x80 | (cp & 0x3F));
+    }
+    s.replace(at, 7, u);
+  }
   return s;
 }
 
@@ -110,7 +160,12 @@ class Scanner {
 
  private:
   bool next_line(std::string_view& line);
-  Diagnostic error(std::string msg, std::optional<long> line) const { return make_error(std::move(msg), file_, line); }
+  // Messages quote values from the file, which may be in the drawing's code page.
+  Diagnostic error(std::string msg, std::optional<long> line) const {
+    return make_error(to_utf8(msg, charset_.c_str()), file_, line);
+  }
+  // A name from the drawing (layer, block) in UTF-8: see drawing_text().
+  std::string text(std::string_view v) const { return drawing_text(v, charset_.c_str()); }
   std::optional<Diagnostic> check_value(int code, std::string_view value, long line);
   std::optional<Diagnostic> finish_entity();
   void start_entity(std::string_view type, long line);
@@ -139,6 +194,7 @@ class Scanner {
   bool in_block_header_ = false;
   bool in_endblk_ = false;
   std::size_t paperspace_skipped_ = 0;
+  std::string charset_ = "CP1252";  // iconv name of $DWGCODEPAGE (AutoCAD's default when absent)
 };
 
 bool Scanner::next_line(std::string_view& line) {
@@ -218,8 +274,8 @@ std::optional<Diagnostic> Scanner::entity_pair(int code, std::string_view value,
   long iv = 0;
   switch (code) {
     case 5: if (e.handle.empty()) e.handle.assign(v); break;
-    case 8: e.layer.assign(v); break;
-    case 2: if (e.type == "INSERT") e.block_name.assign(v); break;
+    case 8: e.layer = text(v); break;
+    case 2: if (e.type == "INSERT") e.block_name = text(v); break;
     case 67: if (parse_int(v, iv)) e.paperspace = iv == 1; break;
     case 70:
       if (parse_int(v, iv)) {
@@ -432,6 +488,8 @@ Result<ScanResult> Scanner::run() {
         if (section_ == "HEADER") {
           if (code == 9) {
             var.assign(value);
+          } else if (code == 3 && var == "$DWGCODEPAGE") {
+            charset_ = iconv_charset(trim(value));
           } else if (code == 70 && (var == "$INSUNITS" || var == "$MEASUREMENT")) {
             long v = 0;
             parse_int(value, v);
@@ -475,7 +533,7 @@ Result<ScanResult> Scanner::run() {
             ScanBlock& b = r_.blocks[static_cast<std::size_t>(block_)];
             double d = 0;
             long iv = 0;
-            if (code == 2) b.name.assign(value);
+            if (code == 2) b.name = text(value);
             else if (code == 10 && parse_real(value, d)) b.base.x = d;
             else if (code == 20 && parse_real(value, d)) b.base.y = d;
             else if (code == 70 && parse_int(value, iv)) b.flags = static_cast<int>(std::clamp(iv, -100000L, 100000L));

@@ -1,6 +1,7 @@
 #include <cutroute/io/inspect_report.hpp>
 
 #include <cutroute/core/number_format.hpp>
+#include <cutroute/core/text.hpp>
 
 namespace cutroute::io {
 
@@ -36,7 +37,7 @@ nlohmann::json inspect_report(const LoadedNest& loaded) {
   }
 
   nlohmann::json j;
-  j["file"] = loaded.file;
+  j["file"] = to_utf8(loaded.file);  // a file name in a legacy encoding: JSON needs UTF-8
   j["units_in_file"] = loaded.units_in_file;
   j["units_source"] = loaded.units_source;
   j["mm_per_unit"] = loaded.mm_per_unit;

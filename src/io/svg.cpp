@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include <cutroute/core/number_format.hpp>
+#include <cutroute/core/text.hpp>
 #include <cutroute/core/tolerances.hpp>
 
 namespace cutroute::io {
@@ -126,7 +127,9 @@ std::string SvgDocument::str() const {
   return s;
 }
 
-std::string xml_escape(const std::string& in) {
+std::string xml_escape(const std::string& raw) {
+  // XML must be UTF-8 (file names and drawing names may not be).
+  const std::string in = to_utf8(raw);
   std::string out;
   out.reserve(in.size());
   for (char c : in) {

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include <cutroute/core/number_format.hpp>
+#include <cutroute/core/text.hpp>
 #include <cutroute/core/tolerances.hpp>
 #include <cutroute/core/units.hpp>
 #include <cutroute/cost/estimate.hpp>
@@ -707,7 +708,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
 
   // 7. Report.
   nlohmann::json r;
-  r["file"] = loaded.file;
+  r["file"] = to_utf8(loaded.file);  // a file name in a legacy encoding: JSON needs UTF-8
   r["material"] = s.conditions.material;
   r["thickness_mm"] = s.conditions.thickness_mm;
   r["measured_speed_row"] = s.conditions.speed.measured;

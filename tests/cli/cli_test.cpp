@@ -57,15 +57,27 @@ TEST(Cli, AbsurdOptionValuesAreUsageErrors) {
   }
 }
 
-// The reason a finished output cannot be moved into place is the rename's, not "Success".
-TEST(Cli, OutputOntoADirectoryNamesTheReason) {
+// A program that cannot be written (its path is a folder) is refused with the reason, and the
+// run leaves none of its other outputs: no report or picture of a program that does not exist.
+TEST(Cli, OutputOntoADirectoryNamesTheReasonAndLeavesNothing) {
   const auto dir = temp_dir("ontodir");
   ASSERT_EQ(run_command(cli_path() + " demo " + (dir / "n.dxf").string()).exit_code, 0);
   fs::create_directories(dir / "p.ngc");
-  auto r = run_command(cli_path() + " optimize " + (dir / "n.dxf").string() + " --time-limit 0.2 -o " + (dir / "p.ngc").string());
+  auto r = run_command(cli_path() + " optimize " + (dir / "n.dxf").string() + " --time-limit 0.2 -o " + (dir / "p.ngc").string() +
+                       " --report " + (dir / "r.json").string() + " --svg " + (dir / "r.svg").string() + " --html " +
+                       (dir / "r.html").string());
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("cannot move the finished output into place"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("p.ngc: error: cannot write output: is a folder"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("Success"), std::string::npos) << r.err;
+  for (const char* left : {"r.json", "r.svg", "r.html"}) EXPECT_FALSE(fs::exists(dir / left)) << left;
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+  // A report that cannot be written leaves no program.
+  r = run_command(cli_path() + " optimize " + (dir / "n.dxf").string() + " --time-limit 0.2 -o " + (dir / "q.ngc").string() +
+                  " --report " + (dir / "no" / "r.json").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("cannot write output"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "q.ngc"));
   fs::remove_all(dir);
 }
 

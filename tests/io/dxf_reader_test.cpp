@@ -383,6 +383,38 @@ TEST(DxfReader, LayerFilters) {
   EXPECT_EQ(d.entity_counts.at("LINE"), 1u);
 }
 
+// Drawings before AutoCAD 2007 store names in their code page ($DWGCODEPAGE, Windows-1252 when
+// absent), AutoCAD 2000-2004 characters outside it as \U+XXXX; reports and pictures get UTF-8.
+TEST(DxfReader, NamesInTheDrawingsCodePageComeOutAsUtf8) {
+  DxfBuilder b;
+  b.begin_block("Fl\xFC" "gel").line({0, 0}, {1, 0}).end_block();
+  b.line({0, 0}, {1, 0}, "Grav\xEDr").line({0, 1}, {1, 1}, "Durchbr\\U+00FCche").line({0, 2}, {1, 2}, "Gravír");
+  b.insert("Fl\xFC" "gel", {5, 5}, 1, 1, 0, "Teile");
+  auto d = read(b.str());
+  ASSERT_EQ(d.entities.size(), 4u);
+  EXPECT_EQ(d.entities[0].layer, "Gravír");
+  EXPECT_EQ(d.entities[1].layer, "Durchbrüche");
+  EXPECT_EQ(d.entities[2].layer, "Gravír");
+  EXPECT_EQ(d.entities[3].layer, "Teile");
+  EXPECT_EQ(d.entities[3].block, "Flügel");
+  io::DxfOptions drop;
+  drop.ignore_layers = {"gravír"};
+  EXPECT_EQ(read(b.str(), drop).entities.size(), 2u);
+  // The code page the header names.
+  DxfBuilder cyr;
+  cyr.codepage("ANSI_1251").line({0, 0}, {1, 0}, "\xD0\xE0\xE7\xEC\xE5\xF0");
+  d = read(cyr.str());
+  ASSERT_EQ(d.entities.size(), 1u);
+  EXPECT_EQ(d.entities[0].layer, "Размер");
+  // A message quoting a value from such a file is UTF-8 too, and still names the line.
+  DxfBuilder bad;
+  bad.raw(0, "LINE").raw(8, "0").raw(10, "3.5\xFF").raw(20, "0").raw(11, "1").raw(21, "0");
+  auto r = io::read_dxf_string(bad.str(), "x.dxf", {});
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().message, "group code 10: '3.5ÿ' is not a number");
+  EXPECT_TRUE(r.error().line.has_value());
+}
+
 TEST(DxfReader, NonCurveEntitiesAreCountedAndSkipped) {
   DxfBuilder b;
   b.line({0, 0}, {1, 0}).text({0, 0}, "label").mtext({1, 1}, "more").point({2, 2});

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cutroute/core/number_format.hpp>
+#include <cutroute/core/text.hpp>
 #include <cutroute/geometry/contour.hpp>
 #include <cutroute/io/nest_loader.hpp>
 
@@ -373,6 +374,40 @@ std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
   }
   if (rows.back().empty()) rows.pop_back();
   return rows;
+}
+
+// Sheets of one name from different folders keep outputs of their own (sheet, sheet-2, in the
+// order given). Names that are not UTF-8 (a layer in the drawing's Windows-1252 code page, a file
+// name in Latin-1) still give reports, pictures and a summary that are.
+TEST(OptimizeCli, BatchKeepsSameNamedSheetsApartAndWritesUtf8) {
+  const auto dir = temp_dir("batch-names");
+  fs::create_directories(dir / "a");
+  fs::create_directories(dir / "b");
+  const auto a = (dir / "a" / "sheet.dxf").string(), b = (dir / "b" / "sheet.dxf").string();
+  const auto latin = (dir / "b" / "Blech_gro\xDF.dxf").string();
+  ASSERT_EQ(run_command(cli_path() + " demo " + a).exit_code, 0);
+  std::string text = read_text(a);
+  for (auto at = text.find("\nCUT\n"); at != std::string::npos; at = text.find("\nCUT\n", at + 1)) text.replace(at + 1, 3, "Grav\xEDr");
+  std::ofstream(b) << text;
+  std::ofstream(latin) << text;
+  const auto out = dir / "out";
+  const auto r = run_command(cli_path() + " optimize " + a + " " + b + " '" + latin + "' -o " + out.string() + " --time-limit 1 --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = parse_csv(read_text(out / "summary.csv"));
+  ASSERT_EQ(rows.size(), 5u);
+  EXPECT_EQ(rows[1][14], (out / "sheet.ngc").string());
+  EXPECT_EQ(rows[2][14], (out / "sheet-2.ngc").string());
+  EXPECT_EQ(rows[3][0], (dir / "b" / "Blech_groß.dxf").string()) << "the file name in UTF-8";
+  EXPECT_TRUE(fs::exists(out / "sheet.ngc") && fs::exists(out / "sheet-2.ngc") && fs::exists(out / "Blech_gro\xDF.ngc"));
+  // Each report is its own sheet's (parsing throws on bad UTF-8).
+  for (const auto& [stem, nest] : {std::pair<std::string, std::string>{"sheet", a}, {"sheet-2", b}, {"Blech_gro\xDF", latin}}) {
+    const auto rep = nlohmann::json::parse(read_text(out / (stem + ".json")));
+    EXPECT_EQ(rep["file"], cutroute::to_utf8(nest)) << stem;
+    EXPECT_TRUE(cutroute::is_utf8(read_text(out / (stem + ".svg")))) << stem;
+    EXPECT_TRUE(cutroute::is_utf8(read_text(out / (stem + ".html")))) << stem;
+  }
+  EXPECT_TRUE(cutroute::is_utf8(read_text(out / "summary.csv")));
+  fs::remove_all(dir);
 }
 
 TEST(OptimizeCli, BatchSummaryListsEverySheetAndTheirTotals) {

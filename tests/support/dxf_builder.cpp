@@ -15,6 +15,7 @@ std::string DxfBuilder::num(double v) {
 DxfBuilder& DxfBuilder::insunits(int code) { insunits_ = code; return *this; }
 DxfBuilder& DxfBuilder::measurement(int code) { measurement_ = code; return *this; }
 DxfBuilder& DxfBuilder::no_header() { header_ = false; return *this; }
+DxfBuilder& DxfBuilder::codepage(const std::string& page) { codepage_ = page; return *this; }
 
 void DxfBuilder::begin(const char* type, const std::string& layer) {
   pair(0, std::string(type));
@@ -193,6 +194,7 @@ std::string DxfBuilder::str() const {
     s += "0\nSECTION\n2\nHEADER\n9\n$ACADVER\n1\nAC1015\n";
     if (insunits_) s += "9\n$INSUNITS\n70\n" + std::to_string(*insunits_) + "\n";
     if (measurement_) s += "9\n$MEASUREMENT\n70\n" + std::to_string(*measurement_) + "\n";
+    if (!codepage_.empty()) s += "9\n$DWGCODEPAGE\n3\n" + codepage_ + "\n";
     s += "0\nENDSEC\n";
   }
   if (!blocks_.empty()) s += "0\nSECTION\n2\nBLOCKS\n" + blocks_ + "0\nENDSEC\n";

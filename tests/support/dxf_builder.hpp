@@ -18,6 +18,7 @@ class DxfBuilder {
   DxfBuilder& insunits(int code);
   DxfBuilder& measurement(int code);
   DxfBuilder& no_header();  // leave the HEADER section out entirely
+  DxfBuilder& codepage(const std::string& page);  // $DWGCODEPAGE, e.g. "ANSI_1251"
 
   DxfBuilder& begin_block(const std::string& name, Vec2 base = {});
   DxfBuilder& end_block();
@@ -56,6 +57,7 @@ class DxfBuilder {
   void extrusion(double ez);
 
   std::optional<int> insunits_, measurement_;
+  std::string codepage_;
   bool header_ = true;
   bool in_block_ = false;
   std::string blocks_, entities_;

@@ -60,17 +60,6 @@ void to_stdout(std::string_view content) {
 
 }  // namespace
 
-Status write_file_atomic(const std::string& path, std::string_view content) {
-  if (path == "-") {
-    to_stdout(content);
-    return Ok{};
-  }
-  if (Status st = refuse_folder(path); !st) return st;
-  const std::string tmp = temp_name(path);
-  if (Status st = write_temp(tmp, path, content); !st) return st;
-  return move_into_place(tmp, path);
-}
-
 Status write_files_atomic(const std::vector<OutputFile>& files) {
   for (const auto& f : files)
     if (f.path != "-")
@@ -100,6 +89,10 @@ Status write_files_atomic(const std::vector<OutputFile>& files) {
   for (const auto& f : files)
     if (f.path == "-") to_stdout(f.content);
   return Ok{};
+}
+
+Status write_file_atomic(const std::string& path, std::string_view content) {
+  return write_files_atomic({{path, std::string(content)}});
 }
 
 Result<std::string> read_file(const std::string& path) {

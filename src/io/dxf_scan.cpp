@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <string>
 
+#include <cutroute/core/number_format.hpp>
 #include <cutroute/core/text.hpp>
 #include <cutroute/core/units.hpp>
 
@@ -235,7 +236,10 @@ std::optional<Diagnostic> Scanner::check_value(int code, std::string_view value,
     last_real_ = v;
     const bool geometry_section = section_ == "ENTITIES" || section_ == "BLOCKS";
     if (geometry_section && code >= 10 && code <= 39 && std::abs(v) > coordinate_limit()) {
-      return error("group code " + std::to_string(code) + ": coordinate " + std::string(trim(value)) +
+      // In drawing units that are not mm, the value in mm too: it is what the limit is about.
+      const double mm = v * units::kMaxCoordinateMm / coordinate_limit();
+      const std::string in_mm = std::abs(mm - v) > 1e-9 * std::abs(v) ? " (" + format_fixed(mm, 0) + " mm)" : "";
+      return error("group code " + std::to_string(code) + ": coordinate " + std::string(trim(value)) + in_mm +
                        " is out of range (more than 1e6 mm from the origin)",
                    line);
     }

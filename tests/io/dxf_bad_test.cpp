@@ -119,6 +119,18 @@ TEST(DxfBad, OverlongNumberIsAnError) {
   EXPECT_EQ(r.error().message, "group code 10: number of more than 1000 characters");
 }
 
+// Found by fuzzing: in metres the limit (1e6 mm) is 1000 drawing units, and a message quoting
+// 1481.35 against "1e6 mm" read as a contradiction.
+TEST(DxfBad, OutOfRangeCoordinateInOtherUnitsSaysItsMillimetres) {
+  DxfBuilder b;
+  b.line({0, 0}, {1481.35, 0});
+  io::DxfOptions metres;
+  metres.units = "m";
+  const auto r = io::read_dxf_string(b.str(), "m.dxf", metres);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().message, "group code 11: coordinate 1481.35 (1481350 mm) is out of range (more than 1e6 mm from the origin)");
+}
+
 // Found by fuzzing: degree 0 gave "needs 5 knots, has 5", and -1 (read by dxflib as 2^32 - 1) was
 // reported as degree 64.
 TEST(DxfBad, SplineDegreeOutOfRangeIsNamed) {

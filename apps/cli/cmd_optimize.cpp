@@ -195,10 +195,10 @@ int run(const Opts& o) {
     }
     for (Diagnostic d : res->diagnostics) {
       // Printed: rapids left over freed parts, cuts the controller's compensation may refuse, cuts
-      // after a tab that resume on the part's edge although lead-ins were asked for, and parts no
-      // tab holds.
+      // after a tab that resume on the part's edge although lead-ins were asked for, and parts or
+      // tabs that hold nothing.
       if (d.code != "tip_up.time_limit" && d.code != "kerf.controller_detail" && d.code != "tabs.resumed_on_path" &&
-          d.code != "tabs.part_without_skeleton_edge")
+          d.code != "tabs.part_without_skeleton_edge" && d.code != "tabs.on_a_neighbours_cut")
         continue;
       if (d.file.empty()) d.file = o.nests[i];
       warnings[i] += "cutroute: " + format(d) + "\n";

@@ -591,6 +591,25 @@ bool EntryPlanner::bridge_clear(const geometry::Contour& path, ContourId from, C
   return I.in_scrap(detail::at_length(path, 0.5 * len).point);
 }
 
+bool EntryPlanner::near_other(ContourId own, const geometry::Contour& path, double distance) const {
+  const auto& I = *impl_;
+  if (path.vertices.empty()) return false;
+  const geometry::SegmentSet set = geometry::make_segment_set(path);
+  I.index.query(set.box.inflated(distance), I.scratch);
+  // Contours inside `own` (its holes, parts in them) are on the other side of its cut.
+  const auto inside_own = [&](ContourId c) {
+    for (int guard = 0; c.valid() && guard < 64; ++guard, c = I.nest.contours[c].parent)
+      if (c == own) return true;
+    return false;
+  };
+  for (auto i : I.scratch) {
+    const ContourId c(static_cast<std::int32_t>(i));
+    if (I.nest.contours[c].role == ContourRole::sheet || inside_own(c)) continue;
+    if (geometry::count_close_segment_pairs(set, I.sets[i], distance, 1) > 0) return true;
+  }
+  return false;
+}
+
 std::pair<double, double> EntryPlanner::closest(ContourId id, geometry::Vec2 p) const {
   const auto cp = geometry::closest_point(impl_->nc(id).source.contour, p);
   return {cp.length_along, cp.distance};

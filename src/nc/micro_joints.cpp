@@ -74,20 +74,29 @@ MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const 
     }
   }
   const double step = std::max(w, 1.0);
-  // Gap centred at g on the piece, or (with lead-ins) moved by up to `reach` either way, within
-  // [lo, hi], to the nearest place whose resumed cut has room for a lead-in (notches, a
-  // neighbour close to that edge).
-  const auto place = [&](PieceRef ref, double g, double reach, double lo, double hi) {
+  // Gap centred at g on the piece `spacing` apart from the contour's next, or moved within
+  // [lo, hi], by steps of `step` (further on first), to the nearest place that holds (up to
+  // spacing / 2 - w either way: a neighbour's cut along that edge) and, with lead-ins, whose
+  // resumed cut has room for one (up to spacing / 4 - w and 6 steps: notches, a neighbour close
+  // to that edge). Where nothing holds the gap stays at g and is counted.
+  const auto place = [&](PieceRef ref, double g, double spacing, double lo, double hi) {
     const CutPiece& piece = path.segments[ref.segment].pieces[ref.piece];
     PieceGaps& pg = gaps[ref.segment][ref.piece];
     pg.centre.push_back(g);
     pg.lead.resize(pg.centre.size() + 1);
-    if (!o.lead_in) return;
+    if (!o.lead_in && !o.holds) return;
     const double piece_len = geometry::length(piece.path);
-    for (int t = 0; t <= 6; ++t) {
+    const double lead_reach = spacing / 4 - w, hold_reach = o.holds ? spacing / 2 - w : lead_reach;
+    std::optional<double> held;  // the nearest place that holds, for want of one with a lead-in
+    for (int t = 0;; ++t) {
       const double shift = (t + 1) / 2 * step * (t % 2 ? 1 : -1);
-      if (std::abs(shift) > reach && t > 0) break;
+      const bool lead_search = o.lead_in && t <= 6 && (std::abs(shift) <= lead_reach || t == 0);
+      if (t > 0 && std::abs(shift) > hold_reach && !lead_search) break;
+      if (held && !lead_search) break;
       if (g + shift < lo || g + shift > hi) continue;
+      if (o.holds && !o.holds(piece.contour, sub_path(piece.path, g + shift - w / 2, g + shift + w / 2))) continue;
+      if (!held) held = g + shift;
+      if (!lead_search) break;
       const double resume = g + shift + w / 2;
       if (auto l = o.lead_in(piece.contour, sub_path(piece.path, resume, std::min(resume + step, piece_len)))) {
         pg.centre.back() = g + shift;
@@ -95,6 +104,8 @@ MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const 
         return;
       }
     }
+    if (held) pg.centre.back() = *held;
+    else ++st.unheld;
   };
   constexpr double kAnywhere = std::numeric_limits<double>::infinity();
   for (std::size_t c = 0; c < own.size(); ++c) {
@@ -118,7 +129,7 @@ MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const 
         continue;
       }
       const double spacing = contour_len / n;
-      for (int k = 0; k < n; ++k) place(pieces[0], (k + 0.5) * spacing, spacing / 4 - w, -kAnywhere, kAnywhere);
+      for (int k = 0; k < n; ++k) place(pieces[0], (k + 0.5) * spacing, spacing, -kAnywhere, kAnywhere);
     } else {
       // Common lines: the part is held only by its own edges, the stretches of the group's outline
       // between junctions. The gaps are spread over them, at least max(w, 1 mm) from a junction
@@ -139,7 +150,7 @@ MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const 
           const double len = geometry::length(path.segments[pieces[at].segment].pieces[pieces[at].piece].path);
           const double here = std::max(0.0, len - 2 * margin);
           if (u < before + here || at + 1 == pieces.size()) {
-            place(pieces[at], margin + (u - before), spacing / 4 - w, margin, len - margin);
+            place(pieces[at], margin + (u - before), spacing, margin, len - margin);
             break;
           }
           before += here;

@@ -167,7 +167,8 @@ Evaluated evaluate(const model::Nest& nest, const model::EntryPlanner& planner, 
   Evaluated ev;
   ev.toolpath = nc::build_toolpath(nest, ptrs, to);
   if (o.rules.any()) {  // shop rules
-    ev.rules = rules::apply_to_toolpath(ev.toolpath, nest, o.rules, detour_stop, {planner, s.entries, s.dialect});
+    ev.rules = rules::apply_to_toolpath(ev.toolpath, nest, o.rules, detour_stop,
+                                        {planner, s.entries, s.dialect, rules::tab_clearance(o.kerf_mode, s.entries.kerf_mm)});
     if (ev.rules.contains("tip_up_program")) ev.detours_left = ev.rules["tip_up_program"]["unavoidable_left_at_time_limit"].get<int>();
   }
   ev.program = nc::write_gcode(ev.toolpath, s.dialect, nc::GcodeWriteOptions{o.title, true});
@@ -665,6 +666,17 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
              ? std::string()
              : std::string(", and the compensation's entry move starts on it")));
     w.code = "tabs.resumed_on_path";
+    result.diagnostics.push_back(std::move(w));
+  }
+
+  // Micro-joints on an edge a neighbour's cut runs along (no place that holds within reach).
+  if (const auto* tabs = best_ev.rules.is_object() && best_ev.rules.contains("tabs") ? &best_ev.rules["tabs"] : nullptr;
+      tabs && (*tabs)["on_a_neighbours_cut"].get<int>() > 0) {
+    Diagnostic w = make_warning("micro-joints: " + std::to_string((*tabs)["on_a_neighbours_cut"].get<int>()) + " of " +
+                                std::to_string((*tabs)["tabs"].get<int>()) +
+                                " tabs lie where a neighbouring part's cut runs within the kerf of them (parts drawn edge to "
+                                "edge): they hold nothing; --technique common cuts shared edges once and puts tabs elsewhere");
+    w.code = "tabs.on_a_neighbours_cut";
     result.diagnostics.push_back(std::move(w));
   }
 

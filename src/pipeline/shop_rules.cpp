@@ -442,6 +442,10 @@ bool lead_in_after_tabs(const ShopRules& r, const nc::PostDialect& dialect) {
   return r.tab_lead_in == TabLeadIn::on || !nc::beam_switches_under_compensation(dialect);
 }
 
+double tab_clearance(nc::KerfMode mode, double kerf_mm) {
+  return (mode == nc::KerfMode::controller ? 2 * kerf_mm : kerf_mm) + 1e-3;
+}
+
 nlohmann::json apply_to_toolpath(nc::Toolpath& path, const model::Nest& nest, const ShopRules& r, const StopToken& stop,
                                  const ToolpathContext& context) {
   nlohmann::json j;
@@ -455,7 +459,12 @@ nlohmann::json apply_to_toolpath(nc::Toolpath& path, const model::Nest& nest, co
                            {"detour_extra_mm", st.extra_mm}};
   }
   if (r.tabs > 0) {
-    nc::MicroJointOptions mj{r.tabs, r.tab_width_mm, {}};
+    nc::MicroJointOptions mj{r.tabs, r.tab_width_mm, {}, {}};
+    // Parts drawn edge to edge (or closer than the kerfs): a gap on the shared edge is cut away by
+    // the neighbour's cut, so gaps move off such edges.
+    mj.holds = [&](std::int32_t contour, const geometry::Contour& gap) {
+      return !context.planner.near_other(model::ContourId(contour), gap, context.tab_clearance_mm);
+    };
     const bool lead_ins = lead_in_after_tabs(r, context.dialect);
     // Straight lead-ins of the job's length, else of half of it where that is still longer than
     // a compensation entry move must be (EntryOptions::min_lead_mm): tight scrap between notches
@@ -490,7 +499,8 @@ nlohmann::json apply_to_toolpath(nc::Toolpath& path, const model::Nest& nest, co
     const nc::MicroJointStats st = nc::add_micro_joints(path, nest, mj);
     j["tabs"] = {{"per_outer_contour", r.tabs}, {"width_mm", r.tab_width_mm}, {"contours", st.contours},
                  {"tabs", st.tabs}, {"contours_too_short", st.skipped}, {"lead_in_after_tab", lead_ins},
-                 {"lead_ins", st.lead_ins}, {"resumed_on_path", lead_ins ? st.on_path : st.tabs}};
+                 {"lead_ins", st.lead_ins}, {"resumed_on_path", lead_ins ? st.on_path : st.tabs},
+                 {"on_a_neighbours_cut", st.unheld}};
     if (!st.enclosed.empty()) {
       auto parts = nlohmann::json::array();
       for (const std::int32_t c : st.enclosed) parts.push_back(nest.contours[model::ContourId(c)].part.value() + 1);

@@ -9,6 +9,7 @@
 #include <cutroute/cost/route_problem.hpp>
 #include <cutroute/model/cut_job.hpp>
 #include <cutroute/model/nest.hpp>
+#include <cutroute/nc/build_toolpath.hpp>
 #include <cutroute/nc/post_dialect.hpp>
 #include <cutroute/nc/toolpath.hpp>
 #include <cutroute/pipeline/shop_rules.hpp>
@@ -68,7 +69,15 @@ struct ToolpathContext {
   const model::EntryPlanner& planner;
   const model::EntryOptions& entries;
   const nc::PostDialect& dialect;
+  // Micro-joints: a gap holds the part only where no other contour of the planner's nest comes
+  // this close: beyond that distance skeleton is left between the two kerfs [mm].
+  double tab_clearance_mm = 0.0;
 };
+
+// ToolpathContext::tab_clearance_mm for a kerf mode: the planner's contours are the drawn ones
+// under controller compensation (each kerf lies outside its part: 2 kerfs), the cut paths with
+// cam offsets or none (each kerf centred on its path: 1 kerf); plus a micrometre.
+double tab_clearance(nc::KerfMode mode, double kerf_mm);
 
 // Step 5 (toolpath): detours around freed parts, then tabs. Returns the report of both. The
 // detour searches stop when `stop` requests it (deadline or cancel): the rapids not yet routed

@@ -300,6 +300,39 @@ TEST(CommonOptimize, TabsNamePartsWithoutAnEdgeOnTheSkeleton) {
   std::filesystem::remove_all(dir);
 }
 
+// The standard technique on parts drawn touching cuts every shared edge twice: a gap there is cut
+// away by the neighbour's cut. Three gaps 53 mm apart round the middle one of three 40-mm squares
+// in a row cannot all miss its two shared edges (two would have to share a free edge); each moves
+// within its own third of the loop to where it holds (the checker fails any gap within half a tab
+// of another part). The middle part of 3 x 3 has nowhere to go: its tab is counted and warned of.
+TEST(CommonOptimize, StandardTabsMoveOffSharedEdges) {
+  const auto dir = fresh_temp_dir("standard-tabs-shared");
+  const Layout row = grid(dir, 3, 1, 40, 40, 0);
+  const auto rep = dir / "out.json";
+  OptRun run = optimize(row.dxf, dir, "--technique standard --tabs 3 --threads 1 --report " + rep.string());
+  ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
+  const auto nest = load(row.dxf);
+  const auto check = check_common_program(nest, run.program, 0.005, false, 1.0);
+  for (const auto& f : check.failures) ADD_FAILURE() << f;
+  for (std::size_t k = 0; k < check.uncut.size(); ++k) {
+    ASSERT_EQ(check.uncut[k].size(), 3u) << k;
+    for (const double gap : check.uncut[k]) EXPECT_NEAR(gap, 1.0, 0.05) << k;
+  }
+  auto report = nlohmann::json::parse(read_text(rep));
+  EXPECT_EQ(report["rules"]["tabs"]["tabs"], 9);
+  EXPECT_EQ(report["rules"]["tabs"]["on_a_neighbours_cut"], 0);
+
+  const Layout square = grid(dir, 3, 3, 40, 40, 0);
+  run = optimize(square.dxf, dir, "--technique standard --tabs 1 --threads 1 --report " + rep.string());
+  ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
+  report = nlohmann::json::parse(read_text(rep));
+  EXPECT_EQ(report["rules"]["tabs"]["on_a_neighbours_cut"], 1);
+  bool warned = false;
+  for (const auto& d : report["diagnostics"]) warned |= d.value("code", "") == "tabs.on_a_neighbours_cut";
+  EXPECT_TRUE(warned) << report["diagnostics"];
+  std::filesystem::remove_all(dir);
+}
+
 // deepnestsharp_TopsNest (113 parts, many placed edge to edge) with common lines and two 1-mm tabs
 // each: every part gets its two gaps on its own edges, each 1 mm wide, none on a common line or
 // within half a tab of another part, and the program stays admissible (everything else cut,

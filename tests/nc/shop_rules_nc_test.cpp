@@ -49,7 +49,7 @@ TEST(MicroJoints, CircleGetsNGapsOfWidthWAlongTheArc) {
   Toolpath tp = whole_contours(nest);
   const int n = 4;
   const double w = 2.0;
-  const auto st = add_micro_joints(tp, nest, {n, w, {}});
+  const auto st = add_micro_joints(tp, nest, {n, w, {}, {}});
   EXPECT_EQ(st.contours, 1);
   EXPECT_EQ(st.tabs, n);
   ASSERT_EQ(tp.segments.size(), static_cast<std::size_t>(n + 1));
@@ -103,7 +103,7 @@ TEST(MicroJoints, CommonLinesGapsGoOnEachPartsOwnEdgesAwayFromTheJunctions) {
   loop.pieces.push_back({open_path({{98, 0}, {0, 0}, {0, 50}, {100, 50}}), PieceRole::contour, a});
   loop.pieces.push_back({open_path({{100, 50}, {200, 50}, {200, 0}, {100, 0}}), PieceRole::contour, b});
   tp.segments.push_back(loop);
-  const auto st = add_micro_joints(tp, nest, {2, 2.0, {}});
+  const auto st = add_micro_joints(tp, nest, {2, 2.0, {}, {}});
   EXPECT_EQ(st.contours, 2);
   EXPECT_EQ(st.tabs, 4);
   EXPECT_EQ(st.skipped, 0);
@@ -132,11 +132,37 @@ TEST(MicroJoints, CommonLinesGapsGoOnEachPartsOwnEdgesAwayFromTheJunctions) {
   all.pierce = {0, 0};
   all.pieces.push_back({open_path({{0, 0}, {100, 0}, {100, 50}, {0, 50}, {0, 0}}), PieceRole::contour, a, b});
   shared.segments.push_back(all);
-  const auto none = add_micro_joints(shared, nest, {2, 2.0, {}});
+  const auto none = add_micro_joints(shared, nest, {2, 2.0, {}, {}});
   EXPECT_EQ(none.tabs, 0);
   EXPECT_EQ(none.skipped, 2);
   EXPECT_EQ(none.enclosed, (std::vector<std::int32_t>{a, b}));
   EXPECT_EQ(shared.segments.size(), 1u);
+}
+
+// A gap where `holds` says no (a neighbour's cut along that edge) moves by max(w, 1 mm) at a time,
+// further on first, to the nearest place that holds, up to half the spacing less w; where none
+// does it stays and is counted. 100 mm square from (0, 0), N = 2, w = 2: gaps at 100 and 300 mm;
+// nothing holds over 60-160 mm, so the first moves to 58 (back 42) rather than 162 (on 62).
+TEST(MicroJoints, GapsMoveOffEdgesWhereTheyHoldNothing) {
+  const auto nest = nest_of({geometry::rectangle({0, 0, 100, 100})});
+  Toolpath tp = whole_contours(nest);
+  const geometry::Contour loop = tp.segments.front().pieces.front().path;
+  auto along = [&](Vec2 p) { return geometry::closest_point(loop, p).length_along; };
+  MicroJointOptions o{2, 2.0, {}, [&](std::int32_t, const geometry::Contour& gap) {
+                        return along(gap.vertices.back().p) < 60 || along(gap.vertices.front().p) > 160;
+                      }};
+  const auto st = add_micro_joints(tp, nest, o);
+  EXPECT_EQ(st.tabs, 2);
+  EXPECT_EQ(st.unheld, 0);
+  ASSERT_EQ(tp.segments.size(), 3u);
+  EXPECT_NEAR(along(tp.segments[1].pierce), 59, 1e-9);
+  EXPECT_NEAR(along(tp.segments[2].pierce), 301, 1e-9);
+
+  Toolpath nowhere = whole_contours(nest);
+  const auto none = add_micro_joints(nowhere, nest, {2, 2.0, {}, [](std::int32_t, const geometry::Contour&) { return false; }});
+  EXPECT_EQ(none.unheld, 2);
+  ASSERT_EQ(nowhere.segments.size(), 3u);
+  EXPECT_NEAR(along(nowhere.segments[1].pierce), 101, 1e-9);
 }
 
 TEST(MicroJoints, TooShortContoursStayWholeAndHolesAreNeverTabbed) {
@@ -157,7 +183,7 @@ TEST(MicroJoints, TooShortContoursStayWholeAndHolesAreNeverTabbed) {
   ASSERT_TRUE(hole_id.valid());
   hs.pieces.push_back({h, PieceRole::contour, hole_id.value()});
   tp.segments.insert(tp.segments.begin(), hs);
-  const auto st = add_micro_joints(tp, nest, {2, 4.0, {}});  // tiny: 12 mm < 2 * 2 * 4 mm
+  const auto st = add_micro_joints(tp, nest, {2, 4.0, {}, {}});  // tiny: 12 mm < 2 * 2 * 4 mm
   EXPECT_EQ(st.contours, 1);
   EXPECT_EQ(st.skipped, 1);
   EXPECT_EQ(tp.segments.size(), 1u + 3u + 1u);
@@ -183,7 +209,8 @@ TEST(MicroJoints, LeadInsAfterGapsAndGapsMovedToWhereOneFits) {
                         lead.closed = false;
                         lead.vertices = {{resumed.vertices.front().p + Vec2{0, -3}, 0.0}, {resumed.vertices.front().p, 0.0}};
                         return lead;
-                      }};
+                      },
+                      {}};
   const auto st = add_micro_joints(tp, nest, o);
   EXPECT_EQ(st.tabs, 2);
   EXPECT_EQ(st.lead_ins, 2);

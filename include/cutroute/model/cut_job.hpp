@@ -178,6 +178,10 @@ class EntryPlanner {
   // scrap: it touches `from` and `to` only at its ends, keeps the clearance from every other
   // contour and its middle lies in scrap?
   bool bridge_clear(const geometry::Contour& path, ContourId from, ContourId to) const;
+  // Does the open path come within `distance` of a contour outside `own` (not `own`, its holes or
+  // what lies in them, nor the sheet's border)? Micro-joints: a tab on `own` whose neighbour's cut
+  // runs that close holds nothing.
+  bool near_other(ContourId own, const geometry::Contour& path, double distance) const;
   // The stored contour's closest point to p: its arc length [mm] and distance [mm].
   std::pair<double, double> closest(ContourId contour, geometry::Vec2 p) const;
   geometry::Vec2 point_at(ContourId contour, double s_mm) const;  // on the stored contour

@@ -16,12 +16,17 @@ namespace cutroute::nc {
 // nullopt where none is admissible. The pipeline makes it with the job's own leads.
 using ResumeLeadIn = std::function<std::optional<geometry::Contour>(std::int32_t contour, const geometry::Contour& resumed)>;
 
+// Does a gap over this stretch of contour `contour` (open, in the direction of travel) hold the part
+// to the skeleton? False where a neighbour's cut runs so close that nothing is left beyond the tab.
+using TabHolds = std::function<bool(std::int32_t contour, const geometry::Contour& gap)>;
+
 struct MicroJointOptions {
   int tabs = 0;              // tabs per outer contour; 0: off
   double width_mm = 1.0;     // length of each uncut gap, measured along the programmed path [mm]
   // Empty: each cut after a gap is pierced on the path. Else it starts with this lead-in where
   // one is admissible (and on the path where none is).
   ResumeLeadIn lead_in;
+  TabHolds holds;            // empty: a gap holds anywhere
 };
 
 struct MicroJointStats {
@@ -33,12 +38,14 @@ struct MicroJointStats {
   std::vector<std::int32_t> enclosed;
   int lead_ins = 0;          // cuts after a gap entered by a lead-in
   int on_path = 0;           // cuts after a gap pierced on the path although a lead-in was asked for
+  int unheld = 0;            // gaps left where `holds` says no (no place that holds within reach)
 };
 
 // Every contour piece of an outer contour (of length L, the overcut past it excluded) gets its
-// tabs centred at (k + 1/2) L / N from the point where that piece enters it, k = 0..N-1 (with
-// `lead_in`, a gap whose resumed cut gets none moves by steps of max(w, 1 mm), further on first,
-// up to L / 4N - w either way, to the nearest place whose resumed cut gets one), so none
+// tabs centred at (k + 1/2) L / N from the point where that piece enters it, k = 0..N-1 (a gap
+// where `holds` says no moves by steps of max(w, 1 mm), further on first, up to L / 2N - w either
+// way, to the nearest place that holds; with `lead_in`, a gap whose resumed cut gets none moves
+// likewise up to L / 4N - w, to the nearest place that holds and whose resumed cut gets one), so none
 // sits at the entry where the lead-in (or a chain's bridge) joins or at the end where the part
 // drops last. Each piece is a whole loop: a segment of the standard technique cuts one, a chain
 // several joined by bridges (each loop gets its gaps). With common lines a part is held only by

@@ -55,8 +55,20 @@ class Emitter {
 
   void comment(const std::string& text) {
     if (d_.comments == CommentStyle::none) return;
+    // ASCII only: many controllers alarm on any other byte in a program (ISO/EIA tape code), and a
+    // file name may bring accents. Each non-ASCII character becomes one '?', control codes and
+    // parentheses (which would end or nest the comment) a space.
     std::string clean;
-    for (char c : text) clean += (c == '(' || c == ')' || c == '\n' || c == '\r') ? ' ' : c;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+      const auto c = static_cast<unsigned char>(text[i]);
+      if (c >= 0x80) {
+        clean += '?';
+        if (c >= 0xC0)
+          while (i + 1 < text.size() && (static_cast<unsigned char>(text[i + 1]) & 0xC0) == 0x80) ++i;
+      } else {
+        clean += (c < 0x20 || c == 0x7F || c == '(' || c == ')') ? ' ' : static_cast<char>(c);
+      }
+    }
     if (d_.comments == CommentStyle::paren) {
       out_.text += "(" + clean + ")\n";
     } else {

@@ -80,6 +80,18 @@ TEST(GcodeWriter, ExactTextOfASimpleProgram) {
   EXPECT_DOUBLE_EQ(w.rapid_length_mm, 5.0);
 }
 
+// Comments carry file names and labels: parentheses would end or nest the comment, and many
+// controllers alarm on bytes outside ASCII, so each non-ASCII character is one '?' (a stray
+// non-UTF-8 byte too) and control codes are spaces. The program is ASCII throughout.
+TEST(GcodeWriter, CommentsAreAsciiWithoutParentheses) {
+  Toolpath tp = square_path();
+  tp.segments[0].label = "part 1 outer \xC3\xA9\xE2\x82\xAC\xF0\x9F\x94\xA9 \xE9\tx";
+  const auto w = write_gcode(tp, PostDialect{}, GcodeWriteOptions{"cutroute Blech_gro\xC3\x9F (2).dxf", true});
+  EXPECT_EQ(w.text.substr(0, w.text.find('\n')), "(cutroute Blech_gro?  2 .dxf)");
+  EXPECT_NE(w.text.find("\n(part 1 outer ??? ? x)\n"), std::string::npos) << w.text;
+  for (const char c : w.text) EXPECT_LT(static_cast<unsigned char>(c), 0x80);
+}
+
 TEST(GcodeWriter, HalfArcsBecomeG3WithIncrementalCentre) {
   const auto w = write_gcode(circle_path({10, 20}, 5), PostDialect{}, GcodeWriteOptions{});
   EXPECT_NE(w.text.find("G3 X15 Y20 I5 J0 F3000\n"), std::string::npos) << w.text;

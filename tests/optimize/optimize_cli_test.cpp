@@ -414,7 +414,10 @@ TEST(OptimizeCli, BatchSummaryListsEverySheetAndTheirTotals) {
   const auto dir = temp_dir("batch-summary");
   const auto a = (dir / "a.dxf").string(), b = (dir / "sheet,1.dxf").string(), bad = (dir / "bad.dxf").string();
   ASSERT_EQ(run_command(cli_path() + " demo " + a).exit_code, 0);
-  std::ofstream(b) << read_text(a);
+  // The second sheet has a stray open line on the cut layer: not cut, and a warning its row counts.
+  std::string text = read_text(a);
+  text.insert(text.rfind("0\nENDSEC"), "0\nLINE\n8\nCUT\n10\n5\n20\n5\n11\n6\n21\n5\n");
+  std::ofstream(b) << text;
   std::ofstream(bad) << "0\nSECTION\nbroken\n";
   const auto out = dir / "out";
   const auto r = run_command(cli_path() + " optimize " + a + " " + bad + " " + b + " -o " + out.string() + " --time-limit 1");
@@ -424,7 +427,7 @@ TEST(OptimizeCli, BatchSummaryListsEverySheetAndTheirTotals) {
   ASSERT_EQ(rows.size(), 5u);
   const std::vector<std::string> header = {"nest", "status", "technique", "material", "thickness_mm", "pierces", "cut_length_mm",
                                            "rapid_length_mm", "frames", "t_cut_s", "t_cut_const_speed_s", "cost", "cost_unit",
-                                           "route", "program", "error"};
+                                           "route", "program", "error", "warnings"};
   ASSERT_EQ(rows[0], header);
   for (const auto& row : rows) ASSERT_EQ(row.size(), header.size());
   auto col = [&](const char* name) { return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin()); };
@@ -435,6 +438,7 @@ TEST(OptimizeCli, BatchSummaryListsEverySheetAndTheirTotals) {
     EXPECT_EQ(cells[col("nest")], nest);
     EXPECT_EQ(cells[col("status")], "ok");
     EXPECT_EQ(cells[col("program")], (out / (std::string(stem) + ".ngc")).string());
+    EXPECT_EQ(cells[col("warnings")], nest == a ? "" : "chain.open:1");
     const auto rep = nlohmann::json::parse(read_text(out / (std::string(stem) + ".json")));
     EXPECT_EQ(cells[col("technique")], rep["chosen"]);
     EXPECT_EQ(std::stoi(cells[col("pierces")]), rep["pierces"].get<int>());

@@ -18,7 +18,9 @@ struct BatchEntry {
 
 // Columns: nest, status (ok / error), technique, material, thickness_mm, pierces,
 // cut_length_mm, rapid_length_mm, frames, t_cut_s, t_cut_const_speed_s, cost, cost_unit, route
-// ("optimal", "gap Z %" or empty), program, error; one row per entry in the given order, then a
+// ("optimal", "gap Z %" or empty), program, error, warnings (the report's warnings counted by
+// code, "chain.open:2 tabs.on_a_neighbours_cut:1": what to look at before cutting that sheet);
+// one row per entry in the given order, then a
 // row "total" summing the numbers of the sheets that were cut (the cost only when every sheet has
 // the same unit). Lengths in mm, times in s, as in the reports; fields with a comma, quote or
 // line break are quoted (RFC 4180).

@@ -650,47 +650,10 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     result.diagnostics.push_back(std::move(w));
   }
 
-  // Micro-joints asked to resume with lead-ins: the cuts after a tab where no lead-in fitted.
-  if (const auto* tabs = best_ev.rules.is_object() && best_ev.rules.contains("tabs") ? &best_ev.rules["tabs"] : nullptr;
-      tabs && (*tabs)["lead_in_after_tab"].get<bool>() && (*tabs)["resumed_on_path"].get<int>() > 0) {
-    constexpr int kNamed = 5;
-    std::string where;
-    int named = 0;
-    for (const auto& seg : best_ev.toolpath.segments)
-      if (seg.after_tab && named++ < kNamed) where += (where.empty() ? "" : ", ") + seg.label;
-    Diagnostic w = make_warning(
-        "micro-joints: " + std::to_string((*tabs)["resumed_on_path"].get<int>()) + " of " + std::to_string((*tabs)["tabs"].get<int>()) +
-        " cuts after a tab resume on the contour, with no room in the scrap for a lead-in (" + where +
-        (named > kNamed ? ", ..." : "") + "): the pierce marks the part's edge there" +
-        (nc::beam_switches_under_compensation(s.dialect) || o.kerf_mode != nc::KerfMode::controller
-             ? std::string()
-             : std::string(", and the compensation's entry move starts on it")));
-    w.code = "tabs.resumed_on_path";
+  // Micro-joints: cuts resumed on the part's edge, tabs that hold nothing.
+  for (Diagnostic& w : rules::tab_warnings(best_ev.rules, best_ev.toolpath,
+                                           !nc::beam_switches_under_compensation(s.dialect) && o.kerf_mode == nc::KerfMode::controller))
     result.diagnostics.push_back(std::move(w));
-  }
-
-  // Micro-joints on an edge a neighbour's cut runs along (no place that holds within reach).
-  if (const auto* tabs = best_ev.rules.is_object() && best_ev.rules.contains("tabs") ? &best_ev.rules["tabs"] : nullptr;
-      tabs && (*tabs)["on_a_neighbours_cut"].get<int>() > 0) {
-    Diagnostic w = make_warning("micro-joints: " + std::to_string((*tabs)["on_a_neighbours_cut"].get<int>()) + " of " +
-                                std::to_string((*tabs)["tabs"].get<int>()) +
-                                " tabs lie where a neighbouring part's cut runs within the kerf of them (parts drawn edge to "
-                                "edge): they hold nothing; --technique common cuts shared edges once and puts tabs elsewhere");
-    w.code = "tabs.on_a_neighbours_cut";
-    result.diagnostics.push_back(std::move(w));
-  }
-
-  // Micro-joints with common lines: parts whose whole outline is shared have no edge for a tab.
-  if (const auto* tabs = best_ev.rules.is_object() && best_ev.rules.contains("tabs") ? &best_ev.rules["tabs"] : nullptr;
-      tabs && tabs->contains("parts_without_skeleton_edge")) {
-    std::string parts;
-    for (const auto& k : (*tabs)["parts_without_skeleton_edge"]) parts += (parts.empty() ? "" : ", ") + std::to_string(k.get<int>());
-    Diagnostic w = make_warning("micro-joints: part(s) " + parts +
-                                " share their whole outline with neighbours: no edge on the skeleton for a tab, nothing "
-                                "holds them once their common lines are cut");
-    w.code = "tabs.part_without_skeleton_edge";
-    result.diagnostics.push_back(std::move(w));
-  }
 
   // Controller compensation: details of the path finer than the kerf, which the controller's
   // offset cannot follow (LinuxCNC refuses such blocks; nc/compensation_check.hpp).

@@ -510,6 +510,43 @@ nlohmann::json apply_to_toolpath(nc::Toolpath& path, const model::Nest& nest, co
   return j;
 }
 
+Diagnostics tab_warnings(const nlohmann::json& rules, const nc::Toolpath& path, bool entry_on_edge) {
+  Diagnostics out;
+  if (!rules.is_object() || !rules.contains("tabs")) return out;
+  const nlohmann::json& tabs = rules["tabs"];
+  const std::string of_all = " of " + std::to_string(tabs["tabs"].get<int>());
+  if (const int n = tabs["resumed_on_path"].get<int>(); tabs["lead_in_after_tab"].get<bool>() && n > 0) {
+    constexpr int kNamed = 5;
+    std::string where;
+    int named = 0;
+    for (const auto& seg : path.segments)
+      if (seg.after_tab && named++ < kNamed) where += (where.empty() ? "" : ", ") + seg.label;
+    Diagnostic w = make_warning("micro-joints: " + std::to_string(n) + of_all +
+                                " cuts after a tab resume on the contour, with no room in the scrap for a lead-in (" + where +
+                                (named > kNamed ? ", ..." : "") + "): the pierce marks the part's edge there" +
+                                (entry_on_edge ? ", and the compensation's entry move starts on it" : ""));
+    w.code = "tabs.resumed_on_path";
+    out.push_back(std::move(w));
+  }
+  if (const int n = tabs["on_a_neighbours_cut"].get<int>(); n > 0) {
+    Diagnostic w = make_warning("micro-joints: " + std::to_string(n) + of_all +
+                                " tabs lie where a neighbouring part's cut runs within the kerf of them (parts drawn edge to "
+                                "edge): they hold nothing; --technique common cuts shared edges once and puts tabs elsewhere");
+    w.code = "tabs.on_a_neighbours_cut";
+    out.push_back(std::move(w));
+  }
+  if (tabs.contains("parts_without_skeleton_edge")) {
+    std::string parts;
+    for (const auto& k : tabs["parts_without_skeleton_edge"]) parts += (parts.empty() ? "" : ", ") + std::to_string(k.get<int>());
+    Diagnostic w = make_warning("micro-joints: part(s) " + parts +
+                                " share their whole outline with neighbours: no edge on the skeleton for a tab, nothing "
+                                "holds them once their common lines are cut");
+    w.code = "tabs.part_without_skeleton_edge";
+    out.push_back(std::move(w));
+  }
+  return out;
+}
+
 nlohmann::json report(const ShopRules& r, const nlohmann::json& order, const nlohmann::json& toolpath, int corner_entries) {
   nlohmann::json j;
   auto active = nlohmann::json::array();

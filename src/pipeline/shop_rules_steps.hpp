@@ -88,6 +88,13 @@ double tab_clearance(nc::KerfMode mode, double kerf_mm);
 nlohmann::json apply_to_toolpath(nc::Toolpath& path, const model::Nest& nest, const ShopRules& r, const StopToken& stop,
                                  const ToolpathContext& context);
 
+// The micro-joints' warnings from the toolpath step's report (apply_to_toolpath()'s "tabs"): cuts
+// after a tab resumed on the part's edge although lead-ins were asked for (tabs.resumed_on_path,
+// naming up to five; `entry_on_edge`: the compensation's entry move starts there too), tabs a
+// neighbour's cut leaves holding nothing (tabs.on_a_neighbours_cut) and parts with no edge on
+// the skeleton (tabs.part_without_skeleton_edge). None without tabs.
+Diagnostics tab_warnings(const nlohmann::json& rules, const nc::Toolpath& path, bool entry_on_edge);
+
 // The report's "rules" object: the active rules with their settings, and what they did (the
 // search's and the final route's effects, the toolpath passes, corner entries).
 nlohmann::json report(const ShopRules& r, const nlohmann::json& order, const nlohmann::json& toolpath, int corner_entries);

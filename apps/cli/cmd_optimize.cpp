@@ -143,6 +143,15 @@ int run(const Opts& o) {
       outs[i] = {base + ".ngc", base + ".json", base + ".svg", base + ".html"};
     } else {
       outs[i] = {o.out.empty() ? stem + ".ngc" : o.out, o.report, o.svg, o.html};
+      // Two outputs into one file (or both to stdout) would leave only the last, or a mix.
+      const std::vector<std::pair<const char*, std::string>> named = {
+          {"-o", outs[i].program}, {"--report", o.report}, {"--svg", o.svg}, {"--html", o.html}};
+      for (std::size_t a = 0; a < named.size(); ++a)
+        for (std::size_t b = a + 1; b < named.size(); ++b)
+          if (!named[a].second.empty() && !named[b].second.empty() && io::same_output(named[a].second, named[b].second)) {
+            std::cerr << "cutroute: " << named[a].first << " and " << named[b].first << " name the same output: " << named[b].second << '\n';
+            return kUsageError;
+          }
     }
   }
 
@@ -244,7 +253,10 @@ int run(const Opts& o) {
       std::cerr << "cutroute: " << messages[i] << '\n';
       code = codes[i];
     } else if (!o.quiet) {
-      std::cout << messages[i] << '\n';
+      // With an output on stdout (-o -), the summary goes to stderr, out of the program's stream.
+      const Outputs& f = outs[i];
+      const bool piped = f.program == "-" || f.report == "-" || f.svg == "-" || f.html == "-";
+      (piped ? std::cerr : std::cout) << messages[i] << '\n';
     }
   }
   // A batch's sheets in one table with their totals, for a quote or a shift plan.

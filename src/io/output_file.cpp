@@ -15,39 +15,59 @@ namespace cutroute::io {
 
 namespace {
 
-// A fresh temporary name next to `path`.
-std::string temp_name(const std::string& path) {
+namespace fs = std::filesystem;
+
+// A fresh temporary file in the folder of `target`, named apart from it (the target's own name
+// may already be as long as a name can be).
+std::string temp_name(const fs::path& target) {
   static std::atomic<unsigned long> counter{0};
-  return path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  return (target.parent_path() / (".cutroute-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".tmp")).string();
 }
 
-Status refuse_folder(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) return make_error("cannot write output: is a folder", path);
-  return Ok{};
+// Where an output really goes: a symbolic link is followed (the link stays; its target gets the
+// new content), and a device, FIFO or socket is written in place: renaming a file over it would
+// replace it (as root, `-o /dev/null` would turn /dev/null into a file).
+struct Target {
+  fs::path path;
+  bool in_place = false;
+};
+
+Result<Target> resolve(const std::string& path) {
+  Target t{path, false};
+  std::error_code ec;  // a path that does not exist yet is no error: status() says not_found
+  // Link by link: weakly_canonical() leaves a link to a file not written yet unresolved.
+  for (int hops = 0; fs::is_symlink(fs::symlink_status(t.path, ec)); ++hops) {
+    const fs::path to = fs::read_symlink(t.path, ec);
+    if (ec || hops == 40) return make_error("cannot write output: " + (ec ? ec.message() : std::string("too many links")), path);
+    t.path = to.is_absolute() ? to : t.path.parent_path() / to;
+  }
+  const fs::file_status st = fs::status(t.path, ec);
+  if (fs::is_directory(st)) return make_error("cannot write output: is a folder", path);
+  t.in_place = fs::exists(st) && !fs::is_regular_file(st);
+  return t;
 }
 
-// Writes the whole content to `tmp`; on failure nothing is left there.
-Status write_temp(const std::string& tmp, const std::string& path, std::string_view content) {
-  std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+// Writes the whole content to `file`; on failure nothing is left there (unless in place).
+Status write_to(const std::string& file, const std::string& path, std::string_view content, bool in_place) {
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
   if (!out) return make_error("cannot write output: " + std::string(std::strerror(errno)), path);
   out.write(content.data(), static_cast<std::streamsize>(content.size()));
   out.flush();
   if (!out) {
     out.close();
     std::error_code ec;
-    std::filesystem::remove(tmp, ec);
+    if (!in_place) fs::remove(file, ec);
     return make_error("writing output failed (disk full?)", path);
   }
   return Ok{};
 }
 
-Status move_into_place(const std::string& tmp, const std::string& path) {
+Status move_into_place(const std::string& tmp, const fs::path& target, const std::string& path) {
   std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
+  fs::rename(tmp, target, ec);
   if (ec) {
     const std::string why = ec.message();  // before remove() overwrites ec ("Success")
-    std::filesystem::remove(tmp, ec);
+    fs::remove(tmp, ec);
     return make_error("cannot move the finished output into place: " + why, path);
   }
   return Ok{};
@@ -61,27 +81,33 @@ void to_stdout(std::string_view content) {
 }  // namespace
 
 Status write_files_atomic(const std::vector<OutputFile>& files) {
-  for (const auto& f : files)
-    if (f.path != "-")
-      if (Status st = refuse_folder(f.path); !st) return st;
+  std::vector<Target> targets(files.size());
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    if (files[k].path == "-") continue;
+    auto t = resolve(files[k].path);
+    if (!t) return t.error();
+    targets[k] = std::move(*t);
+  }
   std::vector<std::string> tmps(files.size());
   auto drop = [&](std::size_t from) {
     std::error_code ec;
     for (std::size_t k = from; k < files.size(); ++k)
-      if (!tmps[k].empty()) std::filesystem::remove(tmps[k], ec);
+      if (!tmps[k].empty()) fs::remove(tmps[k], ec);
   };
   for (std::size_t k = 0; k < files.size(); ++k) {
-    if (files[k].path == "-") continue;
-    const std::string tmp = temp_name(files[k].path);
-    if (Status st = write_temp(tmp, files[k].path, files[k].content); !st) {
+    if (files[k].path == "-" || targets[k].in_place) continue;
+    const std::string tmp = temp_name(targets[k].path);
+    if (Status st = write_to(tmp, files[k].path, files[k].content, false); !st) {
       drop(0);
       return st;
     }
     tmps[k] = tmp;
   }
   for (std::size_t k = 0; k < files.size(); ++k) {
-    if (tmps[k].empty()) continue;
-    if (Status st = move_into_place(tmps[k], files[k].path); !st) {
+    Status st = Ok{};
+    if (!tmps[k].empty()) st = move_into_place(tmps[k], targets[k].path, files[k].path);
+    else if (targets[k].in_place) st = write_to(targets[k].path.string(), files[k].path, files[k].content, true);
+    if (!st) {
       drop(k + 1);
       return st;
     }
@@ -89,6 +115,13 @@ Status write_files_atomic(const std::vector<OutputFile>& files) {
   for (const auto& f : files)
     if (f.path == "-") to_stdout(f.content);
   return Ok{};
+}
+
+bool same_output(const std::string& a, const std::string& b) {
+  if (a == "-" || b == "-") return a == b;
+  std::error_code ea, eb;
+  const fs::path pa = fs::weakly_canonical(fs::absolute(a, ea), ea), pb = fs::weakly_canonical(fs::absolute(b, eb), eb);
+  return ea || eb ? a == b : pa == pb;
 }
 
 Status write_file_atomic(const std::string& path, std::string_view content) {

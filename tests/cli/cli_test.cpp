@@ -1,6 +1,8 @@
 // End-to-end tests of the cutroute executable: exit codes, messages, outputs.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -8,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "support/files.hpp"
 #include "support/paths.hpp"
 
 namespace cutroute::test {
@@ -70,14 +73,59 @@ TEST(Cli, OutputOntoADirectoryNamesTheReasonAndLeavesNothing) {
   EXPECT_NE(r.err.find("p.ngc: error: cannot write output: is a folder"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("Success"), std::string::npos) << r.err;
   for (const char* left : {"r.json", "r.svg", "r.html"}) EXPECT_FALSE(fs::exists(dir / left)) << left;
-  for (const auto& e : fs::directory_iterator(dir))
-    EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+  for (const auto& e : fs::directory_iterator(dir)) EXPECT_NE(e.path().extension(), ".tmp") << e.path();
   // A report that cannot be written leaves no program.
   r = run_command(cli_path() + " optimize " + (dir / "n.dxf").string() + " --time-limit 0.2 -o " + (dir / "q.ngc").string() +
                   " --report " + (dir / "no" / "r.json").string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("cannot write output"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "q.ngc"));
+  fs::remove_all(dir);
+}
+
+// An output path that is a symbolic link keeps the link (its target gets the program); one that is
+// a FIFO (or a device: `-o /dev/null` as root) is written in place, never replaced by a file.
+TEST(Cli, OutputsThroughLinksAndPipesKeepThem) {
+  const auto dir = temp_dir("links");
+  const std::string nest = (dir / "n.dxf").string();
+  ASSERT_EQ(run_command(cli_path() + " demo " + nest).exit_code, 0);
+  fs::create_symlink(dir / "target.ngc", dir / "link.ngc");  // dangling until written
+  // A work budget, not a time limit: the two runs must write the same program.
+  auto r = run_command(cli_path() + " optimize " + nest + " -o " + (dir / "link.ngc").string() + " --time-limit 0 --work-limit 1 --threads 1 -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::is_symlink(dir / "link.ngc"));
+  const std::string program = read_text(dir / "target.ngc");
+  EXPECT_EQ(program.rfind("(cutroute n.dxf)", 0), 0u) << program.substr(0, 40);
+  ASSERT_EQ(::mkfifo((dir / "pipe.ngc").c_str(), 0600), 0);
+  // Both ends time out rather than hang the suite when the other never opens the FIFO.
+  r = run_command("timeout 60 cat " + (dir / "pipe.ngc").string() + " > " + (dir / "got.ngc").string() + " & timeout 60 " +
+                  cli_path() + " optimize " + nest + " -o " + (dir / "pipe.ngc").string() +
+                  " --time-limit 0 --work-limit 1 --threads 1 -q; code=$?; wait; exit $code");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::is_fifo(dir / "pipe.ngc"));
+  EXPECT_EQ(read_text(dir / "got.ngc"), program);
+  for (const auto& e : fs::directory_iterator(dir)) EXPECT_NE(e.path().extension(), ".tmp") << e.path();
+  fs::remove_all(dir);
+}
+
+// Two outputs into one file (or both to stdout) are refused before any work; with the program on
+// stdout the summary line goes to stderr, out of the program's stream.
+TEST(Cli, OutputsShareNoFileAndStdoutCarriesOnlyTheProgram) {
+  const auto dir = temp_dir("same");
+  const std::string nest = (dir / "n.dxf").string();
+  ASSERT_EQ(run_command(cli_path() + " demo " + nest).exit_code, 0);
+  auto r = run_command("cd " + dir.string() + " && " + cli_path() + " optimize n.dxf -o same.out --report ./same.out --time-limit 0.2");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("-o and --report name the same output"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "same.out"));
+  r = run_command(cli_path() + " optimize " + nest + " -o - --html - --time-limit 0.2");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("-o and --html name the same output"), std::string::npos) << r.err;
+  r = run_command(cli_path() + " optimize " + nest + " -o - --time-limit 0.2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("(cutroute n.dxf)", 0), 0u);
+  EXPECT_EQ(r.out.substr(r.out.size() - 4), "M30\n");
+  EXPECT_NE(r.err.find(" pierces, cut "), std::string::npos) << r.err;
   fs::remove_all(dir);
 }
 

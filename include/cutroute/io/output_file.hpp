@@ -9,9 +9,11 @@
 
 namespace cutroute::io {
 
-// Writes content to "<path>.tmp-<pid>-<n>" in the same folder (n counts this process's
-// outputs, so threads of a batch never share one), flushes, then renames it to path, so a failed
-// or interrupted run never leaves a half-written program behind. "-" writes to stdout.
+// Writes content to a temporary file in the same folder (".cutroute-<pid>-<n>.tmp", n counting
+// this process's outputs, so threads of a batch never share one), flushes, then renames it to
+// path, so a failed or interrupted run never leaves a half-written program behind. A symbolic
+// link is followed (its target gets the content); a device, FIFO or socket is written in place,
+// never replaced. "-" writes to stdout.
 Status write_file_atomic(const std::string& path, std::string_view content);
 
 struct OutputFile {
@@ -25,6 +27,9 @@ struct OutputFile {
 // that fails after others succeeded (the folder vanished meanwhile) leaves the earlier ones. "-"
 // is written to stdout after the others are in place.
 Status write_files_atomic(const std::vector<OutputFile>& files);
+
+// Do two output paths name the same file ("-" only itself; "x.ngc" and "./x.ngc" one file)?
+bool same_output(const std::string& a, const std::string& b);
 
 // Reads a whole file; the error names the file.
 Result<std::string> read_file(const std::string& path);

@@ -139,7 +139,9 @@ std::string xml_escape(const std::string& raw) {
       case '>': out += "&gt;"; break;
       case '"': out += "&quot;"; break;
       case '\'': out += "&apos;"; break;
-      default: out += c;
+      // XML 1.0 allows no other control characters, escaped or not (a file name may hold one).
+      case '\t': case '\n': case '\r': out += c; break;
+      default: out += static_cast<unsigned char>(c) < 0x20 || c == 0x7F ? '?' : c;
     }
   }
   return out;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include <cutroute/core/tolerances.hpp>
 
@@ -29,6 +30,23 @@ Contour sub_path(const Contour& c, double s0, double s1) {
     if (out.vertices.empty()) out.vertices.push_back({seg.point_at(u0), bulge});
     else out.vertices.back().bulge = bulge;
     out.vertices.push_back({seg.point_at(u1), 0.0});
+    at += l;
+  }
+  return out;
+}
+
+// Arc lengths along an open path where its direction turns by more than 15 degrees.
+std::vector<double> corners_along(const Contour& c) {
+  std::vector<double> out;
+  const double cos_max = std::cos(15.0 * std::numbers::pi / 180.0);
+  double at = 0;
+  std::optional<Vec2> before;  // direction at the end of the last segment of non-zero length
+  for (std::size_t i = 0; i < geometry::segment_count(c); ++i) {
+    const geometry::Segment seg = geometry::segment(c, i);
+    const double l = seg.length();
+    if (l <= 0) continue;
+    if (before && geometry::dot(*before, seg.tangent_at(0)) < cos_max) out.push_back(at);
+    before = seg.tangent_at(1);
     at += l;
   }
   return out;
@@ -84,27 +102,43 @@ MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const 
     PieceGaps& pg = gaps[ref.segment][ref.piece];
     pg.centre.push_back(g);
     pg.lead.resize(pg.centre.size() + 1);
-    if (!o.lead_in && !o.holds) return;
+    if (!o.lead_in && !o.holds && o.corner_clearance_mm <= 0) return;
     const double piece_len = geometry::length(piece.path);
     const double lead_reach = spacing / 4 - w, hold_reach = o.holds ? spacing / 2 - w : lead_reach;
-    std::optional<double> held;  // the nearest place that holds, for want of one with a lead-in
+    // Both ends of the gap at least corner_clearance_mm from a corner (or on it).
+    std::vector<double> corners;
+    if (o.corner_clearance_mm > 0) corners = corners_along(piece.path);
+    const auto clear = [&](double x) {
+      for (const double c : corners)
+        for (const double end : {x - w / 2, x + w / 2})
+          if (std::abs(end - c) > 1e-6 && std::abs(end - c) < o.corner_clearance_mm) return false;
+      return true;
+    };
+    std::optional<double> held;       // the nearest place that holds and is clear of corners
+    std::optional<double> held_only;  // the nearest place that holds, for want of one clear of corners
     for (int t = 0;; ++t) {
       const double shift = (t + 1) / 2 * step * (t % 2 ? 1 : -1);
       const bool lead_search = o.lead_in && t <= 6 && (std::abs(shift) <= lead_reach || t == 0);
       if (t > 0 && std::abs(shift) > hold_reach && !lead_search) break;
       if (held && !lead_search) break;
-      if (g + shift < lo || g + shift > hi) continue;
-      if (o.holds && !o.holds(piece.contour, sub_path(piece.path, g + shift - w / 2, g + shift + w / 2))) continue;
-      if (!held) held = g + shift;
+      const double x = g + shift;
+      if (x < lo || x > hi) continue;
+      if (o.holds && !o.holds(piece.contour, sub_path(piece.path, x - w / 2, x + w / 2))) continue;
+      if (!clear(x)) {
+        if (!held_only) held_only = x;
+        continue;
+      }
+      if (!held) held = x;
       if (!lead_search) break;
-      const double resume = g + shift + w / 2;
+      const double resume = x + w / 2;
       if (auto l = o.lead_in(piece.contour, sub_path(piece.path, resume, std::min(resume + step, piece_len)))) {
-        pg.centre.back() = g + shift;
+        pg.centre.back() = x;
         pg.lead.back() = std::move(l);
         return;
       }
     }
     if (held) pg.centre.back() = *held;
+    else if (held_only) pg.centre.back() = *held_only;
     else ++st.unheld;
   };
   constexpr double kAnywhere = std::numeric_limits<double>::infinity();

@@ -168,7 +168,8 @@ Evaluated evaluate(const model::Nest& nest, const model::EntryPlanner& planner, 
   ev.toolpath = nc::build_toolpath(nest, ptrs, to);
   if (o.rules.any()) {  // shop rules
     ev.rules = rules::apply_to_toolpath(ev.toolpath, nest, o.rules, detour_stop,
-                                        {planner, s.entries, s.dialect, rules::tab_clearance(o.kerf_mode, s.entries.kerf_mm)});
+                                        {planner, s.entries, s.dialect, rules::tab_clearance(o.kerf_mode, s.entries.kerf_mm),
+                                         o.kerf_mode == nc::KerfMode::controller ? s.entries.kerf_mm : 0.0});
     if (ev.rules.contains("tip_up_program")) ev.detours_left = ev.rules["tip_up_program"]["unavoidable_left_at_time_limit"].get<int>();
   }
   ev.program = nc::write_gcode(ev.toolpath, s.dialect, nc::GcodeWriteOptions{o.title, true});

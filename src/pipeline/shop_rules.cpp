@@ -459,7 +459,7 @@ nlohmann::json apply_to_toolpath(nc::Toolpath& path, const model::Nest& nest, co
                            {"detour_extra_mm", st.extra_mm}};
   }
   if (r.tabs > 0) {
-    nc::MicroJointOptions mj{r.tabs, r.tab_width_mm, {}, {}};
+    nc::MicroJointOptions mj{r.tabs, r.tab_width_mm, {}, {}, context.tab_corner_clearance_mm};
     // Parts drawn edge to edge (or closer than the kerfs): a gap on the shared edge is cut away by
     // the neighbour's cut, so gaps move off such edges.
     mj.holds = [&](std::int32_t contour, const geometry::Contour& gap) {

@@ -72,6 +72,9 @@ struct ToolpathContext {
   // Micro-joints: a gap holds the part only where no other contour of the planner's nest comes
   // this close: beyond that distance skeleton is left between the two kerfs [mm].
   double tab_clearance_mm = 0.0;
+  // Micro-joints: how far a gap's ends keep from the path's corners where they can (the kerf under
+  // controller compensation: a short move after a gap is one the controller cannot offset) [mm].
+  double tab_corner_clearance_mm = 0.0;
 };
 
 // ToolpathContext::tab_clearance_mm for a kerf mode: the planner's contours are the drawn ones

@@ -165,6 +165,25 @@ TEST(MicroJoints, GapsMoveOffEdgesWhereTheyHoldNothing) {
   EXPECT_NEAR(along(nowhere.segments[1].pierce), 101, 1e-9);
 }
 
+// Under controller compensation a cut resumed just before a corner starts with a move too short
+// to offset: gap ends keep corner_clearance_mm from corners where a place within reach allows.
+// 100 mm square, N = 2, w = 2: gaps centred on the corners at 100 and 300 mm end 1 mm from them;
+// with 1.5 mm they move on to 104 and 304 (102 and 98 leave an end 1 mm off the corner).
+TEST(MicroJoints, GapEndsKeepOffCorners) {
+  const auto nest = nest_of({geometry::rectangle({0, 0, 100, 100})});
+  const geometry::Contour loop = whole_contours(nest).segments.front().pieces.front().path;
+  auto along = [&](Vec2 p) { return geometry::closest_point(loop, p).length_along; };
+  for (const double clearance : {0.0, 1.5}) {
+    Toolpath tp = whole_contours(nest);
+    const auto st = add_micro_joints(tp, nest, {2, 2.0, {}, {}, clearance});
+    EXPECT_EQ(st.tabs, 2);
+    ASSERT_EQ(tp.segments.size(), 3u);
+    const double moved = clearance > 0 ? 4 : 0;
+    EXPECT_NEAR(along(tp.segments[1].pierce), 101 + moved, 1e-9) << clearance;
+    EXPECT_NEAR(along(tp.segments[2].pierce), 301 + moved, 1e-9) << clearance;
+  }
+}
+
 TEST(MicroJoints, TooShortContoursStayWholeAndHolesAreNeverTabbed) {
   auto outer = geometry::rectangle({0, 0, 100, 100});
   auto hole = geometry::rectangle({40, 40, 60, 60});

@@ -27,6 +27,10 @@ struct MicroJointOptions {
   // one is admissible (and on the path where none is).
   ResumeLeadIn lead_in;
   TabHolds holds;            // empty: a gap holds anywhere
+  // A gap's ends keep at least this from a corner of the path (a turn above 15 degrees) where
+  // a place within reach allows: a cut resumed just before a corner begins with a move too short
+  // for a controller's compensation (LinuxCNC refuses it) [mm]; 0: anywhere.
+  double corner_clearance_mm = 0.0;
 };
 
 struct MicroJointStats {

@@ -212,6 +212,19 @@ int run(const Opts& o) {
       if (d.file.empty()) d.file = o.nests[i];
       warnings[i] += "cutroute: " + format(d) + "\n";
     }
+    // Open contours are not cut, and a part drawn with a gap would be missing from the program:
+    // one line for them all (drawings with text or hatching have many), naming the first few.
+    constexpr int kNamed = 5;
+    int open = 0;
+    std::string where;
+    for (const Diagnostic& d : loaded->diagnostics)
+      if (d.code == "chain.open" && open++ < kNamed)
+        where += (where.empty() ? "" : ", ") + (d.line ? "line " + std::to_string(*d.line) : "entity " + d.handle);
+    if (open > 0)
+      warnings[i] += "cutroute: " + format(make_warning(std::to_string(open) + " open contour(s) not cut, their ends not meeting within " +
+                                                           "--snap (" + where + (open > kNamed ? ", ..." : "") +
+                                                           "): a part drawn with a gap among them is missing from the program",
+                                                       o.nests[i])) + "\n";
     const auto& r = res->report;
     if (batch) reports[i] = r;
     messages[i] = o.nests[i] + ": " + std::to_string(r["pierces"].get<std::size_t>()) + " pierces, cut " +

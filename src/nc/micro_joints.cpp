@@ -53,10 +53,13 @@ std::vector<double> corners_along(const Contour& c) {
 }
 
 // The gaps planned on one contour piece: their centres along it, ascending, and the lead-in of
-// the cut resumed after each (lead[k + 1] after gap k; nullopt: pierced on the path).
+// the cut resumed after each (lead[k + 1] after gap k; nullopt: pierced on the path). For an
+// outer contour's own piece also its length and (once asked for) its corners.
 struct PieceGaps {
   std::vector<double> centre;
   std::vector<std::optional<Contour>> lead;
+  double length = 0;  // [mm]
+  std::optional<std::vector<double>> corners;
 };
 
 struct PieceRef {
@@ -88,6 +91,7 @@ MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const 
         shares[static_cast<std::size_t>(p.contour)] = shares[static_cast<std::size_t>(p.shared_with)] = 1;
       } else if (outer(p.contour)) {
         own[static_cast<std::size_t>(p.contour)].push_back({s, i});
+        gaps[s][i].length = geometry::length(p.path);
       }
     }
   }
@@ -103,13 +107,12 @@ MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const 
     pg.centre.push_back(g);
     pg.lead.resize(pg.centre.size() + 1);
     if (!o.lead_in && !o.holds && o.corner_clearance_mm <= 0) return;
-    const double piece_len = geometry::length(piece.path);
     const double lead_reach = spacing / 4 - w, hold_reach = o.holds ? spacing / 2 - w : lead_reach;
     // Both ends of the gap at least corner_clearance_mm from a corner (or on it).
-    std::vector<double> corners;
-    if (o.corner_clearance_mm > 0) corners = corners_along(piece.path);
+    if (o.corner_clearance_mm > 0 && !pg.corners) pg.corners = corners_along(piece.path);
     const auto clear = [&](double x) {
-      for (const double c : corners)
+      if (!pg.corners) return true;
+      for (const double c : *pg.corners)
         for (const double end : {x - w / 2, x + w / 2})
           if (std::abs(end - c) > 1e-6 && std::abs(end - c) < o.corner_clearance_mm) return false;
       return true;
@@ -131,7 +134,7 @@ MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const 
       if (!held) held = x;
       if (!lead_search) break;
       const double resume = x + w / 2;
-      if (auto l = o.lead_in(piece.contour, sub_path(piece.path, resume, std::min(resume + step, piece_len)))) {
+      if (auto l = o.lead_in(piece.contour, sub_path(piece.path, resume, std::min(resume + step, pg.length)))) {
         pg.centre.back() = x;
         pg.lead.back() = std::move(l);
         return;
@@ -158,7 +161,7 @@ MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const 
       // (lead-in or bridge) or at the end where the part drops last.
       const CutPiece& piece = path.segments[pieces[0].segment].pieces[pieces[0].piece];
       const double contour_len = geometry::length(nest.contours[model::ContourId(piece.contour)].source.contour);
-      if (n * 2 * w > std::min(contour_len, geometry::length(piece.path))) {
+      if (n * 2 * w > std::min(contour_len, gaps[pieces[0].segment][pieces[0].piece].length)) {
         ++st.skipped;
         continue;
       }
@@ -169,8 +172,9 @@ MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const 
       // between junctions. The gaps are spread over them, at least max(w, 1 mm) from a junction
       // (where a neighbour's cut meets the edge), at (k + 1/2) U / N along the usable length U.
       const double margin = step + w / 2;
+      const auto usable_of = [&](PieceRef r) { return std::max(0.0, gaps[r.segment][r.piece].length - 2 * margin); };
       double usable = 0;
-      for (const PieceRef r : pieces) usable += std::max(0.0, geometry::length(path.segments[r.segment].pieces[r.piece].path) - 2 * margin);
+      for (const PieceRef r : pieces) usable += usable_of(r);
       if (usable < n * 2 * w) {
         ++st.skipped;
         continue;
@@ -181,10 +185,9 @@ MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const 
       for (int k = 0; k < n; ++k) {
         const double u = (k + 0.5) * spacing;
         for (;;) {
-          const double len = geometry::length(path.segments[pieces[at].segment].pieces[pieces[at].piece].path);
-          const double here = std::max(0.0, len - 2 * margin);
+          const double here = usable_of(pieces[at]);
           if (u < before + here || at + 1 == pieces.size()) {
-            place(pieces[at], margin + (u - before), spacing, margin, len - margin);
+            place(pieces[at], margin + (u - before), spacing, margin, gaps[pieces[at].segment][pieces[at].piece].length - margin);
             break;
           }
           before += here;
@@ -227,7 +230,7 @@ MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const 
         keep.emplace_back(at, g - w / 2);
         at = g + w / 2;
       }
-      keep.emplace_back(at, geometry::length(piece.path));
+      keep.emplace_back(at, pg.length);
       for (std::size_t j = 0; j < keep.size(); ++j) {
         Contour stretch = sub_path(piece.path, keep[j].first, keep[j].second);
         if (j > 0) {

@@ -73,12 +73,8 @@ Result<geometry::Vec2> parse_point(const std::string& s, const char* what) {
   }
 }
 
-int run(const Opts& o) {
-  auto load_options = to_load_options(o.input);
-  if (!load_options) {
-    std::cerr << "cutroute: " << load_options.error().message << '\n';
-    return kUsageError;
-  }
+// The pipeline's options from the command line; a malformed --start is a usage error.
+Result<pipeline::OptimizeOptions> optimize_options(const Opts& o) {
   pipeline::OptimizeOptions po;
   po.machine_file = o.machine;
   po.material = o.material;
@@ -92,10 +88,7 @@ int run(const Opts& o) {
               : o.solver == "heuristic" ? solve::SolverKind::heuristic : solve::SolverKind::automatic;
   if (!o.start.empty()) {
     auto p = parse_point(o.start, "--start");
-    if (!p) {
-      std::cerr << "cutroute: " << p.error().message << '\n';
-      return kUsageError;
-    }
+    if (!p) return p.error();
     po.start = *p;
   }
   if (o.kerf >= 0) po.kerf_mm = o.kerf;
@@ -117,18 +110,16 @@ int run(const Opts& o) {
   po.rules = o.rules;  // shop rules
   if (!o.sheet_clamp.empty()) po.rules.sheet_clamp = pipeline::parse_clamp_side(o.sheet_clamp);
   po.rules.tab_lead_in = pipeline::parse_tab_lead_in(o.tab_lead_in).value_or(pipeline::TabLeadIn::automatic);
+  return po;
+}
 
-  // Output paths: one nest -> -o is the program file; several -> -o is a folder for all outputs.
+// Each nest's output files. One nest: -o is the program file; several: -o is a folder for all outputs.
+Result<std::vector<Outputs>> output_paths(const Opts& o) {
   const bool batch = o.nests.size() > 1;
-  if (batch && o.out.empty()) {
-    std::cerr << "cutroute: several nests need -o DIR for their outputs\n";
-    return kUsageError;
-  }
-  if (batch && (!o.report.empty() || !o.svg.empty() || !o.html.empty())) {
-    std::cerr << "cutroute: with several nests, every output goes to -o DIR (program, .json report, .svg, .html); "
-                 "--report/--svg/--html name files of a single nest\n";
-    return kUsageError;
-  }
+  if (batch && o.out.empty()) return make_error("several nests need -o DIR for their outputs");
+  if (batch && (!o.report.empty() || !o.svg.empty() || !o.html.empty()))
+    return make_error("with several nests, every output goes to -o DIR (program, .json report, .svg, .html); "
+                      "--report/--svg/--html name files of a single nest");
   std::vector<Outputs> outs(o.nests.size());
   std::set<std::string> stems;  // batch: each nest's outputs under a name of its own
   for (std::size_t i = 0; i < o.nests.size(); ++i) {
@@ -141,115 +132,146 @@ int run(const Opts& o) {
       std::filesystem::create_directories(o.out, ec);
       const auto base = (std::filesystem::path(o.out) / stem).string();
       outs[i] = {base + ".ngc", base + ".json", base + ".svg", base + ".html"};
-    } else {
-      outs[i] = {o.out.empty() ? stem + ".ngc" : o.out, o.report, o.svg, o.html};
-      // Two outputs into one file (or both to stdout) would leave only the last, or a mix.
-      const std::vector<std::pair<const char*, std::string>> named = {
-          {"-o", outs[i].program}, {"--report", o.report}, {"--svg", o.svg}, {"--html", o.html}};
-      for (std::size_t a = 0; a < named.size(); ++a)
-        for (std::size_t b = a + 1; b < named.size(); ++b)
-          if (!named[a].second.empty() && !named[b].second.empty() && io::same_output(named[a].second, named[b].second)) {
-            std::cerr << "cutroute: " << named[a].first << " and " << named[b].first << " name the same output: " << named[b].second << '\n';
-            return kUsageError;
-          }
+      continue;
     }
+    outs[i] = {o.out.empty() ? stem + ".ngc" : o.out, o.report, o.svg, o.html};
+    // Two outputs into one file (or both to stdout) would leave only the last, or a mix.
+    const std::vector<std::pair<const char*, std::string>> named = {
+        {"-o", outs[i].program}, {"--report", o.report}, {"--svg", o.svg}, {"--html", o.html}};
+    for (std::size_t a = 0; a < named.size(); ++a)
+      for (std::size_t b = a + 1; b < named.size(); ++b)
+        if (!named[a].second.empty() && !named[b].second.empty() && io::same_output(named[a].second, named[b].second))
+          return make_error(std::string(named[a].first) + " and " + named[b].first + " name the same output: " + named[b].second);
   }
+  return outs;
+}
 
+// What became of one nest: its exit code, the line printed for it (summary or error), the warnings
+// printed even with --quiet (the program is less safe or less sure to run than asked for), and its
+// report when it was cut (for the batch summary).
+struct NestOutcome {
+  int code = kOk;
+  std::string message, warnings;
+  nlohmann::json report;
+};
+
+// The warnings of a cut nest that reach stderr: rapids left over freed parts, cuts the controller's
+// compensation may refuse, cuts after a tab that resume on the part's edge although lead-ins were
+// asked for, parts or tabs that hold nothing, and the open contours not cut.
+std::string printed_warnings(const std::string& nest, const std::vector<Diagnostic>& route, const std::vector<Diagnostic>& loading) {
+  std::string out;
+  for (Diagnostic d : route) {
+    if (d.code != "tip_up.time_limit" && d.code != "kerf.controller_detail" && d.code != "tabs.resumed_on_path" &&
+        d.code != "tabs.part_without_skeleton_edge" && d.code != "tabs.on_a_neighbours_cut")
+      continue;
+    if (d.file.empty()) d.file = nest;
+    out += "cutroute: " + format(d) + "\n";
+  }
+  // Open contours are not cut, and a part drawn with a gap would be missing from the program:
+  // one line for them all (drawings with text or hatching have many), naming the first few.
+  constexpr int kNamed = 5;
+  int open = 0;
+  std::string where;
+  for (const Diagnostic& d : loading)
+    if (d.code == "chain.open" && open++ < kNamed)
+      where += (where.empty() ? "" : ", ") + (d.line ? "line " + std::to_string(*d.line) : "entity " + d.handle);
+  if (open > 0)
+    out += "cutroute: " + format(make_warning(std::to_string(open) + " open contour(s) not cut, their ends not meeting within " +
+                                                  "--snap (" + where + (open > kNamed ? ", ..." : "") +
+                                                  "): a part drawn with a gap among them is missing from the program",
+                                              nest)) + "\n";
+  return out;
+}
+
+// The summary line of a cut nest.
+std::string summary_line(const std::string& nest, const nlohmann::json& r, const std::string& program) {
+  std::string line = nest + ": " + std::to_string(r["pierces"].get<std::size_t>()) + " pierces, cut " +
+                     format_fixed(r["cut_length_mm"].get<double>(), 1) + " mm, rapid " +
+                     format_fixed(r["rapid_length_mm"].get<double>(), 1) + " mm, " +
+                     std::to_string(r["frames"].get<std::size_t>()) + " frames, T_cut " +
+                     format_fixed(r["t_cut_s"].get<double>(), 2) + " s (" +
+                     format_fixed(r["t_cut_const_speed_s"].get<double>(), 2) + " s at the set speed), technique " +
+                     r["chosen"].get<std::string>();
+  // How far from the best route this one can be at most, as the HTML page says it.
+  if (const std::string q = io::route_quality(r); !q.empty()) line += ", route " + q;
+  return line + " -> " + program;
+}
+
+// Reads, optimizes and writes one nest.
+NestOutcome cut_nest(const std::string& nest, const Outputs& out, const pipeline::OptimizeOptions& po,
+                     const io::NestLoadOptions& load_options, ProgressLine& progress) {
+  // After Ctrl-C the nests already under way still write their best program; the rest do not start.
+  if (StopToken::global().cancelled()) return {kInputError, nest + ": not started (interrupted)", {}, {}};
+  auto loaded = io::load_nest(nest, load_options);
+  if (!loaded) return {kInputError, format(loaded.error()), {}, {}};
+  pipeline::OptimizeOptions mine = po;
+  mine.title = "cutroute " + std::filesystem::path(nest).filename().string();
+  auto res = pipeline::optimize_nest(*loaded, mine, StopToken::global(), progress.for_job(nest));
+  if (!res) {
+    Diagnostic d = res.error();
+    if (d.file.empty()) d.file = nest;
+    return {kInputError, format(d), {}, {}};
+  }
+  // All outputs or none: a report or picture that fails to write leaves no program behind, and
+  // a program that fails leaves no report of it.
+  io::RoutePictureOptions pic{1400, std::filesystem::path(nest).filename().string(), {}};
+  pic.compensation_at_risk = io::compensation_at_risk(res->report);
+  std::vector<io::OutputFile> files;
+  if (!out.report.empty()) files.push_back({out.report, json_text(res->report) + "\n"});
+  if (!out.svg.empty()) files.push_back({out.svg, io::route_to_svg(loaded->nest, res->toolpath, pic)});
+  if (!out.html.empty())
+    files.push_back({out.html, io::route_to_html(loaded->nest, res->toolpath, io::report_summary(res->report), pic)});
+  files.push_back({out.program, res->program.text});
+  if (const Status st = io::write_files_atomic(files); !st) return {kInputError, format(st.error()), {}, {}};
+  return {kOk, summary_line(nest, res->report, out.program), printed_warnings(nest, res->diagnostics, loaded->diagnostics),
+          res->report};
+}
+
+// A batch's sheets in one table with their totals, for a quote or a shift plan.
+int write_batch_summary(const Opts& o, const std::vector<Outputs>& outs, const std::vector<NestOutcome>& done) {
+  std::vector<io::BatchEntry> entries(o.nests.size());
+  double t_cut = 0;
+  std::size_t cut = 0;
+  for (std::size_t i = 0; i < o.nests.size(); ++i) {
+    const bool ok = done[i].code == kOk;
+    entries[i] = {o.nests[i], ok ? outs[i].program : std::string(), ok ? done[i].report : nlohmann::json(),
+                  ok ? std::string() : done[i].message};
+    if (ok) t_cut += done[i].report["t_cut_s"].get<double>(), ++cut;
+  }
+  const auto summary = (std::filesystem::path(o.out) / "summary.csv").string();
+  if (const Status st = io::write_file_atomic(summary, io::batch_summary_csv(entries)); !st) {
+    std::cerr << "cutroute: " << format(st.error()) << '\n';
+    return kInputError;
+  }
+  if (!o.quiet)
+    std::cout << cut << " of " << o.nests.size() << " nests cut, T_cut " << format_fixed(t_cut, 2) << " s in all -> " << summary << '\n';
+  return kOk;
+}
+
+int run(const Opts& o) {
+  auto load_options = to_load_options(o.input);
+  auto po = load_options ? optimize_options(o) : Result<pipeline::OptimizeOptions>(load_options.error());
+  auto outs = po ? output_paths(o) : Result<std::vector<Outputs>>(po.error());
+  if (!outs) {
+    std::cerr << "cutroute: " << outs.error().message << '\n';
+    return kUsageError;
+  }
   const std::size_t workers = std::min<std::size_t>(o.nests.size(), std::max(1u, std::thread::hardware_concurrency()));
-  po.threads = o.threads > 0 ? std::max(1, o.threads / static_cast<int>(workers))
-                             : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / static_cast<int>(workers));
+  po->threads = o.threads > 0 ? std::max(1, o.threads / static_cast<int>(workers))
+                              : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / static_cast<int>(workers));
   ProgressLine progress(show_progress(o.quiet));
-  std::vector<int> codes(o.nests.size(), kOk);
-  std::vector<std::string> messages(o.nests.size());
-  std::vector<std::string> warnings(o.nests.size());  // printed even with --quiet: the program is less safe or less sure to run than asked for
-  std::vector<nlohmann::json> reports(o.nests.size());  // of the nests cut (null for the others): the batch summary
+  std::vector<NestOutcome> done(o.nests.size());
   std::atomic<std::size_t> next{0};
-  auto cut_one = [&](std::size_t i) {
-    // After Ctrl-C the nests already under way still write their best program; the rest do not start.
-    if (StopToken::global().cancelled()) {
-      messages[i] = o.nests[i] + ": not started (interrupted)";
-      codes[i] = kInputError;
-      return;
-    }
-    auto loaded = io::load_nest(o.nests[i], *load_options);
-    if (!loaded) {
-      messages[i] = format(loaded.error());
-      codes[i] = kInputError;
-      return;
-    }
-    pipeline::OptimizeOptions mine = po;
-    mine.title = "cutroute " + std::filesystem::path(o.nests[i]).filename().string();
-    auto res = pipeline::optimize_nest(*loaded, mine, StopToken::global(), progress.for_job(o.nests[i]));
-    if (!res) {
-      Diagnostic d = res.error();
-      if (d.file.empty()) d.file = o.nests[i];
-      messages[i] = format(d);
-      codes[i] = kInputError;
-      return;
-    }
-    // All outputs or none: a report or picture that fails to write leaves no program behind, and
-    // a program that fails leaves no report of it.
-    io::RoutePictureOptions pic{1400, std::filesystem::path(o.nests[i]).filename().string(), {}};
-    pic.compensation_at_risk = io::compensation_at_risk(res->report);
-    std::vector<io::OutputFile> files;
-    if (!outs[i].report.empty()) files.push_back({outs[i].report, json_text(res->report) + "\n"});
-    if (!outs[i].svg.empty()) files.push_back({outs[i].svg, io::route_to_svg(loaded->nest, res->toolpath, pic)});
-    if (!outs[i].html.empty())
-      files.push_back({outs[i].html, io::route_to_html(loaded->nest, res->toolpath, io::report_summary(res->report), pic)});
-    files.push_back({outs[i].program, res->program.text});
-    if (const Status st = io::write_files_atomic(files); !st) {
-      messages[i] = format(st.error());
-      codes[i] = kInputError;
-      return;
-    }
-    for (Diagnostic d : res->diagnostics) {
-      // Printed: rapids left over freed parts, cuts the controller's compensation may refuse, cuts
-      // after a tab that resume on the part's edge although lead-ins were asked for, and parts or
-      // tabs that hold nothing.
-      if (d.code != "tip_up.time_limit" && d.code != "kerf.controller_detail" && d.code != "tabs.resumed_on_path" &&
-          d.code != "tabs.part_without_skeleton_edge" && d.code != "tabs.on_a_neighbours_cut")
-        continue;
-      if (d.file.empty()) d.file = o.nests[i];
-      warnings[i] += "cutroute: " + format(d) + "\n";
-    }
-    // Open contours are not cut, and a part drawn with a gap would be missing from the program:
-    // one line for them all (drawings with text or hatching have many), naming the first few.
-    constexpr int kNamed = 5;
-    int open = 0;
-    std::string where;
-    for (const Diagnostic& d : loaded->diagnostics)
-      if (d.code == "chain.open" && open++ < kNamed)
-        where += (where.empty() ? "" : ", ") + (d.line ? "line " + std::to_string(*d.line) : "entity " + d.handle);
-    if (open > 0)
-      warnings[i] += "cutroute: " + format(make_warning(std::to_string(open) + " open contour(s) not cut, their ends not meeting within " +
-                                                           "--snap (" + where + (open > kNamed ? ", ..." : "") +
-                                                           "): a part drawn with a gap among them is missing from the program",
-                                                       o.nests[i])) + "\n";
-    const auto& r = res->report;
-    if (batch) reports[i] = r;
-    messages[i] = o.nests[i] + ": " + std::to_string(r["pierces"].get<std::size_t>()) + " pierces, cut " +
-                  format_fixed(r["cut_length_mm"].get<double>(), 1) + " mm, rapid " +
-                  format_fixed(r["rapid_length_mm"].get<double>(), 1) + " mm, " +
-                  std::to_string(r["frames"].get<std::size_t>()) + " frames, T_cut " +
-                  format_fixed(r["t_cut_s"].get<double>(), 2) + " s (" +
-                  format_fixed(r["t_cut_const_speed_s"].get<double>(), 2) + " s at the set speed), technique " +
-                  r["chosen"].get<std::string>();
-    // How far from the best route this one can be at most, as the HTML page says it.
-    if (const std::string q = io::route_quality(r); !q.empty()) messages[i] += ", route " + q;
-    messages[i] += " -> " + outs[i].program;
-  };
   // An exception (out of memory, a bug) fails its nest, not the batch: thrown in a worker thread
   // it would end the process without a word.
   auto work = [&] {
     for (std::size_t i = next++; i < o.nests.size(); i = next++) {
       try {
-        cut_one(i);
+        done[i] = cut_nest(o.nests[i], (*outs)[i], *po, *load_options, progress);
       } catch (const std::bad_alloc&) {
-        messages[i] = o.nests[i] + ": error: out of memory";
-        codes[i] = kInputError;
+        done[i] = {kInputError, o.nests[i] + ": error: out of memory", {}, {}};
       } catch (const std::exception& e) {
-        messages[i] = o.nests[i] + ": error: internal error: " + e.what();
-        codes[i] = kInputError;
+        done[i] = {kInputError, o.nests[i] + ": error: internal error: " + e.what(), {}, {}};
       }
     }
   };
@@ -261,34 +283,19 @@ int run(const Opts& o) {
 
   int code = kOk;
   for (std::size_t i = 0; i < o.nests.size(); ++i) {
-    std::cerr << warnings[i];
-    if (codes[i] != kOk) {
-      std::cerr << "cutroute: " << messages[i] << '\n';
-      code = codes[i];
+    std::cerr << done[i].warnings;
+    if (done[i].code != kOk) {
+      std::cerr << "cutroute: " << done[i].message << '\n';
+      code = done[i].code;
     } else if (!o.quiet) {
       // With an output on stdout (-o -), the summary goes to stderr, out of the program's stream.
-      const Outputs& f = outs[i];
+      const Outputs& f = (*outs)[i];
       const bool piped = f.program == "-" || f.report == "-" || f.svg == "-" || f.html == "-";
-      (piped ? std::cerr : std::cout) << messages[i] << '\n';
+      (piped ? std::cerr : std::cout) << done[i].message << '\n';
     }
   }
-  // A batch's sheets in one table with their totals, for a quote or a shift plan.
-  if (batch) {
-    std::vector<io::BatchEntry> entries(o.nests.size());
-    double t_cut = 0;
-    std::size_t cut = 0;
-    for (std::size_t i = 0; i < o.nests.size(); ++i) {
-      entries[i] = {o.nests[i], codes[i] == kOk ? outs[i].program : std::string(), reports[i], codes[i] == kOk ? std::string() : messages[i]};
-      if (reports[i].is_object()) t_cut += reports[i]["t_cut_s"].get<double>(), ++cut;
-    }
-    const auto summary = (std::filesystem::path(o.out) / "summary.csv").string();
-    if (const Status st = io::write_file_atomic(summary, io::batch_summary_csv(entries)); !st) {
-      std::cerr << "cutroute: " << format(st.error()) << '\n';
-      return kInputError;
-    }
-    if (!o.quiet)
-      std::cout << cut << " of " << o.nests.size() << " nests cut, T_cut " << format_fixed(t_cut, 2) << " s in all -> " << summary << '\n';
-  }
+  if (o.nests.size() > 1)
+    if (const int st = write_batch_summary(o, *outs, done); st != kOk) return st;
   return code;
 }
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <cutroute/core/tolerances.hpp>
+#include <cutroute/geometry/arc.hpp>
 #include <cutroute/nc/gcode_writer.hpp>
 
 namespace cutroute::nc {
@@ -24,38 +26,66 @@ struct Move {
   Vec2 t0, t1;  // unit tangents at the start and the end
 };
 
-void append_line(Vec2 a, Vec2 b, std::vector<Move>& out) {
+// The program's coordinate grid: the writer rounds every end point to it, which turns a run of
+// micrometre moves of a noisy drawing into a zig-zag whose inside corners the controller cannot
+// reach (5 blocks of d2g_DRAAK that LinuxCNC refused went unflagged when the check read the
+// unrounded path).
+struct Grid {
+  double res_mm;
+  Vec2 operator()(Vec2 p) const { return {std::round(p.x / res_mm) * res_mm, std::round(p.y / res_mm) * res_mm}; }
+};
+
+void append_line(Vec2 a, Vec2 b, std::vector<Move>& out, const Grid& grid) {
   Move m;
-  m.a = a;
-  m.b = b;
-  m.length = geometry::distance(a, b);
-  if (m.length <= kDropMm) return;
-  m.t0 = m.t1 = (b - a) / m.length;
+  m.a = grid(a);
+  m.b = grid(b);
+  m.length = geometry::distance(m.a, m.b);
+  if (m.length <= kDropMm) return;  // rounds to nothing: the writer drops it
+  m.t0 = m.t1 = (m.b - m.a) / m.length;
   out.push_back(m);
 }
 
-// Appends the moves of a segment's pieces as the writer emits them (gcode_writer.cpp: moves that
-// round to nothing are dropped, arcs below 0.02 mm radius are written as chords).
-void append_moves(const CutSegment& seg, std::vector<Move>& out) {
+// Appends the moves of a segment's pieces as the writer emits them (gcode_writer.cpp): end points
+// on the grid, moves that round to nothing dropped, arcs nearly straight or with a chord under two
+// grid steps written as lines, arcs beyond kMaxArcRadiusMm or below kMinArcRadiusMm as chords (a
+// cusp of a spline fit: its chords zig-zag on the grid, and LinuxCNC refused such a corner that a
+// single chord hid), the others as arcs through the rounded end points.
+void append_moves(const CutSegment& seg, std::vector<Move>& out, const Grid& grid) {
   for (const auto& piece : seg.pieces) {
     const std::size_t n = geometry::segment_count(piece.path);
     for (std::size_t i = 0; i < n; ++i) {
       const geometry::Segment s = geometry::segment(piece.path, i);
-      if (s.is_arc() && s.radius() >= kMinArcRadiusMm) {
-        Move m;
-        m.a = s.a;
-        m.b = s.b;
-        m.bulge = s.bulge;
-        m.length = s.length();
-        m.radius = s.radius();
-        m.centre = s.center();
-        m.sweep = s.sweep();
-        m.t0 = s.tangent_at(0);
-        m.t1 = s.tangent_at(1);
-        if (m.length > kDropMm) out.push_back(m);
-      } else {
-        append_line(s.a, s.b, out);
+      const Vec2 a = grid(s.a), b = grid(s.b);
+      const double chord = geometry::distance(a, b), bulge = std::abs(s.bulge);
+      if (!s.is_arc() || bulge < tol::kStraightBulge || chord < 2 * grid.res_mm) {
+        append_line(a, b, out, grid);
+        continue;
       }
+      const double radius = chord * (1 + bulge * bulge) / (4 * bulge);
+      if (radius > kMaxArcRadiusMm || radius < kMinArcRadiusMm) {
+        const double sweep = 4 * std::atan(s.bulge);
+        const int k = arc_chord_count(sweep, radius, radius > kMaxArcRadiusMm ? grid.res_mm : std::max(grid.res_mm, kMicroArcChordMm));
+        Vec2 at = a;
+        for (int j = 1; j < k; ++j) {
+          const Vec2 p = geometry::arc_point_at_sweep(a, b, s.bulge, sweep * j / k);
+          append_line(at, p, out, grid);
+          at = grid(p);
+        }
+        append_line(at, b, out, grid);
+        continue;
+      }
+      const geometry::Segment w{a, b, s.bulge};
+      Move m;
+      m.a = a;
+      m.b = b;
+      m.bulge = s.bulge;
+      m.length = w.length();
+      m.radius = w.radius();
+      m.centre = w.center();
+      m.sweep = w.sweep();
+      m.t0 = w.tangent_at(0);
+      m.t1 = w.tangent_at(1);
+      out.push_back(m);
     }
   }
 }
@@ -160,9 +190,10 @@ bool at_risk(const std::vector<Move>& ms, double side, double r) {
 
 }  // namespace
 
-CompensationHazards compensation_hazards(const Toolpath& path, double tool_radius_mm, bool held_over_tabs) {
+CompensationHazards compensation_hazards(const Toolpath& path, double tool_radius_mm, bool held_over_tabs, double resolution_mm) {
   CompensationHazards h;
   if (!(tool_radius_mm > 0)) return h;
+  const Grid grid{resolution_mm > 0 ? resolution_mm : kRoundingMm};
   std::vector<Move> block;
   const CutSegment* first = nullptr;
   std::size_t first_k = 0;
@@ -180,13 +211,13 @@ CompensationHazards compensation_hazards(const Toolpath& path, double tool_radiu
     if (seg.kerf == KerfSide::none) continue;
     if (continues) {  // the rapid over the gap, compensated too
       Vec2 at = tool_off_point(path.segments[k - 1]);
-      for (const Vec2 via : seg.rapid_via) append_line(at, via, block), at = via;
-      append_line(at, seg.pierce, block);
+      for (const Vec2 via : seg.rapid_via) append_line(at, via, block, grid), at = via;
+      append_line(at, seg.pierce, block, grid);
     } else {
       first = &seg;
       first_k = k;
     }
-    append_moves(seg, block);
+    append_moves(seg, block, grid);
   }
   close();
   return h;

@@ -14,13 +14,6 @@ namespace {
 
 using geometry::Vec2;
 
-// Largest arc radius written as G2/G3 (100 m). Such an arc over a whole 3-m sheet still bows 11 mm,
-// so larger ones are written as chords (flat_arc), and no I/J/R word goes beyond 1e5 mm.
-constexpr double kMaxArcRadiusMm = 1.0e5;
-// Arcs below kMinArcRadiusMm (gcode_writer.hpp) are written as chords that stay within this of the
-// arc: one move for the arcs of a micrometre or two. Chords within the output resolution took two or
-// three, and the frame count sets V_on*(n): d2g_Lueftergitter_R14 got 96 more frames, 1.9 % more T_cut.
-constexpr double kMicroArcChordMm = 0.004;
 
 // Arc centre from end points and bulge: the chord's perpendicular bisector, offset by
 // (1 - b²) / (4 b) chord lengths to the left of the chord direction.
@@ -123,8 +116,7 @@ class Emitter {
   bool flat_arc(Vec2 q, double bulge, double radius, const std::string& feed_word, double sagitta_mm = 0.0) {
     const Vec2 a = pos_;
     const double sweep = 4 * std::atan(bulge);
-    const double pieces = std::ceil(std::abs(sweep) * std::sqrt(radius / (8 * std::max(res_mm_, sagitta_mm))));
-    const int k = static_cast<int>(std::clamp(pieces, 1.0, 100000.0));
+    const int k = arc_chord_count(sweep, radius, std::max(res_mm_, sagitta_mm));
     bool wrote = false;
     for (int i = 1; i < k; ++i)
       wrote = line(geometry::arc_point_at_sweep(a, q, bulge, sweep * i / k), wrote ? std::string() : feed_word) || wrote;

@@ -661,7 +661,8 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   nlohmann::json compensation;
   if (o.kerf_mode == nc::KerfMode::controller) {
     const nc::CompensationHazards h =
-        nc::compensation_hazards(best_ev.toolpath, s.entries.kerf_mm / 2, nc::beam_switches_under_compensation(s.dialect));
+        nc::compensation_hazards(best_ev.toolpath, s.entries.kerf_mm / 2, nc::beam_switches_under_compensation(s.dialect),
+                                 std::pow(10.0, -s.dialect.decimals) * (s.dialect.units == "in" ? units::kMmPerInch : 1.0));
     compensation = {{"blocks", h.compensated}, {"at_risk", h.at.size()}, {"at_risk_segments", nlohmann::json::array()}};
     for (const std::size_t k : h.at) compensation["at_risk_segments"].push_back(k + 1);  // as the picture numbers them
     if (!h.at.empty()) {

@@ -92,6 +92,20 @@ TEST(CompensationCheck, AgreesWithLinuxCncOnDetailsFinerThanTheKerf) {
       // line) must cross the offset circle (radius R - 0.1), which it misses when R < 0.2 mm.
       {"a hole of radius 0.15 mm entered from its centre", cut(round_hole(0.15), {10, 10}), true},
       {"a hole of radius 0.5 mm entered from its centre", cut(round_hole(0.5), {10, 10}), false},
+      // A drawing's micrometre steps, nearly straight (turns of 0.9°), along y = 0.0005: the program
+      // rounds them to (10, 0) (10.001, 0.001) (10.003, 0), a 45° inside corner on a 1.4-um move.
+      {"micrometre steps the program's rounding turns into a zig-zag",
+       cut(Contour{{Vertex{{0, 0}, 0}, Vertex{{10, 0.00049}, 0}, Vertex{{10.0013, 0.00051}, 0}, Vertex{{10.0026, 0.00049}, 0},
+                    Vertex{{20, 0}, 0}, Vertex{{20, 20}, 0}, Vertex{{0, 20}, 0}, Vertex{{0, 0}, 0}},
+                   false},
+           inside),
+       true},
+      {"the same steps on the grid, in a straight line",
+       cut(Contour{{Vertex{{0, 0}, 0}, Vertex{{10, 0}, 0}, Vertex{{10.001, 0}, 0}, Vertex{{10.003, 0}, 0}, Vertex{{20, 0}, 0},
+                    Vertex{{20, 20}, 0}, Vertex{{0, 20}, 0}, Vertex{{0, 0}, 0}},
+                   false},
+           inside),
+       false},
   };
   for (const auto& c : cases) {
     const CompensationHazards h = compensation_hazards(c.path, kKerf / 2, true);

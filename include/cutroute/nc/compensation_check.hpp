@@ -15,7 +15,8 @@ struct CompensationHazards {
 // Under G41/G42 the controller offsets each move by the tool radius r to the kerf side and joins
 // the offset moves at their intersections. It cannot where the drawing has details finer than
 // the kerf, and LinuxCNC then refuses the block. A block is at risk when, on its path as written
-// (moves shorter than 0.1 um dropped, arcs below the writer's 0.02 mm radius taken as chords):
+// (end points rounded to the program's grid, moves that round to nothing dropped, arcs below the
+// writer's 0.02 mm radius taken as chords):
 //   - its first move (the entry move) is no longer than r, or an arc of radius at most r;
 //   - an arc curving toward the tool side (the inside of the arc) has a radius of at most r;
 //   - a later move is shorter than the offset intersections at its ends need: at each inside
@@ -23,15 +24,20 @@ struct CompensationHazards {
 //     moves; where an arc meets the corner, the offsets (a line and a circle of radius R -/+ r,
 //     or two circles) must cross, and on both moves (a straight lead from the centre of a hole
 //     little wider than the tool misses the offset circle).
-// Measured against LinuxCNC's interpreter on the 27 corpus programs (scripts/check-compensation):
-// at kerf 0.15 mm the same count on every program but d2g_DRAAK, where it flags more (685 against
-// 575: spline arcs whose offsets LinuxCNC still joins); with a plasma kerf of 1.5 mm (St10kp 3 mm,
-// plasma-thc) the same on 25, DRAAK 732 / 618, pongbox 48 / 47. Radii and the entry move's length
-// are compared with a micrometre to spare (the program's resolution).
+// Measured against LinuxCNC's interpreter on the 27 corpus programs (scripts/check-compensation,
+// the blocks compared by name): at kerf 0.15 mm the same blocks on every program but d2g_DRAAK,
+// where it flags 680 and LinuxCNC refuses 575, 574 of them flagged (the other: a hairpin between
+// two spline arcs of 16-19 m radius) and 106 accepted (spline arcs whose offsets LinuxCNC still
+// joins); with a plasma kerf of 1.5 mm (St10kp 3 mm, plasma-thc) the same on 25, DRAAK 726 / 618,
+// pongbox 48 / 47, every refused block flagged. Radii and the entry move's length are compared
+// with a micrometre to spare (the program's resolution).
 // `held_over_tabs`: beam_switches_under_compensation() of the dialect written with. Where the
 // writer keeps compensation on over micro-joint gaps (compensation_held()), a contour and the
 // pieces after its tabs are one block, with the rapids over the gaps, and only its first move is
 // an entry.
-CompensationHazards compensation_hazards(const Toolpath& path, double tool_radius_mm, bool held_over_tabs);
+// `resolution_mm`: the program's coordinate step (PostDialect decimals, in mm), to which the path
+// is rounded as the writer rounds it.
+CompensationHazards compensation_hazards(const Toolpath& path, double tool_radius_mm, bool held_over_tabs,
+                                         double resolution_mm = 1e-3);
 
 }  // namespace cutroute::nc

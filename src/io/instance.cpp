@@ -117,6 +117,19 @@ class Parser {
   std::vector<std::vector<NodeId>> sets_;
   std::vector<std::pair<ClusterId, ClusterId>> order_;
   std::vector<long> order_lines_;
+  // Checked here rather than left to ProblemBuilder::build(), whose messages know neither lines
+  // nor the file's 1-based ids.
+  std::vector<long> set_lines_;  // where each set's id was read
+  long sets_line_ = 0;           // GTSP_SET_SECTION
+  struct MinusOne {
+    std::size_t i, j;
+    long line;
+  };
+  std::vector<MinusOne> minus_ones_;  // -1 weights: forbidden arcs, in SOP precedences
+  Cost max_weight_ = 0;
+  long max_weight_line_ = 0;
+  std::optional<Diagnostic> check_orders(const std::vector<std::pair<ClusterId, ClusterId>>& pairs, const std::vector<long>& lines,
+                                         const char* what) const;
   long start_group_ = 1;
   long start_group_line_ = 0;
   bool have_coords_ = false, have_weights_ = false, have_sets_ = false;
@@ -265,10 +278,16 @@ std::optional<Diagnostic> Parser::parse_weights() {
     long long v = 0;
     if (auto e = next_integer(v, "edge weight")) return e;
     if (v < 0) {
-      if (v == -1 && (sop || format_ == InstanceFormat::pcglns)) v = solve::kForbiddenCost;
-      else return error(line_no(), "negative edge weight " + std::to_string(v));
+      if (v != -1 || !(sop || format_ == InstanceFormat::pcglns)) return error(line_no(), "negative edge weight " + std::to_string(v));
+      v = solve::kForbiddenCost;
+      if (i != j) {
+        minus_ones_.push_back({i, j, line_no()});
+        if (mirror) minus_ones_.push_back({j, i, line_no()});
+      }
     } else if (v > solve::kMaxCost) {
       return error(line_no(), "edge weight " + std::to_string(v) + " exceeds 2^40");
+    } else if (v > max_weight_ && i != j) {
+      max_weight_ = v, max_weight_line_ = line_no();
     }
     matrix_[i * n + j] = v;
     if (mirror) matrix_[j * n + i] = v;
@@ -303,21 +322,32 @@ std::optional<Diagnostic> Parser::parse_sets() {
   if (auto e = need_dimension(at, "GTSP_SET_SECTION")) return e;
   if (m_ < 0) return error(at, "GTSP_SETS must be given before GTSP_SET_SECTION");
   sets_.assign(static_cast<std::size_t>(m_), {});
+  set_lines_.assign(static_cast<std::size_t>(m_), 0);
+  sets_line_ = li_ > 0 ? lines_[li_ - 1].number : at;  // the GTSP_SET_SECTION line
   std::vector<char> given(static_cast<std::size_t>(m_), 0);
+  std::vector<long long> owner(static_cast<std::size_t>(n_), 0);  // the set each node is in (1-based), 0: none yet
   for (long k = 0; k < m_; ++k) {
     long long id = 0;
     if (auto e = next_integer(id, "set id")) return e;
     if (id < 1 || id > m_) return error(line_no(), "set id " + std::to_string(id) + " outside 1.." + std::to_string(m_));
     if (given[static_cast<std::size_t>(id - 1)]) return error(line_no(), "set " + std::to_string(id) + " given twice");
     given[static_cast<std::size_t>(id - 1)] = 1;
+    set_lines_[static_cast<std::size_t>(id - 1)] = line_no();
     while (true) {
       long long v = 0;
       if (auto e = next_integer(v, "node id or -1 ending the set")) return e;
       if (v == -1) break;
       if (v < 1 || v > n_) return error(line_no(), "set " + std::to_string(id) + " names node " + std::to_string(v) + " outside 1.." + std::to_string(n_));
+      long long& o = owner[static_cast<std::size_t>(v - 1)];
+      if (o == id) return error(line_no(), "set " + std::to_string(id) + " names node " + std::to_string(v) + " twice");
+      if (o != 0) return error(line_no(), "node " + std::to_string(v) + " is in set " + std::to_string(o) + " and in set " + std::to_string(id));
+      o = id;
       sets_[static_cast<std::size_t>(id - 1)].push_back(NodeId(static_cast<int>(v - 1)));
     }
+    if (sets_[static_cast<std::size_t>(id - 1)].empty()) return error(line_no(), "set " + std::to_string(id) + " is empty");
   }
+  for (long v = 0; v < n_; ++v)
+    if (owner[static_cast<std::size_t>(v)] == 0) return error(sets_line_, "node " + std::to_string(v + 1) + " is in no set of GTSP_SET_SECTION");
   have_sets_ = true;
   skip_section();
   return std::nullopt;
@@ -395,6 +425,58 @@ Result<Instance> Parser::run() {
   return finish();
 }
 
+// Precedence pairs (a before b, 0-based) as the file gives them: no pair on one set, none ending at
+// the start, no cycle; each error at the line of a pair concerned, with the file's 1-based ids.
+std::optional<Diagnostic> Parser::check_orders(const std::vector<std::pair<ClusterId, ClusterId>>& pairs, const std::vector<long>& lines,
+                                               const char* what) const {
+  const bool sop = format_ == InstanceFormat::sop;
+  const std::string unit = sop ? "node " : "set ";
+  auto id = [](ClusterId c) { return std::to_string(c.value() + 1); };
+  const auto m = static_cast<std::size_t>(m_);
+  const ClusterId start(sop ? 0 : static_cast<int>(start_group_ - 1));
+  std::vector<std::vector<std::size_t>> out(m);  // pair indices by their first set
+  std::vector<int> indeg(m, 0);
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const auto [a, b] = pairs[k];
+    if (a == b) return error(lines[k], std::string(what) + ": " + unit + id(a) + " must come before itself");
+    if (b == start)
+      return error(lines[k], std::string(what) + ": " + unit + id(a) + " must come before " + unit + id(b) + ", which " +
+                                 (sop ? "starts the path" : "is the start set (START_GROUP_SECTION)"));
+    if (sop && a.value() + 1 == n_)
+      return error(lines[k], std::string(what) + ": node " + id(a) + " must come before node " + id(b) + ", but node " + id(a) +
+                                 " ends the path");
+    out[a.index()].push_back(k);
+    ++indeg[b.index()];
+  }
+  std::vector<std::size_t> ready;
+  for (std::size_t c = 0; c < m; ++c)
+    if (indeg[c] == 0) ready.push_back(c);
+  for (std::size_t r = 0; r < ready.size(); ++r)
+    for (std::size_t k : out[ready[r]])
+      if (--indeg[pairs[k].second.index()] == 0) ready.push_back(pairs[k].second.index());
+  if (ready.size() == m) return std::nullopt;
+  // A cycle: from a set left with predecessors, step back through pairs whose first set is left
+  // too until a set repeats.
+  std::vector<std::vector<std::size_t>> in(m);
+  for (std::size_t k = 0; k < pairs.size(); ++k)
+    if (indeg[pairs[k].first.index()] > 0 && indeg[pairs[k].second.index()] > 0) in[pairs[k].second.index()].push_back(k);
+  std::size_t c = 0;
+  while (indeg[c] == 0) ++c;
+  std::vector<int> seen(m, -1);
+  std::vector<std::size_t> steps;
+  while (seen[c] < 0) {
+    seen[c] = static_cast<int>(steps.size());
+    const std::size_t k = in[c].front();
+    steps.push_back(k);
+    c = pairs[k].first.index();
+  }
+  std::string cycle;
+  for (std::size_t s = steps.size(); s-- > static_cast<std::size_t>(seen[c]);)
+    cycle += unit + id(pairs[steps[s]].first) + " before ";
+  cycle += unit + id(pairs[steps[static_cast<std::size_t>(seen[c])]].second);
+  return error(lines[steps[static_cast<std::size_t>(seen[c])]], std::string(what) + ": the order has a cycle: " + cycle);
+}
+
 Result<Instance> Parser::finish() {
   const long last = lines_.empty() ? 1 : lines_.back().number;
   if (!format_) return error(last, "no TYPE and no known extension (.gtsp, .sop, .pcglns): cannot tell the format");
@@ -458,6 +540,13 @@ Result<Instance> Parser::finish() {
   if (fmt == InstanceFormat::sop) {
     b.set_kind(solve::RouteKind::open_path);
     b.set_start_cluster(ClusterId(0));
+    std::vector<std::pair<ClusterId, ClusterId>> pairs;
+    std::vector<long> lines;
+    for (const MinusOne& e : minus_ones_) {
+      pairs.emplace_back(ClusterId(static_cast<int>(e.j)), ClusterId(static_cast<int>(e.i)));
+      lines.push_back(e.line);
+    }
+    if (auto e = check_orders(pairs, lines, "EDGE_WEIGHT_SECTION (-1: the column's node before the row's)")) return *e;
   } else {
     b.set_kind(solve::RouteKind::closed_tour);
     if (start_group_ < 1 || start_group_ > m_) return error(start_group_line_, "START_GROUP_SECTION names set " + std::to_string(start_group_) + ", there are " + std::to_string(m_));
@@ -468,9 +557,16 @@ Result<Instance> Parser::finish() {
       if (std::max(a.value(), c.value()) >= m_)
         return error(order_lines_[k], "GTSP_SET_ORDERING: set id " + std::to_string(std::max(a.value(), c.value()) + 1) +
                                           " does not exist (GTSP_SETS is " + std::to_string(m_) + ")");
-      b.add_precedence(a, c);
     }
+    if (auto e = check_orders(order_, order_lines_, "GTSP_SET_ORDERING")) return *e;
+    for (const auto& [a, c] : order_) b.add_precedence(a, c);
   }
+  // The search prices a forbidden arc at kForbiddenCost (2^41): a route of m arcs of the largest
+  // weight must cost less, or a route through a forbidden arc would look the cheaper one.
+  if (!minus_ones_.empty() && m_ > 0 && max_weight_ > (solve::kForbiddenCost - 1) / m_)
+    return error(max_weight_line_, "edge weight " + std::to_string(max_weight_) + " is too large next to the -1 entries: with " +
+                                       std::to_string(m_) + " sets a route could cost more than a forbidden arc is priced (2^41); "
+                                       "weights up to " + std::to_string((solve::kForbiddenCost - 1) / m_) + " are supported (scale them down)");
   if (m_ != static_cast<long>(sets_.size())) return error(last, "GTSP_SETS does not match the sets given");
   auto built = b.build();
   if (!built) {
@@ -502,6 +598,7 @@ std::optional<InstanceFormat> format_from_extension(const std::string& file) {
 
 Result<Instance> parse_instance(std::string_view text, const std::string& file, std::optional<InstanceFormat> format) {
   if (!format) format = format_from_extension(file);
+  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // a UTF-8 byte order mark (Windows editors)
   Parser parser(text, file, format);
   auto r = parser.run();
   if (r && r->name.empty()) {

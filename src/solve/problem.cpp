@@ -132,6 +132,8 @@ Result<Problem> ProblemBuilder::build() {
   p.start_ = start_;
 
   if (!matrix_.empty()) {
+    Cost dearest = 0;
+    bool any_forbidden = !forbidden_.empty();
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = 0; j < n; ++j) {
         Cost& c = matrix_[i * n + j];
@@ -139,11 +141,19 @@ Result<Problem> ProblemBuilder::build() {
         if (c < 0) return err("cost of arc " + str(static_cast<long>(i)) + " -> " + str(static_cast<long>(j)) + " is negative");
         if (c > kMaxCost && c != kForbiddenCost)
           return err("cost of arc " + str(static_cast<long>(i)) + " -> " + str(static_cast<long>(j)) + " exceeds 2^40");
+        if (c == kForbiddenCost) any_forbidden = true;
+        else dearest = std::max(dearest, c);
       }
     for (auto [a, b] : forbidden_) {
       if (!a.valid() || !b.valid() || a.value() >= n_ || b.value() >= n_) return err("forbidden arc names a node outside the problem");
       matrix_[a.index() * n + b.index()] = kForbiddenCost;
     }
+    // The heuristics price a forbidden arc at kForbiddenCost: a route of allowed arcs must cost less,
+    // or one through a forbidden arc would look the cheaper (4 arcs of 2^40 against one of 2^41).
+    if (any_forbidden && dearest > (kForbiddenCost - 1) / m)
+      return err("arc costs up to " + str(static_cast<long>(dearest)) + " with " + str(m) +
+                 " clusters: a route could cost more than a forbidden arc is priced (2^41); with forbidden arcs, costs up to " +
+                 str(static_cast<long>((kForbiddenCost - 1) / m)) + " are supported");
     bool sym = true;
     for (std::size_t i = 0; i < n && sym; ++i)
       for (std::size_t j = i + 1; j < n; ++j)
@@ -197,6 +207,7 @@ Result<Problem> ProblemBuilder::build() {
     std::vector<std::vector<ClusterId>> after(static_cast<std::size_t>(m)), before(static_cast<std::size_t>(m));
     std::vector<int> mark(static_cast<std::size_t>(m), -1);
     std::vector<int> stack;
+    std::size_t pairs = 0;
     for (int c = 0; c < m; ++c) {
       stack.assign(succ[c].begin(), succ[c].end());
       while (!stack.empty()) {
@@ -204,6 +215,11 @@ Result<Problem> ProblemBuilder::build() {
         stack.pop_back();
         if (mark[x] == c) continue;
         mark[x] = c;
+        // The closure is kept as lists (the heuristics read them in their inner loops): quadratic
+        // in the length of the chains. A chain through 8 000 clusters took 1.2 GB.
+        if (++pairs > kMaxClosurePairs)
+          return err("the precedence pairs imply more than " + str(static_cast<long>(kMaxClosurePairs)) +
+                     " ordered pairs of clusters (chains through thousands of clusters); that many are not supported");
         after[c].push_back(ClusterId(x));
         before[x].push_back(ClusterId(c));
         for (int s : succ[x])

@@ -662,6 +662,18 @@ bool Ops::swap_pass(Tour& t) const {
 bool Ops::cluster_optimise(Tour& t, double max_work) const {
   const int L = static_cast<int>(t.seq.size());
   if (L == 0) return false;
+  if (L == 1) {
+    // A route of one cluster costs its node's inner cost alone (run() below prices it the same
+    // way, but from each node in turn: a single cluster of 20 000 nodes took 2.4 s).
+    NodeId best = t.seq[0];
+    for (NodeId v : p_.nodes_of(cl(best)))
+      if (p_.inner_cost(v) < p_.inner_cost(best)) best = v;
+    if (best == t.seq[0]) return false;
+    t.seq[0] = best;
+    t.cost = p_.inner_cost(best);
+    mark_around(t, 0);
+    return true;
+  }
   int r = 0;
   if (closed_) {
     for (int i = 1; i < L; ++i)

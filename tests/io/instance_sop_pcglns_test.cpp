@@ -123,7 +123,8 @@ TEST(InstanceErrors, MalformedFilesGiveLineNumbers) {
       {"bad dimension", "NAME : b\nTYPE : GTSP\nDIMENSION : -3\n", 3, "DIMENSION"},
       {"unknown metric", "NAME : b\nTYPE : GTSP\nDIMENSION : 3\nGTSP_SETS : 2\nEDGE_WEIGHT_TYPE : SPHERE\nNODE_COORD_SECTION\n1 0 0\n2 1 0\n3 1 1\n"
                          "GTSP_SET_SECTION\n1 1 -1\n2 2 3 -1\n", 5, "unsupported EDGE_WEIGHT_TYPE"},
-      {"node in two sets", good_head + "NODE_COORD_SECTION\n1 0 0\n2 1 0\n3 1 1\nGTSP_SET_SECTION\n1 1 2 -1\n2 2 3 -1\nEOF\n", 0, "in clusters"},
+      {"node in two sets", good_head + "NODE_COORD_SECTION\n1 0 0\n2 1 0\n3 1 1\nGTSP_SET_SECTION\n1 1 2 -1\n2 2 3 -1\nEOF\n", 12,
+       "node 2 is in set 1 and in set 2"},
       {"stray number", "NAME : b\n42\n", 2, "outside of any section"},
       // Found by fuzzing: a second DIMENSION after the coordinates read past them (ASan).
       {"dimension given again", good_head + "NODE_COORD_SECTION\n1 0 0\n2 1 0\n3 1 1\nDIMENSION : 5\nGTSP_SET_SECTION\n1 1 -1\n2 2 3 -1\n", 10,
@@ -157,10 +158,60 @@ TEST(InstanceErrors, MalformedPcglnsFilesGiveLineNumbers) {
       {"ordering before GTSP_SETS names a missing set",
        "NAME : b\nTYPE : PCGLNS\nGTSP_SET_ORDERING\n1 5 -1\nDIMENSION : 3\nGTSP_SETS : 2\nEDGE_WEIGHT_TYPE : EXPLICIT\n"
        "EDGE_WEIGHT_FORMAT : FULL_MATRIX\nEDGE_WEIGHT_SECTION\n" + matrix + sets + "EOF\n",
-       4, "set id 5 does not exist (GTSP_SETS is 2)"}},
+       4, "set id 5 does not exist (GTSP_SETS is 2)"},
+      // Found by fuzzing (session 39): each came from ProblemBuilder::build() without a line, with
+      // 0-based ids ("node 0 is in clusters 0 and 0", "cluster 2 must precede the start cluster 0").
+      {"a node twice in one set", head + matrix + "GTSP_SET_SECTION\n1 1 1 -1\n2 2 3 -1\n", 12, "set 1 names node 1 twice"},
+      {"an empty set", head + matrix + "GTSP_SET_SECTION\n1 1 2 3 -1\n2 -1\n", 13, "set 2 is empty"},
+      {"a node in no set", head + matrix + "GTSP_SET_SECTION\n1 1 -1\n2 2 -1\n", 11, "node 3 is in no set"},
+      {"a set before itself", head + matrix + sets + "GTSP_SET_ORDERING\n2 2 -1\n", 15, "set 2 must come before itself"},
+      {"a set before the start set", head + matrix + sets + "GTSP_SET_ORDERING\n2 1 -1\n", 15,
+       "set 2 must come before set 1, which is the start set"},
+      // 4 arcs of 2^40 cost more than one forbidden arc (2^41): the heuristic took the forbidden one.
+      {"weights too large next to forbidden arcs",
+       "NAME : b\nTYPE : PCGLNS\nDIMENSION : 4\nGTSP_SETS : 4\nEDGE_WEIGHT_TYPE : EXPLICIT\nEDGE_WEIGHT_FORMAT : FULL_MATRIX\n"
+       "EDGE_WEIGHT_SECTION\n0 1099511627776 -1 -1\n-1 0 1099511627776 -1\n-1 -1 0 1099511627776\n1099511627776 -1 -1 0\n"
+       "GTSP_SET_SECTION\n1 1 -1\n2 2 -1\n3 3 -1\n4 4 -1\n",
+       8, "weights up to 549755813887 are supported"}},
                 "bad.pcglns");
-  // The same file without the defects reads.
+  // An ordering cycle is reported at the line of one of its pairs.
+  {
+    const std::string text = head.substr(0, head.find("DIMENSION")) +
+                             "DIMENSION : 4\nGTSP_SETS : 4\nEDGE_WEIGHT_TYPE : EXPLICIT\nEDGE_WEIGHT_FORMAT : FULL_MATRIX\nEDGE_WEIGHT_SECTION\n"
+                             "0 1 2 3\n1 0 3 4\n2 3 0 5\n3 4 5 0\nGTSP_SET_SECTION\n1 1 -1\n2 2 -1\n3 3 -1\n4 4 -1\n"
+                             "GTSP_SET_ORDERING\n2 3 -1\n3 4 -1\n4 2 -1\n";  // the pairs on lines 18-20
+    auto r = parse_instance(text, "cycle.pcglns");
+    ASSERT_FALSE(r.ok());
+    EXPECT_NE(r.error().message.find("the order has a cycle: set 2 before set 3 before set 4 before set 2"), std::string::npos)
+        << r.error().message;
+    ASSERT_TRUE(r.error().line.has_value());
+    EXPECT_GE(*r.error().line, 18);
+    EXPECT_LE(*r.error().line, 20);
+  }
+  // The same file without the defects reads, also after a UTF-8 byte order mark (Windows editors).
   auto good = parse_instance(head + matrix + sets + "GTSP_SET_ORDERING\n1 2 -1\nSTART_GROUP_SECTION\n1\nEOF\n", "good.pcglns");
+  ASSERT_TRUE(good.ok()) << format(good.error());
+  auto bom = parse_instance("\xEF\xBB\xBF" + head + matrix + sets + "EOF\n", "bom.pcglns");
+  ASSERT_TRUE(bom.ok()) << format(bom.error());
+}
+
+// SOP precedences are the -1 entries (row i, column j: node j before node i); the ones that cannot
+// hold are named at their line, with the file's node numbers.
+TEST(InstanceErrors, ImpossibleSopPrecedencesGiveLineNumbers) {
+  const std::string head = "NAME : s\nTYPE : SOP\nDIMENSION : 4\nEDGE_WEIGHT_TYPE : EXPLICIT\nEDGE_WEIGHT_FORMAT : FULL_MATRIX\n"
+                           "EDGE_WEIGHT_SECTION\n4\n";  // lines 1-7, the rows on 8-11
+  expect_errors({
+      {"a node before the first", head + "0 -1 1 1\n-1 0 1 1\n-1 1 0 1\n-1 -1 -1 0\nEOF\n", 8,
+       "node 2 must come before node 1, which starts the path"},
+      {"the last node before another", head + "0 1 1 1\n-1 0 1 -1\n-1 1 0 1\n-1 -1 -1 0\nEOF\n", 9,
+       "node 4 must come before node 2, but node 4 ends the path"},
+      {"a cycle", head + "0 1 1 1\n-1 0 -1 1\n-1 -1 0 1\n-1 -1 -1 0\nEOF\n", 0,
+       "the order has a cycle: node 2 before node 3 before node 2"},
+      {"-1 in a symmetric format (both directions)",
+       "NAME : s\nTYPE : SOP\nDIMENSION : 4\nEDGE_WEIGHT_TYPE : EXPLICIT\nEDGE_WEIGHT_FORMAT : UPPER_ROW\nEDGE_WEIGHT_SECTION\n4\n1 1 1\n-1 1\n1\nEOF\n",
+       9, "the order has a cycle: node 2 before node 3 before node 2"}},
+                "bad.sop");
+  auto good = parse_instance(head + "0 1 1 1\n-1 0 1 1\n-1 -1 0 1\n-1 -1 -1 0\nEOF\n", "good.sop");
   ASSERT_TRUE(good.ok()) << format(good.error());
 }
 

@@ -124,7 +124,7 @@ TEST(Operators, ClusterOptimiseFindsBestNodesForFixedOrder) {
   Rng rng(5);
   for (int k = 0; k < 60; ++k) {
     test::RandomSpec spec;
-    spec.clusters = 2 + static_cast<int>(rng.below(4));
+    spec.clusters = 1 + static_cast<int>(rng.below(5));  // one cluster: its cheapest node alone
     spec.max_nodes = 3;
     spec.symmetric = k % 2 == 0;
     spec.closed = k % 3 != 0;

@@ -91,6 +91,43 @@ TEST(ProblemBuilder, PrecedenceClosureIsTransitive) {
   EXPECT_EQ(p.all_before(ClusterId(3)).size(), 2u);
 }
 
+// Found by fuzzing (session 39): a chain of 8 000 clusters took 1.2 GB of closure lists.
+TEST(ProblemBuilder, RefusesAPrecedenceClosureBeyondItsLimit) {
+  auto chain = [](int m) {
+    ProblemBuilder b(m);
+    PlanarCosts pc;
+    pc.per_unit = 1.0;
+    for (int c = 0; c < m; ++c) pc.out.push_back({static_cast<double>(c), 0.0});
+    pc.in = pc.out;
+    b.set_planar_costs(pc);
+    for (int c = 0; c < m; ++c) b.add_cluster({NodeId(c)});
+    for (int c = 1; c + 1 < m; ++c) b.add_precedence(ClusterId(c), ClusterId(c + 1));
+    return b.build();
+  };
+  // m - 2 chained clusters: (m - 2)(m - 3) / 2 ordered pairs, 2^24 = 16 777 216 allowed.
+  EXPECT_TRUE(chain(5000).ok());  // 12.5 million pairs
+  auto r = chain(6000);           // 18 million
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("more than 16777216 ordered pairs"), std::string::npos) << r.error().message;
+}
+
+// The heuristics price a forbidden arc at 2^41: four allowed arcs of 2^40 cost more, and the
+// heuristic returned "no route without forbidden arcs" on a problem with one.
+TEST(ProblemBuilder, RefusesCostsARouteOfWhichWouldOutpriceAForbiddenArc) {
+  auto ring = [](Cost w) {
+    ProblemBuilder b(4);
+    std::vector<Cost> m(16, kForbiddenCost);
+    for (int i = 0; i < 4; ++i) m[static_cast<std::size_t>(i * 4 + i)] = 0, m[static_cast<std::size_t>(i * 4 + (i + 1) % 4)] = w;
+    b.set_cost_matrix(m);
+    for (int c = 0; c < 4; ++c) b.add_cluster({NodeId(c)});
+    return b.build();
+  };
+  EXPECT_TRUE(ring((kForbiddenCost - 1) / 4).ok());
+  auto r = ring(kMaxCost);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("costs up to 549755813887 are supported"), std::string::npos) << r.error().message;
+}
+
 TEST(Validate, AcceptsCorrectRoutesAndNamesEveryDefect) {
   auto b = line_builder();
   b.set_inner_cost(NodeId(3), 10);

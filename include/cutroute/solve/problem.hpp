@@ -30,6 +30,10 @@ inline constexpr Cost kMaxCost = Cost{1} << 40;
 // any allowed arc, so the heuristics avoid forbidden arcs as very expensive ones without a special
 // case; validate() rejects them outright.
 inline constexpr Cost kForbiddenCost = Cost{1} << 41;
+// Most ordered pairs the precedence closure may hold (a before b, transitively): about 130 MB for
+// both directions' lists; a single chain through 5 800 clusters. Cutting nests hold a few per
+// contour (holes, parts in holes); SOPLIB's largest instances a quarter of a million.
+inline constexpr std::size_t kMaxClosurePairs = std::size_t{1} << 24;
 
 // Cost of travelling from one node to another (not including the inner cost of the target).
 // Must be pure and thread-safe: the heuristics call it from several threads.

@@ -400,13 +400,19 @@ Result<Instance> Parser::run() {
     std::string key(l.tokens[0]);
     if (const auto c = key.find(':'); c != std::string::npos) key.resize(c);
     if (key == "EOF") break;
-    if (!format_ && key == "TYPE") {
+    if (key == "TYPE") {
       (void)parse_header_line(l);
-      std::string t = type_;
-      if (t.rfind("PCGLNS", 0) == 0 || t.rfind("PCGTSP", 0) == 0) format_ = InstanceFormat::pcglns;
-      else if (t.rfind("SOP", 0) == 0) format_ = InstanceFormat::sop;
-      else if (t.rfind("GTSP", 0) == 0 || t.rfind("AGTSP", 0) == 0) format_ = InstanceFormat::gtsp;
-      else return error(l.number, "unknown TYPE '" + t + "' (expected GTSP, AGTSP, SOP or PCGLNS)");
+      const std::string& t = type_;
+      std::optional<InstanceFormat> said;
+      if (t.rfind("PCGLNS", 0) == 0 || t.rfind("PCGTSP", 0) == 0) said = InstanceFormat::pcglns;
+      else if (t.rfind("SOP", 0) == 0) said = InstanceFormat::sop;
+      else if (t.rfind("GTSP", 0) == 0 || t.rfind("AGTSP", 0) == 0) said = InstanceFormat::gtsp;
+      else if (!format_) return error(l.number, "unknown TYPE '" + t + "' (expected GTSP, AGTSP, SOP or PCGLNS)");
+      // An SOP read as a GTSP would lose its precedences (its -1 entries refused or read as arcs).
+      if (format_ && said && *said != *format_)
+        return error(l.number, "TYPE is " + t + ", but the file is read as ." + to_string(*format_) +
+                                   " (its name): rename it (.gtsp, .sop, .pcglns) to match its TYPE");
+      if (!format_) format_ = said;
     }
     ++li_;
     ti_ = 0;

@@ -213,6 +213,11 @@ TEST(InstanceErrors, ImpossibleSopPrecedencesGiveLineNumbers) {
                 "bad.sop");
   auto good = parse_instance(head + "0 1 1 1\n-1 0 1 1\n-1 -1 0 1\n-1 -1 -1 0\nEOF\n", "good.sop");
   ASSERT_TRUE(good.ok()) << format(good.error());
+  // Read by its name as a GTSP, an SOP would lose its precedences.
+  auto renamed = parse_instance(head + "0 1 1 1\n-1 0 1 1\n-1 -1 0 1\n-1 -1 -1 0\nEOF\n", "good.gtsp");
+  ASSERT_FALSE(renamed.ok());
+  EXPECT_EQ(renamed.error().line, 2);
+  EXPECT_NE(renamed.error().message.find("TYPE is SOP, but the file is read as .gtsp"), std::string::npos) << renamed.error().message;
 }
 
 }  // namespace

@@ -119,7 +119,6 @@ class Parser {
   std::vector<long> order_lines_;
   // Checked here rather than left to ProblemBuilder::build(), whose messages know neither lines
   // nor the file's 1-based ids.
-  std::vector<long> set_lines_;  // where each set's id was read
   long sets_line_ = 0;           // GTSP_SET_SECTION
   struct MinusOne {
     std::size_t i, j;
@@ -322,7 +321,6 @@ std::optional<Diagnostic> Parser::parse_sets() {
   if (auto e = need_dimension(at, "GTSP_SET_SECTION")) return e;
   if (m_ < 0) return error(at, "GTSP_SETS must be given before GTSP_SET_SECTION");
   sets_.assign(static_cast<std::size_t>(m_), {});
-  set_lines_.assign(static_cast<std::size_t>(m_), 0);
   sets_line_ = li_ > 0 ? lines_[li_ - 1].number : at;  // the GTSP_SET_SECTION line
   std::vector<char> given(static_cast<std::size_t>(m_), 0);
   std::vector<long long> owner(static_cast<std::size_t>(n_), 0);  // the set each node is in (1-based), 0: none yet
@@ -332,7 +330,6 @@ std::optional<Diagnostic> Parser::parse_sets() {
     if (id < 1 || id > m_) return error(line_no(), "set id " + std::to_string(id) + " outside 1.." + std::to_string(m_));
     if (given[static_cast<std::size_t>(id - 1)]) return error(line_no(), "set " + std::to_string(id) + " given twice");
     given[static_cast<std::size_t>(id - 1)] = 1;
-    set_lines_[static_cast<std::size_t>(id - 1)] = line_no();
     while (true) {
       long long v = 0;
       if (auto e = next_integer(v, "node id or -1 ending the set")) return e;

@@ -25,7 +25,19 @@ bool show_progress(bool quiet) { return !quiet && ::isatty(STDERR_FILENO); }
 }  // namespace cutroute::cli
 
 namespace {
-extern "C" void on_signal(int) { cutroute::StopToken::global().request_stop(); }
+// The first Ctrl-C (or SIGTERM) asks the run to stop and write its best result; the second ends the
+// process at once, for whatever cannot stop: a read blocked on a FIFO nobody writes to, a step
+// that does not look at the stop request.
+volatile std::sig_atomic_t signals_seen = 0;
+extern "C" void on_signal(int sig) {
+  if (signals_seen != 0) {
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+    return;
+  }
+  signals_seen = 1;
+  cutroute::StopToken::global().request_stop();
+}
 }  // namespace
 
 int main(int argc, char** argv) {

@@ -64,7 +64,10 @@ GridScan scan_grid(const Problem& p, int set, const SearchBox& box, int nx, int 
       const PointEval e = evaluate(p, s.surface.vc[i], s.surface.f[j], set);
       ++evals;
       const double viol = e.max_violation();
-      const bool ok = viol <= tol::kConstraintSlackRel;
+      // Values that overflow (a tool life of 1e-300 min, a feed of 1e-160 mm/rev) make no answer: a
+      // NaN cost compares false with everything, and became the "optimum" when it came first.
+      const bool finite = std::isfinite(viol) && std::isfinite(e.cost.total);
+      const bool ok = finite && viol <= tol::kConstraintSlackRel;
       if (keep) {
         const std::size_t at = static_cast<std::size_t>(j) * nx + i;
         s.surface.CT[at] = e.cost.total;
@@ -72,7 +75,7 @@ GridScan scan_grid(const Problem& p, int set, const SearchBox& box, int nx, int 
         s.surface.worst[at] = ok ? static_cast<signed char>(-1) : static_cast<signed char>(e.worst());
       }
       if (ok && (!s.best || e.cost.total < s.best->cost.total)) s.best = e;
-      if (viol < s.least_violation) {
+      if (finite && viol < s.least_violation) {
         s.least_violation = viol;
         s.least_violated = e;
       }
@@ -374,8 +377,11 @@ OptimizeResult optimize(const Problem& p, const OptimizeParams& params) {
     Infeasibility inf;
     if (!least_violated) {
       inf.constraint = "bounds";
-      inf.message = box_reasons;
-      inf.suggestions = {"check search.vc_min/vc_max, search.f_min/f_max, quality.Ra_max and tool.r_eps"};
+      inf.message = !box_reasons.empty() ? box_reasons
+                                         : "the model gives no finite cost or constraint value at any grid point: an input lies "
+                                           "far outside any physical range (a coefficient or limit that overflows)";
+      inf.suggestions = {!box_reasons.empty() ? "check search.vc_min/vc_max, search.f_min/f_max, quality.Ra_max and tool.r_eps"
+                                              : "check the coefficients and limits for a value many orders of magnitude off (units?)"};
     } else {
       const ConstraintId c = least_violated->worst();
       inf.constraint = to_string(c);

@@ -1,6 +1,7 @@
 // report_svg(): the cost map CT(vc, Vf) on log axes, like the seed's Figs. 1-2.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -73,6 +74,7 @@ std::string xy(double x, double y) { return fmt_fixed(x, 2) + "," + fmt_fixed(y,
 
 // 1-2-5 ticks inside [lo, hi] (finer when the range is short).
 std::vector<double> log_ticks(double lo, double hi) {
+  if (!(lo > 0.0 && std::isfinite(hi) && hi >= lo)) return {};  // log10(0) cast to int is undefined
   for (const auto& mant : {std::vector<double>{1, 2, 5}, std::vector<double>{1, 1.5, 2, 3, 5, 7}}) {
     std::vector<double> t;
     for (int e = static_cast<int>(std::floor(std::log10(lo))) - 1;
@@ -115,8 +117,20 @@ std::string report_svg(const RunOutput& out) {
   const auto vf = [&](double vc, double f) { return feed_speed_mm_min(f, spindle_speed_rpm(vc, p.op.D)); };
   Axes ax{std::log(g.vc.front()), std::log(g.vc.back()), std::log(vf(g.vc.front(), g.f.front())),
           std::log(vf(g.vc.back(), g.f.back()))};
-  const double ct_ref = r.solution ? r.solution->cost.total : *std::min_element(g.CT.begin(), g.CT.end());
-  const double ct_top = std::min(*std::max_element(g.CT.begin(), g.CT.end()), 2.0 * ct_ref);
+  // A feed speed of 0 (a bore so wide the spindle barely turns) has no place on log axes.
+  if (!(std::isfinite(ax.lx0) && std::isfinite(ax.lx1) && std::isfinite(ax.ly0) && std::isfinite(ax.ly1) && ax.lx1 > ax.lx0 &&
+        ax.ly1 > ax.ly0)) {
+    s += "<text x=\"" + fmt_fixed(kLeft, 0) + "\" y=\"60\">status: " + std::string(to_string(r.status)) +
+         " - no plot: the search box's feed speeds are not positive finite numbers</text>\n</svg>\n";
+    return s;
+  }
+  // Over the finite costs only: a grid reaching into overflow (f = 1e-160 mm/rev) holds NaN and inf,
+  // which std::min_element / max_element do not skip.
+  double ct_lo = std::numeric_limits<double>::infinity(), ct_hi = -ct_lo;
+  for (double ct : g.CT)
+    if (std::isfinite(ct)) ct_lo = std::min(ct_lo, ct), ct_hi = std::max(ct_hi, ct);
+  const double ct_ref = r.solution ? r.solution->cost.total : ct_lo;
+  const double ct_top = std::min(ct_hi, 2.0 * ct_ref);
   const auto shade = [&](double ct) { return ct_top > ct_ref ? std::log(ct / ct_ref) / std::log(ct_top / ct_ref) : 0.0; };
 
   const std::string sub =

@@ -13,12 +13,21 @@ namespace cutroute::machining {
 namespace {
 
 constexpr double kMaxCubatureWork = 2.0e8;
+constexpr double kMaxLengthMm = 1.0e5;   // bore diameter and length: 100 m
+constexpr std::size_t kMaxSweep = 100;   // K_TZ_sweep values
+constexpr double kMaxGridWork = 5.0e7;   // grid points evaluated in all (4.4 million a second)
 
 struct Checker {
   std::vector<std::string> out;
   void positive(const char* path, double v) {
     if (!(std::isfinite(v) && v > 0.0))
       out.push_back(std::string(path) + " must be a positive number, got " + fmt(v));
+  }
+  // Also no larger than `most`: beyond it the model's values overflow (a bore of 1e300 mm turned at
+  // 0 rpm for an infinite time) long before any machining centre could take the part.
+  void positive_upto(const char* path, double v, double most, const char* unit) {
+    positive(path, v);
+    if (std::isfinite(v) && v > most) out.push_back(std::string(path) + " must be at most " + fmt(most) + " " + unit + ", got " + fmt(v));
   }
   void non_negative(const char* path, double v) {
     if (!(std::isfinite(v) && v >= 0.0)) out.push_back(std::string(path) + " must be >= 0, got " + fmt(v));
@@ -62,9 +71,10 @@ void check_force(Checker& c, const ForceModel& m, const std::string& path, bool 
 
 std::vector<std::string> validate(const Problem& p) {
   Checker c;
-  c.positive("operation.D", p.op.D);
-  c.positive("operation.L", p.op.L);
+  c.positive_upto("operation.D", p.op.D, kMaxLengthMm, "mm");
+  c.positive_upto("operation.L", p.op.L, kMaxLengthMm, "mm");
   c.non_negative("operation.l_extra", p.op.l_extra);
+  c.rule(!(p.op.l_extra > kMaxLengthMm), "operation.l_extra must be at most " + fmt(kMaxLengthMm) + " mm, got " + fmt(p.op.l_extra));
   c.rule(p.op.passes >= 1, "operation.passes must be >= 1, got " + std::to_string(p.op.passes));
   c.positive("operation.ap", p.op.ap);
   c.rule(!(p.op.ap >= p.op.D / 2.0), "operation.ap must be smaller than the radius D/2");
@@ -103,7 +113,9 @@ std::vector<std::string> validate(const Problem& p) {
   c.positive("machine.n_max", p.machine.n_max);
   c.positive("machine.Vf_max", p.machine.Vf_max);
   c.non_negative("machine.n_base", p.machine.n_base);
-  for (double s : p.machine.spindle_steps) c.positive("machine.spindle_steps[]", s);
+  // Available spindle speeds; one of 1e-300 rpm rounded the optimum down to a cost of 1e302.
+  for (double s : p.machine.spindle_steps)
+    c.rule(std::isfinite(s) && s >= 1.0, "machine.spindle_steps[] are spindle speeds of at least 1 rpm, got " + fmt(s));
 
   c.non_negative("rates.R_AO", p.econ.rates.R_AO);
   c.non_negative("rates.R_Z", p.econ.rates.R_Z);
@@ -160,6 +172,14 @@ std::vector<std::string> validate(const Problem& p) {
     c.rule(*p.search.T_min < *p.search.T_max, "search.T_window must be [lo, hi] with lo < hi");
   }
   for (double K : p.K_TZ_sweep) c.positive("accuracy.K_TZ_sweep[]", K);
+  c.rule(p.K_TZ_sweep.size() <= kMaxSweep, "accuracy.K_TZ_sweep holds at most " + std::to_string(kMaxSweep) + " values, got " +
+                                               std::to_string(p.K_TZ_sweep.size()));
+  // Each sweep value repeats the whole grid search: a 4001 x 4001 grid with 12 values took 47 s
+  // and 0.9 GB, with 40 values and two transitions more than 6 minutes.
+  const double sets = p.life.kind == ToolLifeKind::taylor ? 1.0 : static_cast<double>(std::max<std::size_t>(1, p.life.sets.size()));
+  c.rule(static_cast<double>(p.search.grid_vc) * p.search.grid_f * sets * (1.0 + static_cast<double>(p.K_TZ_sweep.size())) <= kMaxGridWork,
+         "search.grid: n_vc * n_f * (tool-life sets) * (1 + K_TZ_sweep values) must be at most " + fmt(kMaxGridWork) +
+             " grid points (about 10 s)");
   c.rule(p.K_TZ_sweep.empty() || p.accuracy.has_value(), "accuracy.K_TZ_sweep needs the accuracy section");
   return c.out;
 }

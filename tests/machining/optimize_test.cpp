@@ -273,6 +273,31 @@ TEST(MachiningOptimizer, EmptyBoxNamesTheLimitingInputs) {
   EXPECT_NE(r.infeasible->message.find("Ra_max"), std::string::npos) << r.infeasible->message;
 }
 
+// Found by fuzzing (session 39). A search box reaching down to 1e-160 (allowed: positive) puts grid
+// points where the model overflows: their NaN cost compared false with everything, and the first
+// of them became the "optimum" (tm = inf, CT = nan). They are skipped; the optimum is E0's.
+TEST(MachiningOptimizer, PointsWhereTheModelOverflowsAreNoAnswer) {
+  Problem p = test::load_machining_example(test::kE0);
+  const OptimizeResult normal = optimize(p);
+  ASSERT_TRUE(normal.solution);
+  p.search.vc_min = p.search.f_min = 1e-160;
+  const OptimizeResult r = optimize(p);
+  ASSERT_TRUE(r.solution);
+  EXPECT_TRUE(std::isfinite(r.solution->cost.total));
+  EXPECT_NEAR(r.solution->cost.total, normal.solution->cost.total, 1e-6 * normal.solution->cost.total);
+  RunOutput out;
+  out.problem = &p;
+  out.result = &r;
+  EXPECT_EQ(report_svg(out).find("nan"), std::string::npos);
+  // Nowhere finite (a bar of E = 1e-300 MPa bends without limit): infeasible, and says why.
+  Problem q = test::load_machining_example(test::kE2);
+  q.accuracy->bar.E = 1e-300;
+  const OptimizeResult none = optimize(q);
+  EXPECT_EQ(none.status, Status::infeasible);
+  ASSERT_TRUE(none.infeasible);
+  EXPECT_NE(none.infeasible->message.find("no finite cost or constraint value"), std::string::npos) << none.infeasible->message;
+}
+
 TEST(MachiningOptimizer, PowerCurveLimitsLowSpeeds) {
   Problem p = test::load_machining_example(test::kE3);
   p.machine.n_base = 1500;  // full power only above 1500 rpm: 76 % of it at ~1140 rpm

@@ -124,6 +124,18 @@ TEST(MachiningJson, BadInputNamesTheField) {
        "required"},
       {"passes not integer", [](json& j) { j["operation"]["passes"] = 1.5; }, "operation.passes", "integer"},
       {"depth beyond radius", [](json& j) { j["operation"]["ap"] = 25; }, "operation.ap", "radius"},
+      // Found by fuzzing (session 39): a bore of 1e308 mm turned at 0 rpm for an infinite time,
+      // reported optimal; a 1e-300 rpm spindle speed rounded the optimum to a cost of 1e302; a
+      // 4001 x 4001 grid with 12 sweep values took 47 s.
+      {"bore beyond 100 m", [](json& j) { j["operation"]["D"] = 1e308; }, "operation.D", "at most 100000 mm"},
+      {"spindle speed below 1 rpm", [](json& j) { j["machine"]["spindle_steps"] = {1e-300, 1000}; }, "machine.spindle_steps[]",
+       "at least 1 rpm"},
+      {"grid and sweep too large",
+       [](json& j) {
+         j["search"]["grid"] = {4001, 4001};
+         j["accuracy"]["K_TZ_sweep"] = {0.005, 0.01, 0.02};
+       },
+       "search.grid", "at most 5e+07 grid points"},
   };
   for (const auto& c : cases) {
     json j = example_json(test::kE1);

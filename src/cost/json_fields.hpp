@@ -2,7 +2,9 @@
 #pragma once
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -23,6 +25,8 @@ inline std::string item(const std::string& parent, std::size_t i) {
 
 // Parses a file; the error names the file and, for syntax errors, the byte offset.
 inline Result<json> parse_json_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return make_error("is a directory, not a JSON file", path);
   std::ifstream in(path, std::ios::binary);
   if (!in) return make_error("cannot open file", path);
   std::stringstream ss;
@@ -47,21 +51,37 @@ inline Result<double> number(const json& obj, const std::string& key, const std:
   return v;
 }
 
+// `least`, `most`: the range a machine can have; beyond it a value is a typo or a unit slip, and
+// overflowed the estimate (a pierce of 1e308 s made the total NaN).
+inline Result<double> in_range(Result<double> v, const std::string& name, double least, double most) {
+  if (!v) return v;
+  auto text = [](double x) {
+    std::ostringstream o;
+    o << x;
+    return o.str();
+  };
+  if (*v < least) return make_error("field " + name + " must be at least " + text(least) + ", got " + text(*v));
+  if (*v > most) return make_error("field " + name + " must be at most " + text(most) + ", got " + text(*v));
+  return v;
+}
+
 inline Result<double> positive(const json& obj, const std::string& key, const std::string& path,
-                               bool required = true, double fallback = 0.0) {
+                               bool required = true, double fallback = 0.0,
+                               double most = std::numeric_limits<double>::infinity()) {
   auto v = number(obj, key, path, required, fallback);
   if (!v) return v;
   if (*v <= 0.0 && (required || obj.contains(key)))
     return make_error("field " + field(path, key) + " must be > 0");
-  return v;
+  return in_range(v, field(path, key), -std::numeric_limits<double>::infinity(), most);
 }
 
 inline Result<double> non_negative(const json& obj, const std::string& key, const std::string& path,
-                                   bool required = true, double fallback = 0.0) {
+                                   bool required = true, double fallback = 0.0,
+                                   double most = std::numeric_limits<double>::infinity()) {
   auto v = number(obj, key, path, required, fallback);
   if (!v) return v;
   if (*v < 0.0) return make_error("field " + field(path, key) + " must be >= 0");
-  return v;
+  return in_range(v, field(path, key), 0.0, most);
 }
 
 inline Result<std::string> string(const json& obj, const std::string& key, const std::string& path,

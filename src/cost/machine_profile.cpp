@@ -10,6 +10,15 @@ namespace cutroute::cost {
 
 namespace {
 
+// What a cutting machine can have; beyond these a profile value is a typo or a unit slip (a pierce
+// of 1e308 s made the estimate NaN, a rapid speed of 1e-300 m/s a total of 4e300 s).
+constexpr double kMaxSpeedMS = 100.0;    // working and rapid speeds [m/s]
+constexpr double kMinRapidMS = 1.0e-3;   // rapid speed [m/s]: 1 mm/s
+constexpr double kMaxTimeS = 3600.0;     // pierce, head lift and lower [s]
+constexpr double kMaxKerfMm = 20.0;      // as --kerf
+constexpr double kMaxLeadMm = 1000.0;    // lead-in, lead-out [mm]
+constexpr double kMaxRate = 1.0e9;       // cost rates [unit per m, per pierce]
+
 using detail::json;
 
 // A misspelt optional field would otherwise be ignored without a word.
@@ -93,20 +102,20 @@ Result<CuttingParams> parse_cutting(const json& c, const std::string& path) {
   if (!th) return th.error();
   p.thickness_mm = *th;
   if (c.contains("v_set_m_s") && !c["v_set_m_s"].is_null()) {
-    auto v = detail::positive(c, "v_set_m_s", path);
+    auto v = detail::positive(c, "v_set_m_s", path, true, 0.0, kMaxSpeedMS);
     if (!v) return v.error();
     p.v_set_m_s = *v;
   }
-  auto pt = detail::non_negative(c, "pierce_time_s", path);
+  auto pt = detail::non_negative(c, "pierce_time_s", path, true, 0.0, kMaxTimeS);
   if (!pt) return pt.error();
   p.pierce_time_s = *pt;
-  auto kerf = detail::non_negative(c, "kerf_mm", path);
+  auto kerf = detail::non_negative(c, "kerf_mm", path, true, 0.0, kMaxKerfMm);
   if (!kerf) return kerf.error();
   p.kerf_mm = *kerf;
-  auto li = detail::non_negative(c, "lead_in_mm", path);
+  auto li = detail::non_negative(c, "lead_in_mm", path, true, 0.0, kMaxLeadMm);
   if (!li) return li.error();
   p.lead_in_mm = *li;
-  auto lo = detail::non_negative(c, "lead_out_mm", path);
+  auto lo = detail::non_negative(c, "lead_out_mm", path, true, 0.0, kMaxLeadMm);
   if (!lo) return lo.error();
   p.lead_out_mm = *lo;
   return p;
@@ -129,10 +138,11 @@ Result<MachineProfile> parse_profile(const json& j, const std::string& path) {
   std::filesystem::path tp(*table);
   if (tp.is_relative()) tp = std::filesystem::path(path).parent_path() / tp;
   p.speed_table = tp.lexically_normal().string();
-  auto voff = detail::positive(j, "rapid_speed_m_s", "");
+  auto voff = detail::in_range(detail::positive(j, "rapid_speed_m_s", "", true, 0.0, kMaxSpeedMS), "rapid_speed_m_s", kMinRapidMS,
+                                 kMaxSpeedMS);
   if (!voff) return voff.error();
   p.rapid_speed_m_s = *voff;
-  auto head = detail::non_negative(j, "head_lift_lower_s", "", false, 0.0);
+  auto head = detail::non_negative(j, "head_lift_lower_s", "", false, 0.0, kMaxTimeS);
   if (!head) return head.error();
   p.head_lift_lower_s = *head;
   auto dialect = parse_dialect(j);
@@ -144,11 +154,11 @@ Result<MachineProfile> parse_profile(const json& j, const std::string& path) {
     auto unit = detail::string(*c, "unit", "costs");
     if (!unit) return unit.error();
     k.unit = *unit;
-    auto on = detail::non_negative(*c, "c_on_per_m", "costs");
+    auto on = detail::non_negative(*c, "c_on_per_m", "costs", true, 0.0, kMaxRate);
     if (!on) return on.error();
-    auto off = detail::non_negative(*c, "c_off_per_m", "costs");
+    auto off = detail::non_negative(*c, "c_off_per_m", "costs", true, 0.0, kMaxRate);
     if (!off) return off.error();
-    auto pt = detail::non_negative(*c, "c_pt", "costs");
+    auto pt = detail::non_negative(*c, "c_pt", "costs", true, 0.0, kMaxRate);
     if (!pt) return pt.error();
     k.c_on_per_m = *on;
     k.c_off_per_m = *off;

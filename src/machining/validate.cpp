@@ -21,22 +21,22 @@ struct Checker {
   std::vector<std::string> out;
   void positive(const char* path, double v) {
     if (!(std::isfinite(v) && v > 0.0))
-      out.push_back(std::string(path) + " must be a positive number, got " + fmt(v));
+      out.push_back(std::string(path) + " must be a positive number, got " + fmt_exact(v));
   }
   // Also no larger than `most`: beyond it the model's values overflow (a bore of 1e300 mm turned at
   // 0 rpm for an infinite time) long before any machining centre could take the part.
   void positive_upto(const char* path, double v, double most, const char* unit) {
     positive(path, v);
-    if (std::isfinite(v) && v > most) out.push_back(std::string(path) + " must be at most " + fmt(most) + " " + unit + ", got " + fmt(v));
+    if (std::isfinite(v) && v > most) out.push_back(std::string(path) + " must be at most " + fmt(most) + " " + unit + ", got " + fmt_exact(v));
   }
   void non_negative(const char* path, double v) {
-    if (!(std::isfinite(v) && v >= 0.0)) out.push_back(std::string(path) + " must be >= 0, got " + fmt(v));
+    if (!(std::isfinite(v) && v >= 0.0)) out.push_back(std::string(path) + " must be >= 0, got " + fmt_exact(v));
   }
   void finite(const char* path, double v) {
-    if (!std::isfinite(v)) out.push_back(std::string(path) + " must be a finite number, got " + fmt(v));
+    if (!std::isfinite(v)) out.push_back(std::string(path) + " must be a finite number, got " + fmt_exact(v));
   }
   void open_unit(const char* path, double v) {
-    if (!(v > 0.0 && v < 1.0)) out.push_back(std::string(path) + " must lie in (0, 1), got " + fmt(v));
+    if (!(v > 0.0 && v < 1.0)) out.push_back(std::string(path) + " must lie in (0, 1), got " + fmt_exact(v));
   }
   void rule(bool ok, std::string msg) {
     if (!ok) out.push_back(std::move(msg));
@@ -58,7 +58,7 @@ void check_force(Checker& c, const ForceModel& m, const std::string& path, bool 
           path + ".model: 'kienzle' is a tangential model; use 'handbook' or 'ratio' for the radial force");
       c.positive((path + ".kc11").c_str(), m.kienzle.kc11);
       c.rule(m.kienzle.mc >= 0.0 && m.kienzle.mc < 1.0,
-             path + ".mc must lie in [0, 1), got " + fmt(m.kienzle.mc));
+             path + ".mc must lie in [0, 1), got " + fmt_exact(m.kienzle.mc));
       break;
     case ForceKind::ratio:
       c.rule(radial, path + ".model: 'ratio' is a radial model (F_r = k_r*F_c)");
@@ -74,14 +74,14 @@ std::vector<std::string> validate(const Problem& p) {
   c.positive_upto("operation.D", p.op.D, kMaxLengthMm, "mm");
   c.positive_upto("operation.L", p.op.L, kMaxLengthMm, "mm");
   c.non_negative("operation.l_extra", p.op.l_extra);
-  c.rule(!(p.op.l_extra > kMaxLengthMm), "operation.l_extra must be at most " + fmt(kMaxLengthMm) + " mm, got " + fmt(p.op.l_extra));
+  c.rule(!(p.op.l_extra > kMaxLengthMm), "operation.l_extra must be at most " + fmt(kMaxLengthMm) + " mm, got " + fmt_exact(p.op.l_extra));
   c.rule(p.op.passes >= 1, "operation.passes must be >= 1, got " + std::to_string(p.op.passes));
   c.positive("operation.ap", p.op.ap);
   c.rule(!(p.op.ap >= p.op.D / 2.0), "operation.ap must be smaller than the radius D/2");
 
   c.positive("tool.r_eps", p.tool.r_eps);
   c.rule(p.tool.kappa_r > 0.0 && p.tool.kappa_r <= 180.0,
-         "tool.kappa_r must lie in (0, 180] degrees, got " + fmt(p.tool.kappa_r));
+         "tool.kappa_r must lie in (0, 180] degrees, got " + fmt_exact(p.tool.kappa_r));
   c.non_negative("tool.C_edge", p.tool.C_edge);
   c.non_negative("tool.t_change", p.tool.t_change);
   if (p.tool.F_allow) c.positive("tool.F_allow", *p.tool.F_allow);
@@ -98,7 +98,7 @@ std::vector<std::string> validate(const Problem& p) {
       c.positive((at + ".Kv").c_str(), s.Kv);
       c.open_unit((at + ".m").c_str(), s.m);
       c.finite((at + ".x").c_str(), s.x);
-      c.rule(s.y >= 0.0 && s.y < 1.0, at + ".y must lie in [0, 1), got " + fmt(s.y));
+      c.rule(s.y >= 0.0 && s.y < 1.0, at + ".y must lie in [0, 1), got " + fmt_exact(s.y));
       c.rule(s.f_lo >= 0.0 && s.f_lo < s.f_hi, at + ".f_range must be [lo, hi] with 0 <= lo < hi");
     }
   }
@@ -109,13 +109,13 @@ std::vector<std::string> validate(const Problem& p) {
 
   c.positive("machine.P_motor", p.machine.P_motor);
   c.rule(p.machine.eta > 0.0 && p.machine.eta <= 1.0,
-         "machine.eta must lie in (0, 1], got " + fmt(p.machine.eta));
+         "machine.eta must lie in (0, 1], got " + fmt_exact(p.machine.eta));
   c.positive("machine.n_max", p.machine.n_max);
   c.positive("machine.Vf_max", p.machine.Vf_max);
   c.non_negative("machine.n_base", p.machine.n_base);
   // Available spindle speeds; one of 1e-300 rpm rounded the optimum down to a cost of 1e302.
   for (double s : p.machine.spindle_steps)
-    c.rule(std::isfinite(s) && s >= 1.0, "machine.spindle_steps[] are spindle speeds of at least 1 rpm, got " + fmt(s));
+    c.rule(std::isfinite(s) && s >= 1.0, "machine.spindle_steps[] are spindle speeds of at least 1 rpm, got " + fmt_exact(s));
 
   c.non_negative("rates.R_AO", p.econ.rates.R_AO);
   c.non_negative("rates.R_Z", p.econ.rates.R_Z);

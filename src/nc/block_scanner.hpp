@@ -164,9 +164,10 @@ inline std::string scan_message(const ScanResult& s) {
     case ScanError::number_out_of_range:
       return std::string("number after ") + s.letter + " beyond +-1e9" + col;
     case ScanError::unsupported_character: {
-      std::string c = (s.character >= 32 && s.character < 127)
-                          ? std::string(1, s.character)
-                          : "\\x" + std::to_string(static_cast<unsigned char>(s.character));
+      static constexpr char kHex[] = "0123456789ABCDEF";
+      const auto byte = static_cast<unsigned char>(s.character);
+      std::string c = (byte >= 32 && byte < 127) ? std::string(1, s.character)
+                                                 : std::string("\\x") + kHex[byte >> 4] + kHex[byte & 15];  // ESC: \x1B
       return "unsupported character '" + c + "'" + col +
              ": parameters, expressions and other extensions are not read";
     }

@@ -1,8 +1,12 @@
 #include <cutroute/nc/gcode_reader.hpp>
 
 #include <array>
+#include <charconv>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <numbers>
 
 #include <cutroute/core/units.hpp>
@@ -44,6 +48,12 @@ std::string num(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.6g", v);
   return buf;
+}
+
+std::string num_exact(double v) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
 }
 
 std::string g_name(int tenths) {
@@ -265,6 +275,7 @@ class Reader {
       // A feed this small makes a cut last longer than any sum of times can hold.
       if (f > 0.0 && f < 1.0e-3) return error("feed F" + num(f) + " below 0.001 per minute");
       feed_mm_min_ = f * scale_;
+      have_feed_word_ = true;
     }
     for (std::size_t k = 0; k < b.nm; ++k) {
       const int m = b.m[k];
@@ -316,7 +327,8 @@ class Reader {
 
   Diagnostic check_range(const char* what, double v_mm) const {
     if (!(std::abs(v_mm) <= units::kMaxCoordinateMm))
-      return error(std::string(what) + " " + num(v_mm) + " mm is beyond the accepted range of ±" +
+      // All digits: at six, 1000000.0001 read "1e+06 mm is beyond the accepted range of ±1e+06 mm".
+      return error(std::string(what) + " " + num_exact(v_mm) + " mm is beyond the accepted range of ±" +
                    num(units::kMaxCoordinateMm) + " mm");
     return {};
   }
@@ -341,6 +353,13 @@ class Reader {
       ++st_.arc_moves;
     }
     const std::size_t pierces_before = st_.pierces;
+    if (motion_ != Motion::rapid && length > 0.0 && !(feed_mm_min_ > 0.0) && !warned_zero_feed_) {
+      // The estimate stands (it prices cuts at V_on*(n)), but the program would not run as written.
+      warn(line_no_, std::string(have_feed_word_ ? "feed move at F0" : "feed move before any F word") +
+                         ": a controller without a default feed refuses it (LinuxCNC: zero feed rate); its time at the "
+                         "programmed feed is not counted");
+      warned_zero_feed_ = true;
+    }
     if (motion_ == Motion::rapid) {
       if (length > 0.0) {
         st_.rapid_length_mm += length;
@@ -488,6 +507,7 @@ class Reader {
   bool arc_absolute_ = false;  // G90.1
   bool beam_on_ = false;
   bool repierce_ = false;     // a rapid was made with the beam on: the next cut pierces again
+  bool have_feed_word_ = false, warned_zero_feed_ = false;
   bool skip_motion_ = false;  // the current block holds an unknown G code
   bool pierce_dwelled_ = false;  // a dwell was counted for the current pierce
   bool new_cut_ = false;      // a beam-on code was executed: the next recorded cut starts from a pierce
@@ -504,8 +524,10 @@ Result<ProgramStats> read_gcode(std::string_view program, const std::string& fil
 }
 
 Result<ProgramStats> read_gcode_file(const std::string& path, const ReadOptions& options) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return make_error("is a directory, not a G-code program", path);
   std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) return make_error("cannot open G-code program", path);
+  if (!f) return make_error("cannot open G-code program: " + std::string(std::strerror(errno)), path);
   std::string buf;
   char chunk[1 << 16];
   std::size_t n = 0;
@@ -513,7 +535,10 @@ Result<ProgramStats> read_gcode_file(const std::string& path, const ReadOptions&
   const bool failed = std::ferror(f) != 0;
   std::fclose(f);
   if (failed) return make_error("read error", path);
-  return read_gcode(buf, path, options);
+  // A UTF-8 byte order mark (Windows editors) is no part of the program.
+  std::string_view text(buf);
+  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
+  return read_gcode(text, path, options);
 }
 
 }  // namespace cutroute::nc

@@ -86,6 +86,11 @@ TEST(MachineProfile, InvalidProfilesNameTheField) {
       {"job_thickness", [](json& j) { j["default_job"]["thickness_mm"] = 0; },
        "field default_job.thickness_mm must be > 0"},
       {"no_table", [](json& j) { j.erase("speed_table"); }, "field speed_table is missing"},
+      // Found by fuzzing (session 39): each overflowed the estimate (a NaN or 4e300-s total, exit 0).
+      {"huge_pierce", [](json& j) { j["cutting"][2]["pierce_time_s"] = 1e308; },
+       "field cutting[2].pierce_time_s must be at most 3600, got 1e+308"},
+      {"huge_head", [](json& j) { j["head_lift_lower_s"] = 1e308; }, "field head_lift_lower_s must be at most 3600"},
+      {"creeping_rapid", [](json& j) { j["rapid_speed_m_s"] = 1e-300; }, "field rapid_speed_m_s must be at least 0.001"},
   };
   for (const auto& c : cases) {
     json j = default_json();

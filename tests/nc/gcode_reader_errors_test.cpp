@@ -1,6 +1,10 @@
 // Broken programs: one defect per file in tests/data/nc/bad/, each with its exact line and message.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 #include <ostream>
 #include <string>
 
@@ -106,6 +110,46 @@ TEST(BrokenProgramInline, MissingFile) {
   auto r = read_gcode_file(test::test_data("nc/does_not_exist.nc"), ReadOptions{});
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().message.find("cannot open"), std::string::npos);
+  auto dir = read_gcode_file(test::test_data("nc"), ReadOptions{});
+  ASSERT_FALSE(dir.ok());
+  EXPECT_NE(dir.error().message.find("is a directory"), std::string::npos) << format(dir.error());
+}
+
+// Found by fuzzing (session 39).
+TEST(BrokenProgramInline, MessagesShowTheByteAndTheValueAsGiven) {
+  // The byte in hex (ESC read '\x27', an apostrophe, when its decimal value followed the \x).
+  auto esc = read_gcode("G0 X1\nG1 X2 \x1b Y1\nM30\n", "e.nc", ReadOptions{});
+  ASSERT_FALSE(esc.ok());
+  EXPECT_NE(esc.error().message.find("unsupported character '\\x1B'"), std::string::npos) << format(esc.error());
+  auto ff = read_gcode("G0 X1\n\xff\nM30\n", "f.nc", ReadOptions{});
+  ASSERT_FALSE(ff.ok());
+  EXPECT_NE(ff.error().message.find("'\\xFF'"), std::string::npos) << format(ff.error());
+  // All digits of a coordinate beyond the range (six read "1e+06 mm is beyond ... ±1e+06 mm").
+  auto far = read_gcode("G0 X1000000.0001\nM30\n", "x.nc", ReadOptions{});
+  ASSERT_FALSE(far.ok());
+  EXPECT_NE(far.error().message.find("X 1000000.0001 mm"), std::string::npos) << format(far.error());
+}
+
+// A UTF-8 byte order mark (Windows editors) is skipped; a feed move at F0 or before any F is read
+// (the estimate prices cuts at V_on*(n)) with a warning at its line: the controller would refuse it.
+TEST(BrokenProgramInline, ByteOrderMarkAndFeedMovesWithoutAFeed) {
+  const auto dir = std::filesystem::temp_directory_path() / ("cutroute-bom-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto bom = dir / "bom.nc";
+  std::ofstream(bom, std::ios::binary) << "\xEF\xBB\xBFG21\nG0 X1\nM3\nG1 X10 F1000\nM5\nM30\n";
+  auto r = read_gcode_file(bom.string(), ReadOptions{});
+  ASSERT_TRUE(r.ok()) << format(r.error());
+  EXPECT_NEAR(r->cut_length_mm, 9.0, 1e-12);
+  EXPECT_TRUE(r->warnings.empty());
+  std::filesystem::remove_all(dir);
+  for (const char* program : {"G21\nG0 X1\nM3\nG1 X10 F0\nM5\nM30\n", "G21\nG0 X1\nM3\nG1 X10\nM5\nM30\n"}) {
+    auto z = read_gcode(program, "z.nc", ReadOptions{});
+    ASSERT_TRUE(z.ok()) << format(z.error());
+    EXPECT_NEAR(z->cut_length_no_feed_mm, 9.0, 1e-12);
+    ASSERT_EQ(z->warnings.size(), 1u) << program;
+    EXPECT_EQ(z->warnings[0].line, 4);
+    EXPECT_NE(z->warnings[0].message.find("zero feed rate"), std::string::npos) << z->warnings[0].message;
+  }
 }
 
 }  // namespace

@@ -35,6 +35,11 @@ std::string numbered(const std::string& path, std::size_t k) {
 }
 
 int run_machining(const MachiningOptions& o) {
+  // Both into one file would leave only the CSV, silently.
+  if (!o.svg.empty() && !o.csv.empty() && io::same_output(o.svg, o.csv)) {
+    std::cerr << "cutroute: --svg and --csv name the same output: " << o.csv << '\n';
+    return kUsageError;
+  }
   auto text = io::read_file(o.problem);
   if (!text) return fail(text.error());
   auto parts = machining::read_transitions_json(*text, o.problem);

@@ -57,6 +57,10 @@ TEST(MachiningCli, WritesSvgAndCsv) {
   std::getline(s, first);
   EXPECT_EQ(first.rfind("<svg", 0), 0u);
   EXPECT_GT(std::filesystem::file_size(csv), 241u * 241u * 40u);
+  // One file named twice (found by fuzzing, session 39): the CSV silently replaced the picture.
+  const auto same = run(test::machining_example_path(test::kE2) + " --svg " + svg + " --csv " + (dir / "." / "e2.svg").string());
+  EXPECT_EQ(same.exit_code, 1);
+  EXPECT_NE(same.err.find("--svg and --csv name the same output"), std::string::npos) << same.err;
   std::filesystem::remove_all(dir);
 }
 

@@ -277,6 +277,13 @@ class Reader {
       feed_mm_min_ = f * scale_;
       have_feed_word_ = true;
     }
+    // The beam switched on and off in one block: RS274 puts both codes in one modal group, and the
+    // controller refuses the block (LinuxCNC: two M codes from the same modal group). Read in order.
+    {
+      bool on = false, off = false;
+      for (std::size_t k = 0; k < b.nm; ++k) on = on || opt_.dialect.switches_on(b.m[k]), off = off || opt_.dialect.switches_off(b.m[k]);
+      if (on && off) warn(line_no_, "the beam is switched on and off in one block: the controller refuses it; read in the order written");
+    }
     for (std::size_t k = 0; k < b.nm; ++k) {
       const int m = b.m[k];
       if (opt_.dialect.switches_on(m)) {
@@ -345,6 +352,13 @@ class Reader {
     ArcGeometry arc_geom;
     if (motion_ == Motion::rapid || motion_ == Motion::line) {
       length = std::hypot(nx - x_, ny - y_);
+      // Arc words on a straight move mean nothing here, and the controller refuses them (LinuxCNC:
+      // "I word with no G2 or G3 ... to use it").
+      for (const char w : {'I', 'J', 'R'})
+        if (b.has_word(w)) {
+          warn(line_no_, std::string("word ") + w + " on a straight move (G0/G1) ignored: the controller refuses it");
+          break;
+        }
     } else {
       auto arc = arc_length(b, nx, ny);
       if (!arc.ok()) return arc.error();

@@ -152,5 +152,19 @@ TEST(BrokenProgramInline, ByteOrderMarkAndFeedMovesWithoutAFeed) {
   }
 }
 
+// Found by fuzzing (session 39): blocks LinuxCNC refuses were read without a word.
+TEST(BrokenProgramInline, BlocksTheControllerRefusesAreWarnedAtTheirLine) {
+  auto r = read_gcode("G21\nG0 X1\nM3 M5\nM3\nG1 X10 I5 F1000\nG1 X20 R3\nM5\nM30\n", "w.nc", ReadOptions{});
+  ASSERT_TRUE(r.ok()) << format(r.error());
+  ASSERT_EQ(r->warnings.size(), 3u);
+  EXPECT_EQ(r->warnings[0].line, 3);
+  EXPECT_NE(r->warnings[0].message.find("switched on and off in one block"), std::string::npos) << r->warnings[0].message;
+  EXPECT_EQ(r->warnings[1].line, 5);
+  EXPECT_NE(r->warnings[1].message.find("word I on a straight move"), std::string::npos) << r->warnings[1].message;
+  EXPECT_EQ(r->warnings[2].line, 6);
+  EXPECT_NE(r->warnings[2].message.find("word R on a straight move"), std::string::npos) << r->warnings[2].message;
+  EXPECT_NEAR(r->cut_length_mm, 19.0, 1e-12);  // read in order: M3 M5 leaves the beam off
+}
+
 }  // namespace
 }  // namespace cutroute::nc

@@ -138,8 +138,7 @@ Result<MachineProfile> parse_profile(const json& j, const std::string& path) {
   std::filesystem::path tp(*table);
   if (tp.is_relative()) tp = std::filesystem::path(path).parent_path() / tp;
   p.speed_table = tp.lexically_normal().string();
-  auto voff = detail::in_range(detail::positive(j, "rapid_speed_m_s", "", true, 0.0, kMaxSpeedMS), "rapid_speed_m_s", kMinRapidMS,
-                                 kMaxSpeedMS);
+  auto voff = detail::in_range(detail::positive(j, "rapid_speed_m_s", ""), "rapid_speed_m_s", kMinRapidMS, kMaxSpeedMS);
   if (!voff) return voff.error();
   p.rapid_speed_m_s = *voff;
   auto head = detail::non_negative(j, "head_lift_lower_s", "", false, 0.0, kMaxTimeS);

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <numbers>
 
-#include <cutroute/core/tolerances.hpp>
 #include <cutroute/geometry/arc.hpp>
 #include <cutroute/nc/gcode_writer.hpp>
 
@@ -56,18 +55,16 @@ void append_moves(const CutSegment& seg, std::vector<Move>& out, const Grid& gri
     for (std::size_t i = 0; i < n; ++i) {
       const geometry::Segment s = geometry::segment(piece.path, i);
       const Vec2 a = grid(s.a), b = grid(s.b);
-      const double chord = geometry::distance(a, b), bulge = std::abs(s.bulge);
-      if (!s.is_arc() || bulge < tol::kStraightBulge || chord < 2 * grid.res_mm) {
+      const ArcPlan plan = s.is_arc() ? plan_arc(geometry::distance(a, b), s.bulge, grid.res_mm) : ArcPlan{};
+      if (plan.form == ArcPlan::Form::line) {
         append_line(a, b, out, grid);
         continue;
       }
-      const double radius = chord * (1 + bulge * bulge) / (4 * bulge);
-      if (radius > kMaxArcRadiusMm || radius < kMinArcRadiusMm) {
+      if (plan.form == ArcPlan::Form::chords) {
         const double sweep = 4 * std::atan(s.bulge);
-        const int k = arc_chord_count(sweep, radius, radius > kMaxArcRadiusMm ? grid.res_mm : std::max(grid.res_mm, kMicroArcChordMm));
         Vec2 at = a;
-        for (int j = 1; j < k; ++j) {
-          const Vec2 p = geometry::arc_point_at_sweep(a, b, s.bulge, sweep * j / k);
+        for (int j = 1; j < plan.chords; ++j) {
+          const Vec2 p = geometry::arc_point_at_sweep(a, b, s.bulge, sweep * j / plan.chords);
           append_line(at, p, out, grid);
           at = grid(p);
         }

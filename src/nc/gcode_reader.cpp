@@ -2,14 +2,12 @@
 
 #include <array>
 #include <charconv>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
-#include <filesystem>
 #include <numbers>
 
 #include <cutroute/core/units.hpp>
+#include <cutroute/io/output_file.hpp>
 #include <cutroute/nc/frames.hpp>
 
 #include "nc/block_scanner.hpp"
@@ -538,19 +536,10 @@ Result<ProgramStats> read_gcode(std::string_view program, const std::string& fil
 }
 
 Result<ProgramStats> read_gcode_file(const std::string& path, const ReadOptions& options) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) return make_error("is a directory, not a G-code program", path);
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) return make_error("cannot open G-code program: " + std::string(std::strerror(errno)), path);
-  std::string buf;
-  char chunk[1 << 16];
-  std::size_t n = 0;
-  while ((n = std::fread(chunk, 1, sizeof chunk, f)) > 0) buf.append(chunk, n);
-  const bool failed = std::ferror(f) != 0;
-  std::fclose(f);
-  if (failed) return make_error("read error", path);
+  auto buf = io::read_file(path);  // a directory or an unreadable file: an error naming it
+  if (!buf) return buf.error();
   // A UTF-8 byte order mark (Windows editors) is no part of the program.
-  std::string_view text(buf);
+  std::string_view text(*buf);
   if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
   return read_gcode(text, path, options);
 }

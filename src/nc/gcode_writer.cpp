@@ -108,15 +108,13 @@ class Emitter {
     return true;
   }
 
-  // An arc of radius beyond kMaxArcRadiusMm (or below kMinArcRadiusMm) as chords whose sagitta
-  // R (1 - cos(phi / 2)) ~ R phi^2 / 8 stays within the output resolution (or `sagitta_mm`). Nearly
+  // An arc of radius beyond kMaxArcRadiusMm (or below kMinArcRadiusMm) as k chords (plan_arc). Nearly
   // straight arcs (bulge 1e-8 on a 10-mm edge: I J of 2.5e9 mm) made centres that the controller's
   // range, and our own reader, refuse. The chord ends
   // come from the chord-based arc_point_at_sweep, which stays exact where the centre is far away.
-  bool flat_arc(Vec2 q, double bulge, double radius, const std::string& feed_word, double sagitta_mm = 0.0) {
+  bool flat_arc(Vec2 q, double bulge, int k, const std::string& feed_word) {
     const Vec2 a = pos_;
     const double sweep = 4 * std::atan(bulge);
-    const int k = arc_chord_count(sweep, radius, std::max(res_mm_, sagitta_mm));
     bool wrote = false;
     for (int i = 1; i < k; ++i)
       wrote = line(geometry::arc_point_at_sweep(a, q, bulge, sweep * i / k), wrote ? std::string() : feed_word) || wrote;
@@ -126,13 +124,9 @@ class Emitter {
   bool arc(Vec2 to, double bulge, const std::string& feed_word) {
     const Vec2 q = quantise(to);
     if (q == pos_) return false;
-    if (std::abs(bulge) < tol::kStraightBulge || geometry::distance(pos_, q) < 2 * res_mm_) {
-      return line(to, feed_word);
-    }
-    const double b = std::abs(bulge);
-    const double radius = geometry::distance(pos_, q) * (1 + b * b) / (4 * b);
-    if (radius > kMaxArcRadiusMm) return flat_arc(q, bulge, radius, feed_word);
-    if (radius < kMinArcRadiusMm) return flat_arc(q, bulge, radius, feed_word, kMicroArcChordMm);
+    const ArcPlan plan = plan_arc(geometry::distance(pos_, q), bulge, res_mm_);
+    if (plan.form == ArcPlan::Form::line) return line(to, feed_word);
+    if (plan.form == ArcPlan::Form::chords) return flat_arc(q, bulge, plan.chords, feed_word);
     const double sweep = 4 * std::atan(bulge);
     if (d_.arc_format == ArcFormat::r && std::abs(sweep) > 150.0 * std::numbers::pi / 180.0) {
       // Split at the arc's midpoint into two arcs of half the sweep.

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <string>
 
+#include <cutroute/core/tolerances.hpp>
 #include <cutroute/nc/post_dialect.hpp>
 #include <cutroute/nc/toolpath.hpp>
 
@@ -36,11 +37,29 @@ inline constexpr double kMaxArcRadiusMm = 1.0e5;
 // the arcs of a micrometre or two. Chords within the output resolution took two or three, and the
 // frame count sets V_on*(n): d2g_Lueftergitter_R14 got 96 more frames, 1.9 % more T_cut.
 inline constexpr double kMicroArcChordMm = 0.004;
-// The chords the writer cuts an arc of `sweep` [rad] and `radius_mm` into so that none strays more
-// than `sagitta_mm` from it: R (1 - cos(phi / 2)) ~ R phi^2 / 8 (1 to 100 000).
-inline int arc_chord_count(double sweep, double radius_mm, double sagitta_mm) {
-  const double pieces = std::ceil(std::abs(sweep) * std::sqrt(radius_mm / (8 * sagitta_mm)));
-  return static_cast<int>(std::clamp(pieces, 1.0, 100000.0));
+// How the writer emits an arc of `bulge` between a and b, both already on its grid of step res_mm
+// (the compensation check follows the same plan, so that it reads the program as written):
+//   line   - one G1: nearly straight, or a chord under two grid steps;
+//   chords - `chords` G1 moves through points of the arc, none straying more than res_mm (radius
+//            beyond kMaxArcRadiusMm) or kMicroArcChordMm (below kMinArcRadiusMm) from it:
+//            R (1 - cos(phi / 2)) ~ R phi^2 / 8, 1 to 100 000 of them;
+//   arc    - one G2/G3 (two in the R format beyond 150 degrees).
+struct ArcPlan {
+  enum class Form { line, chords, arc } form = Form::line;
+  double radius_mm = 0.0;
+  int chords = 1;
+};
+inline ArcPlan plan_arc(double chord_mm, double bulge, double res_mm) {
+  const double b = std::abs(bulge);
+  if (b < tol::kStraightBulge || chord_mm < 2 * res_mm) return {};
+  ArcPlan p{ArcPlan::Form::arc, chord_mm * (1 + b * b) / (4 * b), 1};
+  if (p.radius_mm > kMaxArcRadiusMm || p.radius_mm < kMinArcRadiusMm) {
+    const double sagitta = p.radius_mm > kMaxArcRadiusMm ? res_mm : std::max(res_mm, kMicroArcChordMm);
+    const double pieces = std::ceil(4 * std::atan(b) * std::sqrt(p.radius_mm / (8 * sagitta)));
+    p.form = ArcPlan::Form::chords;
+    p.chords = static_cast<int>(std::clamp(pieces, 1.0, 100000.0));
+  }
+  return p;
 }
 
 // Does the writer keep G41/G42 on from segment `from` into the next one, `to`? When `to` resumes

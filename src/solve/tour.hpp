@@ -150,6 +150,7 @@ class Ops {
   // window_optimise around every cluster touched at or after `since_epoch`.
   bool windows_optimise(Tour& t, int since_epoch) const;
   void local_search(Tour& t) const;
+  // Random topological order, each cluster at its cheapest place (construction.cpp).
   void construct(Tour& t, Rng& rng) const;
   // 2-opt with neighbour optimisation (neighbour_opt.cpp) applies: symmetric plain matrix, no
   // precedence, small clusters.
@@ -160,6 +161,11 @@ class Ops {
 
  private:
   Insertion insertion_at(const Tour& t, ClusterId c, int at) const;  // best node of c at index `at`
+  // Best node of c between prev and next (next invalid: the end of an open path); `at` is copied.
+  Insertion insertion_between(ClusterId c, NodeId prev, NodeId next, int at) const;
+  Insertion insertion_impl(ClusterId c, NodeId prev, NodeId next, int at) const;
+  // The rest of a stopped construction: nearby_insertion's choices on a linked list (construction.cpp).
+  void complete_nearby(Tour& t, Rng& rng, std::vector<int>& avail, std::vector<int>& indeg) const;
   // Indices next to c's candidate neighbours present in the route (appended to out, may repeat).
   void candidate_positions(const Tour& t, ClusterId c, std::vector<int>& out) const;
 

@@ -31,6 +31,13 @@ void append_fixed(std::string& out, double v, int decimals) {
   out.append(s);
 }
 
+std::string format_shortest(double v) {
+  if (!std::isfinite(v)) return std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf");
+  std::array<char, 64> buf{};
+  const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v);
+  return std::string(buf.data(), r.ptr);
+}
+
 std::string format_fixed(double v, int decimals) {
   std::string s;
   append_fixed(s, v, decimals);

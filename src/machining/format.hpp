@@ -5,15 +5,12 @@
 #include <cmath>
 #include <string>
 
+#include <cutroute/core/number_format.hpp>
+
 namespace cutroute::machining {
 
 // Shortest text that reads back to the same double (std::to_chars, no locale).
-inline std::string fmt_exact(double v) {
-  if (!std::isfinite(v)) return std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf");
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
-}
+inline std::string fmt_exact(double v) { return format_shortest(v); }
 
 // At most `sig` significant digits, general notation: for messages.
 inline std::string fmt(double v, int sig = 6) {

@@ -1,11 +1,11 @@
 #include <cutroute/nc/gcode_reader.hpp>
 
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
 
+#include <cutroute/core/number_format.hpp>
 #include <cutroute/core/units.hpp>
 #include <cutroute/io/output_file.hpp>
 #include <cutroute/nc/frames.hpp>
@@ -46,12 +46,6 @@ std::string num(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.6g", v);
   return buf;
-}
-
-std::string num_exact(double v) {
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
 }
 
 std::string g_name(int tenths) {
@@ -188,7 +182,10 @@ class Reader {
         }
         b.m[b.nm++] = static_cast<int>(r);
       } else if (w.letter == 'N') {
-        // sequence numbers carry no meaning for lengths or time
+        // Sequence numbers carry no meaning for lengths or time, but a controller refuses a block
+        // whose number is negative or not a whole number (LinuxCNC: "negative line number").
+        if (w.value < 0 || w.value != std::floor(w.value))
+          warn(line_no_, "line number N" + num(w.value) + " is not a whole number >= 0 (controllers refuse the block)");
       } else {
         const auto i = static_cast<std::size_t>(w.letter - 'A');
         if (b.has[i] && dup.message.empty()) {
@@ -333,7 +330,7 @@ class Reader {
   Diagnostic check_range(const char* what, double v_mm) const {
     if (!(std::abs(v_mm) <= units::kMaxCoordinateMm))
       // All digits: at six, 1000000.0001 read "1e+06 mm is beyond the accepted range of ±1e+06 mm".
-      return error(std::string(what) + " " + num_exact(v_mm) + " mm is beyond the accepted range of ±" +
+      return error(std::string(what) + " " + format_shortest(v_mm) + " mm is beyond the accepted range of ±" +
                    num(units::kMaxCoordinateMm) + " mm");
     return {};
   }

@@ -166,5 +166,17 @@ TEST(BrokenProgramInline, BlocksTheControllerRefusesAreWarnedAtTheirLine) {
   EXPECT_NEAR(r->cut_length_mm, 19.0, 1e-12);  // read in order: M3 M5 leaves the beam off
 }
 
+// Found by fuzzing (session 39): negative and fractional sequence numbers passed without a word.
+TEST(BrokenProgramInline, LineNumbersTheControllerRefusesAreWarned) {
+  auto r = read_gcode("N10 G21\nN-5 G0 X1\nN2.5 M3\nN0 G1 X10 F1000\nN30 M5\nM30\n", "n.nc", ReadOptions{});
+  ASSERT_TRUE(r.ok()) << format(r.error());
+  ASSERT_EQ(r->warnings.size(), 2u);
+  EXPECT_EQ(r->warnings[0].line, 2);
+  EXPECT_NE(r->warnings[0].message.find("line number N-5 is not a whole number >= 0"), std::string::npos) << r->warnings[0].message;
+  EXPECT_EQ(r->warnings[1].line, 3);
+  EXPECT_NE(r->warnings[1].message.find("line number N2.5"), std::string::npos) << r->warnings[1].message;
+  EXPECT_NEAR(r->cut_length_mm, 9.0, 1e-12);
+}
+
 }  // namespace
 }  // namespace cutroute::nc

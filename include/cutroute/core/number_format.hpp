@@ -10,5 +10,8 @@ namespace cutroute {
 // buffer (no locale, no allocation beyond the append).
 void append_fixed(std::string& out, double v, int decimals);
 std::string format_fixed(double v, int decimals);
+// The shortest text that reads back to the same double ("nan", "inf", "-inf" otherwise): for
+// messages that quote a value exactly, e.g. a limit just exceeded.
+std::string format_shortest(double v);
 
 }  // namespace cutroute

@@ -340,13 +340,12 @@ TEST(PlanarCosts, EveryInstructionSetRoundsHalfwayPricesWithoutFusedMultiplyAdd)
 // measured 1.30 (no pairs) and 1.37 (pairs), the same as scanning the whole window each time.
 // Third case: every point at one spot, so that every price ties and each cluster goes to the first
 // place of its window, mostly the same one: the order labels run out there and are renumbered
-// (about 80 times). Only 6 084 points there: the k-d tree cannot split equal points, so each
-// neighbour query reads them all.
+// (about 800 times).
 TEST(PlanarCosts, StoppedConstructionOfAHugeNestPlacesEveryClusterNearItsNeighbours) {
+  constexpr int kSide = 200;  // a jittered grid of 5-mm cells: 40 000 points in 1 000 x 1 000 mm
+  constexpr int n = kSide * kSide;
   for (const int variant : {0, 1, 2}) {
     const bool pairs = variant > 0, one_spot = variant == 2;
-    // A jittered grid of 5-mm cells: 40 000 points in 1 000 x 1 000 mm.
-    const int kSide = one_spot ? 78 : 200, n = kSide * kSide;
     Rng rng(static_cast<std::uint64_t>(11 + variant));
     PlanarCosts costs;
     for (int r = 0; r < kSide; ++r)

@@ -38,9 +38,12 @@ constexpr long kMaxDimension = 1'000'000;
 // and a huge value cannot overflow the conversion to an integer cost.
 constexpr double kMaxCoordinate = 1.0e11;
 
+// A line is kept as its text and split into words only where it is read: a table of every word
+// (16 bytes each, twice that while the vector grew) took twice the memory of the matrix it held,
+// 262 MB for a 4 000-node FULL_MATRIX.
 struct Line {
   long number = 0;
-  std::vector<std::string_view> tokens;
+  std::string_view text;
 };
 
 std::vector<Line> split_lines(std::string_view text) {
@@ -50,17 +53,7 @@ std::vector<Line> split_lines(std::string_view text) {
   while (i <= text.size()) {
     std::size_t j = i;
     while (j < text.size() && text[j] != '\n' && text[j] != '\r') ++j;
-    ++number;
-    Line line{number, {}};
-    std::size_t k = i;
-    while (k < j) {
-      while (k < j && std::isspace(static_cast<unsigned char>(text[k]))) ++k;
-      std::size_t e = k;
-      while (e < j && !std::isspace(static_cast<unsigned char>(text[e]))) ++e;
-      if (e > k) line.tokens.push_back(text.substr(k, e - k));
-      k = e;
-    }
-    lines.push_back(std::move(line));
+    lines.push_back({++number, text.substr(i, j - i)});
     if (j >= text.size()) break;
     // CRLF counts as one line break, a lone CR or LF as one.
     i = (text[j] == '\r' && j + 1 < text.size() && text[j + 1] == '\n') ? j + 2 : j + 1;
@@ -68,8 +61,37 @@ std::vector<Line> split_lines(std::string_view text) {
   return lines;
 }
 
+bool space(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
+
+// The next word of `text` at or after offset `at` (empty at the end); `at` moves past it.
+std::string_view next_word(std::string_view text, std::size_t& at) {
+  while (at < text.size() && space(text[at])) ++at;
+  const std::size_t b = at;
+  while (at < text.size() && !space(text[at])) ++at;
+  return text.substr(b, at - b);
+}
+
+std::vector<std::string_view> words(std::string_view text) {
+  std::vector<std::string_view> out;
+  std::size_t at = 0;
+  for (auto w = next_word(text, at); !w.empty(); w = next_word(text, at)) out.push_back(w);
+  return out;
+}
+
+std::size_t count_words(std::string_view text) {
+  std::size_t k = 0, at = 0;
+  while (!next_word(text, at).empty()) ++k;
+  return k;
+}
+
+std::string_view first_word(const Line& l) {
+  std::size_t at = 0;
+  return next_word(l.text, at);
+}
+
 bool is_keyword_line(const Line& l) {
-  return !l.tokens.empty() && std::isalpha(static_cast<unsigned char>(l.tokens[0][0]));
+  const auto w = first_word(l);
+  return !w.empty() && std::isalpha(static_cast<unsigned char>(w[0]));
 }
 
 std::string trim(std::string_view s) {
@@ -107,7 +129,7 @@ class Parser {
   std::vector<Line> lines_;
   std::string file_;
   std::optional<InstanceFormat> format_;
-  std::size_t li_ = 0, ti_ = 0;  // cursor: line, token
+  std::size_t li_ = 0, ci_ = 0;  // cursor: line, character offset in it
 
   std::string name_, type_, weight_type_, weight_format_;
   long type_line_ = 0, weight_type_line_ = 0;
@@ -137,10 +159,10 @@ class Parser {
 std::optional<std::string_view> Parser::next_token() {
   while (li_ < lines_.size()) {
     const Line& l = lines_[li_];
-    if (ti_ == 0 && is_keyword_line(l)) return std::nullopt;
-    if (ti_ < l.tokens.size()) return l.tokens[ti_++];
+    if (ci_ == 0 && is_keyword_line(l)) return std::nullopt;
+    if (const auto w = next_word(l.text, ci_); !w.empty()) return w;
     ++li_;
-    ti_ = 0;
+    ci_ = 0;
   }
   return std::nullopt;
 }
@@ -174,7 +196,7 @@ std::optional<Diagnostic> Parser::next_real(double& out, const char* what) {
 
 void Parser::skip_section() {
   while (li_ < lines_.size() && !is_keyword_line(lines_[li_])) ++li_;
-  ti_ = 0;
+  ci_ = 0;
 }
 
 std::optional<Diagnostic> Parser::need_dimension(long line, const char* section) {
@@ -185,9 +207,9 @@ std::optional<Diagnostic> Parser::need_dimension(long line, const char* section)
 std::optional<Diagnostic> Parser::parse_header_line(const Line& l) {
   // "KEY : VALUE", "KEY: VALUE", "KEY VALUE" (35ftv170 has "TYPE  AGTSP").
   std::string joined;
-  for (std::size_t k = 0; k < l.tokens.size(); ++k) {
-    if (k) joined.push_back(' ');
-    joined.append(l.tokens[k]);
+  for (const auto w : words(l.text)) {
+    if (!joined.empty()) joined.push_back(' ');
+    joined.append(w);
   }
   std::string key, value;
   const auto colon = joined.find(':');
@@ -266,8 +288,8 @@ std::optional<Diagnostic> Parser::parse_weights() {
   // The n x n matrix is allocated only once the section is seen to hold its numbers, so a short file
   // declaring a large DIMENSION cannot take gigabytes; extra numbers are an error too.
   std::size_t given = 0, end = li_;
-  for (; end < lines_.size() && ((end == li_ && ti_ > 0) || !is_keyword_line(lines_[end])); ++end)
-    given += lines_[end].tokens.size() - (end == li_ ? ti_ : 0);
+  for (; end < lines_.size() && ((end == li_ && ci_ > 0) || !is_keyword_line(lines_[end])); ++end)
+    given += count_words(lines_[end].text.substr(end == li_ ? ci_ : 0));
   if (given < need)
     return error(end < lines_.size() ? lines_[end].number : line_no(),
                  "section ended early: EDGE_WEIGHT_SECTION gives " + std::to_string(given) + " of the " + std::to_string(need) +
@@ -309,7 +331,7 @@ std::optional<Diagnostic> Parser::parse_weights() {
   }
   have_weights_ = true;
   if (given > need) {
-    while (li_ < lines_.size() && ti_ >= lines_[li_].tokens.size()) ++li_, ti_ = 0;
+    while (li_ < lines_.size() && count_words(lines_[li_].text.substr(ci_)) == 0) ++li_, ci_ = 0;
     return error(line_no(), "more edge weights than the format " + f + " holds for DIMENSION " + std::to_string(n_));
   }
   skip_section();
@@ -354,9 +376,10 @@ std::optional<Diagnostic> Parser::parse_ordering() {
   // Lines "A B1 B2 ... -1": set A before every B_i.
   while (li_ < lines_.size() && !is_keyword_line(lines_[li_])) {
     const Line& l = lines_[li_++];
-    if (l.tokens.empty()) continue;
+    const auto tokens = words(l.text);
+    if (tokens.empty()) continue;
     std::vector<long long> v;
-    for (auto tok : l.tokens) {
+    for (auto tok : tokens) {
       long long x = 0;
       const auto r = std::from_chars(tok.data(), tok.data() + tok.size(), x);
       if (r.ec != std::errc() || r.ptr != tok.data() + tok.size())
@@ -373,7 +396,7 @@ std::optional<Diagnostic> Parser::parse_ordering() {
       order_lines_.push_back(l.number);
     }
   }
-  ti_ = 0;
+  ci_ = 0;
   return std::nullopt;
 }
 
@@ -389,12 +412,13 @@ std::optional<Diagnostic> Parser::parse_start_group() {
 Result<Instance> Parser::run() {
   while (li_ < lines_.size()) {
     const Line& l = lines_[li_];
-    if (l.tokens.empty()) {
+    const auto first = first_word(l);
+    if (first.empty()) {
       ++li_;
       continue;
     }
-    if (!is_keyword_line(l)) return error(l.number, "number outside of any section: '" + std::string(l.tokens[0]) + "'");
-    std::string key(l.tokens[0]);
+    if (!is_keyword_line(l)) return error(l.number, "number outside of any section: '" + std::string(first) + "'");
+    std::string key(first);
     if (const auto c = key.find(':'); c != std::string::npos) key.resize(c);
     if (key == "EOF") break;
     if (key == "TYPE") {
@@ -412,7 +436,7 @@ Result<Instance> Parser::run() {
       if (!format_) format_ = said;
     }
     ++li_;
-    ti_ = 0;
+    ci_ = 0;
     std::optional<Diagnostic> e;
     if (key == "NODE_COORD_SECTION") e = parse_coords();
     else if (key == "EDGE_WEIGHT_SECTION") {

@@ -127,6 +127,7 @@ TEST(MachiningJson, BadInputNamesTheField) {
       // Found by fuzzing (session 39): a bore of 1e308 mm turned at 0 rpm for an infinite time,
       // reported optimal; a 1e-300 rpm spindle speed rounded the optimum to a cost of 1e302; a
       // 4001 x 4001 grid with 12 sweep values took 47 s.
+      {"edge along the feed", [](json& j) { j["tool"]["kappa_r"] = 180; }, "tool.kappa_r", "(0, 180) degrees"},
       {"bore beyond 100 m", [](json& j) { j["operation"]["D"] = 1e308; }, "operation.D", "at most 100000 mm"},
       {"spindle speed below 1 rpm", [](json& j) { j["machine"]["spindle_steps"] = {1e-300, 1000}; }, "machine.spindle_steps[]",
        "at least 1 rpm"},

@@ -15,7 +15,7 @@ struct Word {
   std::size_t column = 0;  // 1-based column of the letter, for messages
 };
 
-enum class ScanError { none, unclosed_comment, missing_number, malformed_number, number_out_of_range, unsupported_character };
+enum class ScanError { none, unclosed_comment, nested_comment, missing_number, malformed_number, number_out_of_range, unsupported_character };
 
 // Largest |number| a word may carry: 10^9 mm is a thousand kilometres, 10^9 s of dwell thirty years;
 // beyond it sums of lengths and times could overflow to infinity.
@@ -75,7 +75,13 @@ ScanResult scan_block(std::string_view line, OnWord&& on_word) {
     if (c == ';') break;
     if (c == '(') {
       const char* q = p + 1;
-      while (q < end && *q != ')') ++q;
+      while (q < end && *q != ')' && *q != '(') ++q;
+      // Read as ending at the first ')', "(a (b) c)" left " c)" to be read as a word C.
+      if (q < end && *q == '(') {
+        r.error = ScanError::nested_comment;
+        r.column = static_cast<std::size_t>(q - begin) + 1;
+        return r;
+      }
       if (q == end) {
         r.error = ScanError::unclosed_comment;
         r.column = static_cast<std::size_t>(p - begin) + 1;
@@ -157,6 +163,8 @@ inline std::string scan_message(const ScanResult& s) {
   switch (s.error) {
     case ScanError::unclosed_comment:
       return "comment '(' is not closed on its line" + col;
+    case ScanError::nested_comment:
+      return "comment opened inside a comment" + col + ": controllers refuse nested comments";
     case ScanError::missing_number:
       return std::string("word ") + s.letter + " has no number" + col;
     case ScanError::malformed_number:

@@ -49,6 +49,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadCase{"arc_without_centre.nc", 4, "without I/J or R"},
                       BadCase{"no_program_end.nc", 6, "no program end"},
                       BadCase{"unclosed_comment.nc", 2, "not closed"},
+                      BadCase{"nested_comment.nc", 2, "comment opened inside a comment (column 10)"},
                       BadCase{"plane_g18.nc", 1, "only the XY plane"},
                       BadCase{"axis_without_motion_mode.nc", 2, "without a motion mode"},
                       BadCase{"duplicate_word.nc", 3, "appears twice"},

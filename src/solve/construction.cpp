@@ -57,12 +57,14 @@ void Ops::construct(Tour& t, Rng& rng) const {
   }
 }
 
-// The same choices as nearby_insertion() followed by insert(), in the same random order, but on a
-// doubly linked list whose order is kept as integer labels (order maintenance by midpoints,
-// relabelled evenly when two neighbours leave no room). Inserting into the route's vector moves and
-// re-indexes everything behind the new place: on 100 000 singleton clusters stopped after 1 s,
-// those O(L) insertions made the run end after 4.2 s. Here an insertion is O(k) for its candidate
-// places; a relabelling is O(L) and comes after about 40 insertions into the same gap at worst.
+// The rest of the clusters, in the same random order, each at the cheapest of the places next to
+// its placed candidate neighbours that precedence allows and the two ends of its window (O(24 k)
+// instead of best_insertion's O(L k)), the first place on ties. On a doubly linked list whose order
+// is kept as integer labels (order maintenance by midpoints, relabelled evenly when two neighbours
+// leave no room): inserting into the route's vector moved and re-indexed everything behind the new
+// place, and on 100 000 singleton clusters stopped after 1 s those O(L) insertions made the run end
+// after 4.2 s. Here an insertion is O(k) for its candidate places; a relabelling is O(L) and comes
+// after about 40 insertions into the same gap at worst.
 void Ops::complete_nearby(Tour& t, Rng& rng, std::vector<int>& avail, std::vector<int>& indeg) const {
   const std::size_t m = static_cast<std::size_t>(m_);
   constexpr int kNone = -1;
@@ -126,11 +128,13 @@ void Ops::complete_nearby(Tour& t, Rng& rng, std::vector<int>& avail, std::vecto
       const Insertion ins = price(c, a);
       if (ins.delta < best.delta || (ins.delta == best.delta && best_a != kNone && lab(a) < lab(best_a))) best = ins, best_a = a;
     }
-    // No neighbour placed yet (most clusters while few are placed): every place of the window, as
-    // long as those scans stay within kFallbackScans places in all; then the places next to the
-    // nearest placed clusters of the candidate graph, found breadth first. Scanning every time took
-    // 2.6 s on 100 000 singleton clusters stopped at 2 048 placed; the first nearest places alone cost
-    // 1-11 % more on 2 600 clusters (Heuristic.StoppedConstruction...), where the scans stay cheap.
+    // No neighbour placed yet (most clusters while few are placed). The window's ends alone are far
+    // away (10 000 circles stopped at a fifth: a route with 6.6 times the rapids), so every place
+    // of the window, as long as those scans stay within kFallbackScans places in all; then the
+    // places next to the nearest placed clusters of the candidate graph, found breadth first.
+    // Scanning every time took 2.6 s on 100 000 singleton clusters stopped at 2 048 placed; the
+    // nearest places alone cost 1-11 % more on 2 600 clusters (Heuristic.StoppedConstruction...),
+    // where the scans stay cheap.
     if (near == 0 && scanned >= kFallbackScans) {
       ++stamp;
       frontier.assign(1, c.value());

@@ -339,26 +339,6 @@ Ops::Insertion Ops::best_repair_insertion(const Tour& t, ClusterId c, double noi
   return best;
 }
 
-Ops::Insertion Ops::nearby_insertion(const Tour& t, ClusterId c) const {
-  const auto [lo, hi] = window(t, c);
-  thread_local std::vector<int> cand;  // Ops is shared by the search threads
-  cand.assign({lo, hi});
-  candidate_positions(t, c, cand);
-  Insertion best;
-  best.delta = kHuge;
-  int near = 0;
-  for (std::size_t i = 0; i < cand.size(); ++i) {
-    const int at = cand[i];
-    if (at < lo || at > hi) continue;
-    near += i >= 2;
-    const Insertion ins = insertion_at(t, c, at);
-    if (ins.delta < best.delta || (ins.delta == best.delta && at < best.at)) best = ins;
-  }
-  // No neighbour placed yet: the window's ends are far away (10 000 circles, stopped at a fifth
-  // of the construction: 7 % of the rest, and a route with 6.6 times the rapids); scan it all.
-  return near > 0 ? best : best_insertion(t, c, 0.0, nullptr);
-}
-
 void Ops::insert(Tour& t, const Insertion& ins) const {
   t.seq.insert(t.seq.begin() + ins.at, ins.node);
   reindex(t, ins.at, static_cast<int>(t.seq.size()));

@@ -108,10 +108,6 @@ class Ops {
   // The repair step's insertion: like best_insertion, but on long routes without precedence only
   // next to c's neighbour clusters (O(24 k) instead of O(L k)); the whole route when few are present.
   Insertion best_repair_insertion(const Tour& t, ClusterId c, double noise, Rng& rng) const;
-  // The cheapest of the positions next to c's candidate neighbours that precedence allows and the
-  // two ends of its window: O(24 k) instead of best_insertion's O(L k), for a construction that
-  // has run out of time.
-  Insertion nearby_insertion(const Tour& t, ClusterId c) const;
   void insert(Tour& t, const Insertion& ins) const;
   Cost removal_gain(const Tour& t, int i) const;
   void remove_at(Tour& t, int i) const;
@@ -164,7 +160,7 @@ class Ops {
   // Best node of c between prev and next (next invalid: the end of an open path); `at` is copied.
   Insertion insertion_between(ClusterId c, NodeId prev, NodeId next, int at) const;
   Insertion insertion_impl(ClusterId c, NodeId prev, NodeId next, int at) const;
-  // The rest of a stopped construction: nearby_insertion's choices on a linked list (construction.cpp).
+  // The rest of a stopped construction, each cluster next to a candidate neighbour (construction.cpp).
   void complete_nearby(Tour& t, Rng& rng, std::vector<int>& avail, std::vector<int>& indeg) const;
   // Indices next to c's candidate neighbours present in the route (appended to out, may repeat).
   void candidate_positions(const Tour& t, ClusterId c, std::vector<int>& out) const;

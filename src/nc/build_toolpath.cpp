@@ -6,7 +6,8 @@ namespace cutroute::nc {
 
 namespace {
 
-// hole_number: the contour's 1-based place among its part's holes (0: none).
+// "part 3 outer", "part 3 hole 2": how a contour is named in comments, reports and pictures;
+// hole_number is its 1-based place among its part's holes (0: none).
 std::string label_of(const model::Nest& nest, model::ContourId id, int hole_number) {
   const auto& c = nest.contours[id];
   if (!c.part.valid()) return "contour " + std::to_string(id.value() + 1);
@@ -16,15 +17,6 @@ std::string label_of(const model::Nest& nest, model::ContourId id, int hole_numb
 }
 
 }  // namespace
-
-std::string contour_label(const model::Nest& nest, model::ContourId id) {
-  const auto& c = nest.contours[id];
-  int number = 0;
-  if (c.part.valid())
-    for (std::size_t k = 0; k < nest.parts[c.part].holes.size() && number == 0; ++k)
-      if (nest.parts[c.part].holes[k] == id) number = static_cast<int>(k) + 1;
-  return label_of(nest, id, number);
-}
 
 Toolpath build_toolpath(const model::Nest& nest, const std::vector<const model::EntryCandidate*>& sequence,
                         const ToolpathOptions& options) {

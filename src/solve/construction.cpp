@@ -19,6 +19,21 @@ constexpr int kFullScanRoute = 2048;
 constexpr std::size_t kMaxSearched = 4096;
 // Places a stopped construction prices in whole-window scans (about 0.08 s on planar singletons).
 constexpr std::size_t kFallbackScans = 2'000'000;
+
+// Takes a random cluster out of `avail` (the clusters whose predecessors are all placed).
+ClusterId take_random(std::vector<int>& avail, Rng& rng) {
+  const std::size_t k = rng.below(avail.size());
+  const int c = avail[k];
+  avail[k] = avail.back();
+  avail.pop_back();
+  return ClusterId(c);
+}
+
+// c is placed: its successors whose predecessors are now all placed become available.
+void release_after(const Problem& p, ClusterId c, std::vector<int>& indeg, std::vector<int>& avail) {
+  for (ClusterId b : p.all_after(c))
+    if (--indeg[b.index()] == 0) avail.push_back(b.value());
+}
 }  // namespace
 
 void Ops::construct(Tour& t, Rng& rng) const {
@@ -47,13 +62,9 @@ void Ops::construct(Tour& t, Rng& rng) const {
       complete_nearby(t, rng, avail, indeg);
       return;
     }
-    const std::size_t k = rng.below(avail.size());
-    const int c = avail[k];
-    avail[k] = avail.back();
-    avail.pop_back();
-    insert(t, best_insertion(t, ClusterId(c), 0.0, nullptr));
-    for (ClusterId b : p_.all_after(ClusterId(c)))
-      if (--indeg[b.index()] == 0) avail.push_back(b.value());
+    const ClusterId c = take_random(avail, rng);
+    insert(t, best_insertion(t, c, 0.0, nullptr));
+    release_after(p_, c, indeg, avail);
   }
 }
 
@@ -100,10 +111,7 @@ void Ops::complete_nearby(Tour& t, Rng& rng, std::vector<int>& avail, std::vecto
   int stamp = 0;
   std::size_t scanned = 0;
   while (!avail.empty()) {
-    const std::size_t k = rng.below(avail.size());
-    const ClusterId c(avail[k]);
-    avail[k] = avail.back();
-    avail.pop_back();
+    const ClusterId c = take_random(avail, rng);
     // window(): after the last placed predecessor, up to the place before the first placed successor.
     int lo = head, hi = tail;
     for (ClusterId x : p_.all_before(c))
@@ -121,12 +129,16 @@ void Ops::complete_nearby(Tour& t, Rng& rng, std::vector<int>& avail, std::vecto
     Insertion best;
     best.delta = kHuge;
     int best_a = kNone, near = 0;
-    for (std::size_t i = 0; i < cand.size(); ++i) {
-      const int a = cand[i];
-      if (lab(a) < lab(lo) || lab(a) > lab(hi)) continue;
-      near += i >= 2;
+    auto in_window = [&](int a) { return lab(a) >= lab(lo) && lab(a) <= lab(hi); };
+    // The cheaper place, the first one on ties.
+    auto consider = [&](int a) {
       const Insertion ins = price(c, a);
       if (ins.delta < best.delta || (ins.delta == best.delta && best_a != kNone && lab(a) < lab(best_a))) best = ins, best_a = a;
+    };
+    for (std::size_t i = 0; i < cand.size(); ++i) {
+      if (!in_window(cand[i])) continue;
+      near += i >= 2;
+      consider(cand[i]);
     }
     // No neighbour placed yet (most clusters while few are placed). The window's ends alone are far
     // away (10 000 circles stopped at a fifth: a route with 6.6 times the rapids), so every place
@@ -151,10 +163,9 @@ void Ops::complete_nearby(Tour& t, Rng& rng, std::vector<int>& avail, std::vecto
               if (!placed[x.index()]) continue;
               // Both sides of a placed cluster, as the candidate lists give them one way or the other.
               for (int a : {x.value(), x.value() == head ? kNone : prv[x.index()]}) {
-                if (a == kNone || lab(a) < lab(lo) || lab(a) > lab(hi)) continue;
+                if (a == kNone || !in_window(a)) continue;
                 ++near;
-                const Insertion ins = price(c, a);
-                if (ins.delta < best.delta || (ins.delta == best.delta && best_a != kNone && lab(a) < lab(best_a))) best = ins, best_a = a;
+                consider(a);
               }
             }
         frontier.swap(nextf);
@@ -184,8 +195,7 @@ void Ops::complete_nearby(Tour& t, Rng& rng, std::vector<int>& avail, std::vecto
     nxt[ci] = b, prv[ci] = best_a, nxt[ai] = c.value();
     if (b != kNone) prv[static_cast<std::size_t>(b)] = c.value();
     else tail = c.value();
-    for (ClusterId y : p_.all_after(c))
-      if (--indeg[y.index()] == 0) avail.push_back(y.value());
+    release_after(p_, c, indeg, avail);
   }
   t.seq.clear();
   for (int c = head; c != kNone; c = nxt[static_cast<std::size_t>(c)]) t.seq.push_back(node[static_cast<std::size_t>(c)]);

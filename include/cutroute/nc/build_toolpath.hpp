@@ -27,7 +27,4 @@ struct ToolpathOptions {
 Toolpath build_toolpath(const model::Nest& nest, const std::vector<const model::EntryCandidate*>& sequence,
                         const ToolpathOptions& options);
 
-// "part 3 outer", "part 3 hole 2": how a contour is named in comments, reports and pictures.
-std::string contour_label(const model::Nest& nest, model::ContourId id);
-
 }  // namespace cutroute::nc

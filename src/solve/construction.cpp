@@ -15,6 +15,11 @@ constexpr Cost kHuge = std::numeric_limits<Cost>::max() / 4;
 // (about 0.1 s on 10 000 circles), the first clusters placed are rarely anyone's candidate
 // neighbours, and the nests of the corpus (at most 1 186 contours) keep the routes they had.
 constexpr int kFullScanRoute = 2048;
+// Problems of more clusters than this complete every construction next to candidate neighbours
+// once kFullScanRoute clusters are placed, stopped or not: the whole-window scans are O(m^2 k) (a
+// plate of 10 000 holes: 2.1 s of a 4.3-s run with --time-limit 0; 40 000 holes: about 16 times
+// that), the nearby places O(m k) (10 000 circles: T_cut within 0.003 %, before local search).
+constexpr int kFullConstructionClusters = 4096;
 // Clusters a stopped construction visits in the candidate graph looking for a placed one.
 constexpr std::size_t kMaxSearched = 4096;
 // Places a stopped construction prices in whole-window scans (about 0.08 s on planar singletons).
@@ -55,10 +60,10 @@ void Ops::construct(Tour& t, Rng& rng) const {
   t.cost = p_.inner_cost(first);  // one-node route, closed or open
   while (!avail.empty()) {
     // Cheapest insertion over the whole route is O(m^2 k): on a nest of 10 000 small circles
-    // `optimize --time-limit 1` took 4.0 s, most of it here. Once the run is stopped the rest goes
-    // next to its candidate neighbours: 1.5 s, T_cut 17 002.9 s against 17 002.4 s (clusters whose
+    // `optimize --time-limit 1` took 4.0 s, most of it here. Once the run is stopped (or on more
+    // than kFullConstructionClusters clusters) the rest goes next to its candidate neighbours: 1.5 s, T_cut 17 002.9 s against 17 002.4 s (clusters whose
     // nodes lie far apart lose more; Heuristic.StoppedConstruction...).
-    if (static_cast<int>(t.seq.size()) > kFullScanRoute && stopped()) {
+    if (static_cast<int>(t.seq.size()) > kFullScanRoute && (stopped() || m_ > kFullConstructionClusters)) {
       complete_nearby(t, rng, avail, indeg);
       return;
     }

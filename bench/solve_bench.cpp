@@ -165,4 +165,44 @@ void BM_Bound_Assignment(benchmark::State& state) {
 }
 BENCHMARK(BM_Bound_Assignment)->Arg(1000)->Unit(benchmark::kMillisecond)->Iterations(1);
 
+// A perforated plate: `holes` 10-mm holes on a 15-mm grid, 8 entry candidates each, inside one
+// outer contour that comes last (every hole before it: sparse precedence on a long route). Solved
+// with no time limit and the smallest work budget, the run is construction plus the first local
+// search: both were O(m^2) with precedence (10 000 holes: 16.9 s of `optimize --time-limit 0`
+// before session 41, 2.2 s after).
+solve::Problem perforated_plate(int holes) {
+  solve::PlanarCosts pc;
+  pc.base = 0.25, pc.per_unit = 1.0 / 250, pc.scale = 1e6;
+  const int k = 8, side = static_cast<int>(std::ceil(std::sqrt(holes)));
+  solve::ProblemBuilder b((holes + 1) * k);
+  auto add = [&](double cx, double cy, double r) {
+    std::vector<solve::NodeId> nodes;
+    for (int j = 0; j < k; ++j) {
+      const double a = 2 * std::numbers::pi * j / k;
+      pc.in.push_back({cx + r * std::cos(a), cy + r * std::sin(a)});
+      pc.out.push_back(pc.in.back());
+      nodes.push_back(solve::NodeId(static_cast<int>(pc.in.size()) - 1));
+    }
+    b.add_cluster(nodes);
+  };
+  for (int h = 0; h < holes; ++h) add(15.0 * (h % side), 15.0 * (h / side), 5);
+  add(7.5 * side, 7.5 * side, 7.5 * side * std::numbers::sqrt2);
+  b.set_planar_costs(std::move(pc));
+  for (int h = 0; h < holes; ++h) b.add_precedence(solve::ClusterId(h), solve::ClusterId(holes));
+  b.set_kind(solve::RouteKind::open_path);
+  return std::move(b.build()).value();
+}
+void BM_Heuristic_PerforatedPlate(benchmark::State& state) {
+  const solve::Problem p = perforated_plate(static_cast<int>(state.range(0)));
+  solve::SolveParams params;
+  params.solver = solve::SolverKind::heuristic;
+  params.threads = 1;
+  params.time_limit_s = 0;
+  params.work_budget = 1e3;
+  solve::Solution s;
+  for (auto _ : state) s = solve::solve(p, params);
+  state.counters["cost"] = static_cast<double>(s.cost);
+}
+BENCHMARK(BM_Heuristic_PerforatedPlate)->Arg(2000)->Arg(10000)->Arg(40000)->Unit(benchmark::kSecond)->Iterations(1);
+
 }  // namespace

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 namespace cutroute::solve::detail {
 
@@ -33,6 +34,15 @@ constexpr int kMaxBlockedNodes = 2048;
 constexpr std::size_t kMaxNeighbourBounds = std::size_t{1} << 22;
 // Exact asymmetric 2-opt up to this many clusters: above it the O(L^2) scan costs more than it finds.
 constexpr int kMaxAsymTwoOptClusters = 300;
+// Precedence problems from this many clusters on, with at most kLocalPrecedencePairs closure pairs
+// per cluster, get neighbour-list reinsertion, Or-opt and swap (Ops::local_prec_): cutting nests,
+// whose holes come before their outer contour (about one pair per cluster), from the size at which
+// the metaheuristic already treats them as long routes (solve_heuristic's automatic settings). The
+// SOP instances keep the window scans tuned on them: below 200 clusters (prob.100, kro124p), or
+// dense (rbg253a: 120 pairs per cluster, where most candidate places break a pair; with the lists
+// it ended at 2 951 instead of 2 950 in 1 of 3 seeds, and took 40 % longer).
+constexpr int kLocalPrecedenceClusters = 200;
+constexpr std::size_t kLocalPrecedencePairs = 8;
 }  // namespace
 
 Ops::Ops(const Problem& p, const StopToken* stop)
@@ -104,6 +114,11 @@ Ops::Ops(const Problem& p, const StopToken* stop)
     near_symmetric_ = diff <= 0.1 * sum;
   }
   kn_ = static_cast<std::size_t>(std::min(kNeighbours, std::max(0, m_ - 1)));
+  if (prec_ && m_ >= kLocalPrecedenceClusters && static_cast<int>(kn_) * 4 < m_) {
+    std::size_t pairs = 0;
+    for (int c = 0; c < m_; ++c) pairs += p.all_before(ClusterId(c)).size();
+    local_prec_ = pairs <= kLocalPrecedencePairs * static_cast<std::size_t>(m_);
+  }
   // Nearly symmetric plain matrices (SOP prob.100, kro124p, ry48p; lin_kernighan.cpp), and
   // symmetric ones of at least 96 clusters without precedence (GTSPLIB 99-217, where the population
   // mode runs): the population's children need the deeper moves (GTSPLIB 99-217, 25 seeds: mean gap
@@ -302,14 +317,18 @@ void Ops::candidate_positions(const Tour& t, ClusterId c, std::vector<int>& out)
 
 Ops::Insertion Ops::best_local_insertion(const Tour& t, ClusterId c, int old_at) const {
   const int L = static_cast<int>(t.seq.size());
-  // With precedence the window is often narrow and the candidates mostly fall outside it: scan it all.
-  if (prec_ || static_cast<int>(kn_) * 2 + 1 >= L) return best_insertion(t, c, 0.0, nullptr);
+  // With dense precedence (SOP) the window is often narrow and the candidates mostly fall outside it:
+  // scan it all. Long routes (local_prec_): the candidates inside the window, and old_at, which is.
+  if ((prec_ && !local_prec_) || static_cast<int>(kn_) * 2 + 1 >= L) return best_insertion(t, c, 0.0, nullptr);
   thread_local std::vector<int> cand;  // Ops is shared by the search threads
   cand.assign(1, old_at);
   candidate_positions(t, c, cand);
+  int lo = 1, hi = L;
+  if (prec_) std::tie(lo, hi) = window(t, c);
   Insertion best;
   best.delta = kHuge;
   for (int at : cand) {
+    if (at < lo || at > hi) continue;
     const Insertion ins = insertion_at(t, c, at);
     if (ins.delta < best.delta) best = ins;
   }
@@ -321,10 +340,19 @@ Ops::Insertion Ops::best_repair_insertion(const Tour& t, ClusterId c, double noi
   // Large clusters: cluster optimisation dominates an iteration, a full scan costs little more.
   // Asymmetric problems (GTSPLIB rbg: many zero-cost arcs, so the sampled candidate lists are a poor
   // guide) lost their best-known values in 1-2 seeds out of 5 with the restricted scan.
-  if (prec_ || expensive_co_ || !p_.symmetric() || static_cast<int>(kn_) * 4 >= L) return best_insertion(t, c, noise, &rng);
+  // Long routes with sparse precedence (local_prec_: cutting nests, planar and asymmetric, whose
+  // cluster optimisation counts as expensive from about 3 000 contours of 8 candidates on): the
+  // candidates inside c's window. A plate of 40 000 holes spent 1.7 s of a 6-s descent in repairs
+  // that scanned every place before the outer contour.
+  const bool lists = local_prec_ || !(prec_ || expensive_co_ || !p_.symmetric());
+  if (!lists || static_cast<int>(kn_) * 4 >= L) return best_insertion(t, c, noise, &rng);
   thread_local std::vector<int> cand;
   cand.clear();
   candidate_positions(t, c, cand);
+  if (prec_) {
+    const auto [lo, hi] = window(t, c);
+    std::erase_if(cand, [lo, hi](int at) { return at < lo || at > hi; });
+  }
   // Neighbours of c mostly removed too (large destroys): the whole route.
   if (cand.size() < kn_ / 2) return best_insertion(t, c, noise, &rng);
   std::sort(cand.begin(), cand.end());
@@ -409,8 +437,17 @@ bool Ops::two_opt_pass(Tour& t) const {
   if (!p_.symmetric()) return near_symmetric_ && asym_two_opt_pass(t);
   const int L = static_cast<int>(t.seq.size());
   bool improved = false;
-  if (!prec_ && static_cast<int>(kn_) * 4 < L) {
+  if ((!prec_ || local_prec_) && static_cast<int>(kn_) * 4 < L) {
     // Neighbour-list 2-opt: the new arc (a, c) or (b, d) joins a cluster to one of its neighbours.
+    // With precedence (local_prec_) an improving reversal is checked for a pair inside seq[i..j]:
+    // O(j - i) like the reversal itself, and a stretch that holds a hole and its outer contour
+    // stops at the hole.
+    auto reversible = [&](int i, int j) {
+      for (int q = i; q < j; ++q)
+        for (ClusterId b : p_.all_after(cl(t.seq[static_cast<std::size_t>(q)])))
+          if (t.pos[b.index()] > q && t.pos[b.index()] <= j) return false;
+      return true;
+    };
     auto try_move = [&](int i, int j) {
       if (j <= i || j >= L) return;
       const NodeId a = t.seq[static_cast<std::size_t>(i - 1)], b = t.seq[static_cast<std::size_t>(i)];
@@ -418,7 +455,7 @@ bool Ops::two_opt_pass(Tour& t) const {
       const NodeId d = after(t, j);
       Cost delta = arc(a, c) - arc(a, b);
       if (d.valid()) delta += arc(b, d) - arc(c, d);
-      if (delta < 0) {
+      if (delta < 0 && (!prec_ || reversible(i, j))) {
         reverse_segment(t, i, j, delta);
         improved = true;
         return;
@@ -483,23 +520,43 @@ bool Ops::or_opt_pass(Tour& t) const {
       Cost best = 0;
       int best_t = -1;
       bool best_rev = false;
-      if (!prec_ && static_cast<int>(kn_) * 4 < L) {
+      if ((!prec_ || local_prec_) && static_cast<int>(kn_) * 4 < L) {
         // Only next to the neighbours of the segment's end clusters.
         // Forward y -> f ... l -> z pays off next to f's predecessors or l's successors; reversed
         // y -> l ... f -> z (symmetric arcs: only the boundary arcs change, the same nodes are
         // entered) next to l's predecessors or f's successors.
         const bool sym = p_.symmetric();
         const Cost gain_arcs = sym ? arc(prev, f) + (next.valid() ? arc(l, next) - arc(prev, next) : 0) : 0;
+        // Precedence (local_prec_), worked out for the first move that would improve: forward past
+        // seq[tt] only before the segment's first successor, backward only after its last
+        // predecessor, reversed only without a pair inside the segment.
+        int first_after = -1, last_before = -1;
+        bool pair_inside = false;
+        auto allowed = [&](int tt, bool rev) {
+          if (!prec_) return true;
+          if (first_after < 0) {
+            first_after = L, last_before = 0;
+            for (int s = i; s <= e; ++s) {
+              const ClusterId cs = cl(t.seq[static_cast<std::size_t>(s)]);
+              for (ClusterId b : p_.all_after(cs))
+                if (t.pos[b.index()] > e) first_after = std::min(first_after, t.pos[b.index()]);
+              for (ClusterId a : p_.all_before(cs))
+                if (t.pos[a.index()] >= 0 && t.pos[a.index()] < i) last_before = std::max(last_before, t.pos[a.index()]);
+              for (int q = s + 1; q <= e; ++q) pair_inside = pair_inside || precedes(cs, cl(t.seq[static_cast<std::size_t>(q)]));
+            }
+          }
+          return (tt > e ? tt < first_after : tt >= last_before) && !(rev && pair_inside);
+        };
         auto eval = [&](int tt, bool rev) {
           if (tt < 0 || tt >= L || (tt >= i - 1 && tt <= e)) return;
           const NodeId y = t.seq[static_cast<std::size_t>(tt)];
           const NodeId z = tt > e ? after(t, tt) : t.seq[static_cast<std::size_t>(tt + 1)];
           if (!rev) {
             const Cost add = link(y, f) + (z.valid() ? link(l, z) - link(y, z) : 0);
-            if (add - gain < best) best = add - gain, best_t = tt, best_rev = false;
+            if (add - gain < best && allowed(tt, false)) best = add - gain, best_t = tt, best_rev = false;
           } else {
             const Cost add_rev = arc(y, l) + (z.valid() ? arc(f, z) - arc(y, z) : 0);
-            if (add_rev - gain_arcs < best) best = add_rev - gain_arcs, best_t = tt, best_rev = true;
+            if (add_rev - gain_arcs < best && allowed(tt, true)) best = add_rev - gain_arcs, best_t = tt, best_rev = true;
           }
         };
         // Large clusters (expensive_co_): few, costly iterations, where the cluster optimisation
@@ -594,14 +651,33 @@ bool Ops::or_opt_pass(Tour& t) const {
   return improved;
 }
 
+// Inlined into both swap passes, whose inner loops price one exchange per step.
+[[gnu::always_inline]] inline Cost Ops::swap_delta(const Tour& t, int i, int j) const {
+  auto val = [&](NodeId a, NodeId b) { return a.valid() && b.valid() ? link(a, b) : 0; };
+  const NodeId x = t.seq[static_cast<std::size_t>(i)], y = t.seq[static_cast<std::size_t>(j)];
+  const NodeId a = t.seq[static_cast<std::size_t>(i - 1)], d = after(t, j);
+  if (j == i + 1) return link(a, y) + link(y, x) + val(x, d) - link(a, x) - link(x, y) - val(y, d);
+  const NodeId b = t.seq[static_cast<std::size_t>(i + 1)], c = t.seq[static_cast<std::size_t>(j - 1)];
+  return link(a, y) + link(y, b) + link(c, x) + val(x, d) - link(a, x) - link(x, b) - link(c, y) - val(y, d);
+}
+
+void Ops::apply_swap(Tour& t, int i, int j, Cost delta) const {
+  std::swap(t.seq[static_cast<std::size_t>(i)], t.seq[static_cast<std::size_t>(j)]);
+  reindex(t, i, i + 1);
+  reindex(t, j, j + 1);
+  t.cost += delta;
+  mark_around(t, i);
+  mark_around(t, j);
+}
+
 // Swap: exchange two clusters, keeping their nodes, e.g. S a [b] c d [e] f -> S a [e] c d [b] f.
 // Needed on precedence-heavy routes (SOP) where single moves are blocked but exchanges are not.
 // Forbidden: b must not have to precede anything in (b, e], e nothing in [b, e) must precede.
 // O(m^2) a pass (each pair one O(1) evaluation plus the precedence look-ups).
 bool Ops::swap_pass(Tour& t) const {
   const int L = static_cast<int>(t.seq.size());
+  if (local_prec_ && static_cast<int>(kn_) * 4 < L) return swap_pass_local(t);
   bool improved = false;
-  auto val = [&](NodeId a, NodeId b) { return a.valid() && b.valid() ? link(a, b) : 0; };
   for (int i = 1; i + 1 < L; ++i) {
     if (!touched(t, cl(t.seq[static_cast<std::size_t>(i)]).index()) && !touched(t, cl(t.seq[static_cast<std::size_t>(i - 1)]).index()))
       continue;
@@ -621,25 +697,53 @@ bool Ops::swap_pass(Tour& t) const {
         }
         if (blocked) continue;
       }
-      const NodeId a = t.seq[static_cast<std::size_t>(i - 1)];
-      const NodeId d = after(t, j);
-      Cost delta;
-      if (j == i + 1) {
-        delta = link(a, y) + link(y, x) + val(x, d) - link(a, x) - link(x, y) - val(y, d);
-      } else {
-        const NodeId b = t.seq[static_cast<std::size_t>(i + 1)], c = t.seq[static_cast<std::size_t>(j - 1)];
-        delta = link(a, y) + link(y, b) + link(c, x) + val(x, d) - link(a, x) - link(x, b) - link(c, y) - val(y, d);
-      }
+      const Cost delta = swap_delta(t, i, j);
       if (delta < 0) {
-        std::swap(t.seq[static_cast<std::size_t>(i)], t.seq[static_cast<std::size_t>(j)]);
-        reindex(t, i, i + 1);
-        reindex(t, j, j + 1);
-        t.cost += delta;
+        apply_swap(t, i, j, delta);
         improved = true;
-        mark_around(t, i);
-        mark_around(t, j);
       }
     }
+  }
+  return improved;
+}
+
+// swap_pass on long routes with precedence: the cluster x at i is exchanged only with a cluster y
+// whose new place is next to a candidate neighbour, either y's (y between x's route neighbours) or
+// x's (x next to one of its candidates); each i takes its best such exchange. Precedence is checked,
+// through the closure lists of x and y, only for an exchange that would improve.
+bool Ops::swap_pass_local(Tour& t) const {
+  const int L = static_cast<int>(t.seq.size());
+  bool improved = false;
+  // x = seq[i] moves over (i, j], y = seq[j] over [i, j): none of them may be x's successor or y's
+  // predecessor.
+  auto allowed = [&](int i, int j) {  // i < j
+    for (ClusterId b : p_.all_after(cl(t.seq[static_cast<std::size_t>(i)])))
+      if (t.pos[b.index()] > i && t.pos[b.index()] <= j) return false;
+    for (ClusterId a : p_.all_before(cl(t.seq[static_cast<std::size_t>(j)])))
+      if (t.pos[a.index()] >= i && t.pos[a.index()] < j) return false;
+    return true;
+  };
+  for (int i = 1; i < L; ++i) {
+    const ClusterId cx = cl(t.seq[static_cast<std::size_t>(i)]);
+    if (!touched(t, cx.index()) && !touched(t, cl(t.seq[static_cast<std::size_t>(i - 1)]).index())) continue;
+    Cost best = 0;
+    int best_lo = -1, best_hi = -1;
+    auto consider = [&](int j) {
+      if (j < 1 || j >= L || j == i) return;
+      const int lo = std::min(i, j), hi = std::max(i, j);
+      const Cost delta = swap_delta(t, lo, hi);
+      if (delta < best && allowed(lo, hi)) best = delta, best_lo = lo, best_hi = hi;
+    };
+    for (ClusterId y : succs(cl(t.seq[static_cast<std::size_t>(i - 1)]))) consider(t.pos[y.index()]);
+    if (i + 1 < L)
+      for (ClusterId y : preds(cl(t.seq[static_cast<std::size_t>(i + 1)]))) consider(t.pos[y.index()]);
+    for (ClusterId w : preds(cx))
+      if (t.pos[w.index()] >= 0) consider(t.pos[w.index()] + 1);
+    for (ClusterId w : succs(cx))
+      if (t.pos[w.index()] >= 0) consider(t.pos[w.index()] - 1);
+    if (best_lo < 0) continue;
+    apply_swap(t, best_lo, best_hi, best);
+    improved = true;
   }
   return improved;
 }

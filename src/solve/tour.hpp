@@ -133,6 +133,9 @@ class Ops {
   void reversal_table(const Tour& t, ReversalTable& r) const;
   bool or_opt_pass(Tour& t) const;
   bool swap_pass(Tour& t) const;
+  bool swap_pass_local(Tour& t) const;  // swap_pass next to candidate neighbours (local_prec_)
+  Cost swap_delta(const Tour& t, int i, int j) const;  // exchanging seq[i] and seq[j], 1 <= i < j
+  void apply_swap(Tour& t, int i, int j, Cost delta) const;
   bool segment_exchange_pass(Tour& t) const;  // segment_exchange.cpp
   bool reversing_exchange_pass(Tour& t) const;  // reversing_exchange.cpp (nearly symmetric matrices)
   // lin_kernighan.cpp (nearly symmetric plain matrices); `breadth` empty: kBreadth or kCheckedBreadth.
@@ -174,6 +177,11 @@ class Ops {
   int m_;
   bool closed_;
   bool prec_;
+  // Long routes with precedence (cutting nests of kLocalPrecedenceClusters and more): reinsertion,
+  // Or-opt and swap try only the places next to candidate neighbours and check precedence only for a
+  // move that would improve, instead of scanning every place precedence allows (every hole of a
+  // plate may go anywhere before its outer contour: O(m^2) a pass).
+  bool local_prec_ = false;
   std::size_t kn_ = 0;
   bool expensive_co_ = false;
   std::vector<ClusterId> pred_, succ_;

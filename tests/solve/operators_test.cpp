@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <optional>
 
 #include <cutroute/solve/heuristic.hpp>
 #include <cutroute/solve/solution.hpp>
@@ -56,6 +58,107 @@ TEST(Operators, NeverWorsenAndKeepPrecedence) {
     expect_valid(p, r, "local_search");
     EXPECT_LE(route_cost(p, r), before);
   }
+}
+
+// A random order that keeps precedence, with random nodes: a bad but valid route on which many moves
+// pay and many candidate places would break a pair.
+std::vector<NodeId> random_valid_route(const Problem& p, Rng& rng) {
+  const int m = p.cluster_count();
+  std::vector<int> indeg(static_cast<std::size_t>(m));
+  for (int c = 0; c < m; ++c) indeg[static_cast<std::size_t>(c)] = static_cast<int>(p.all_before(ClusterId(c)).size());
+  std::vector<NodeId> r{p.nodes_of(p.start_cluster())[0]};
+  std::vector<int> avail;
+  auto place = [&](ClusterId c) {
+    for (ClusterId b : p.all_after(c))
+      if (--indeg[b.index()] == 0 && b != p.start_cluster()) avail.push_back(b.value());
+  };
+  place(p.start_cluster());
+  for (int c = 0; c < m; ++c)
+    if (ClusterId(c) != p.start_cluster() && indeg[static_cast<std::size_t>(c)] == 0) avail.push_back(c);
+  while (!avail.empty()) {
+    const std::size_t k = rng.below(avail.size());
+    const ClusterId c(avail[k]);
+    avail[k] = avail.back(), avail.pop_back();
+    const auto nodes = p.nodes_of(c);
+    r.push_back(nodes[static_cast<std::size_t>(rng.below(nodes.size()))]);
+    place(c);
+  }
+  return r;
+}
+
+// Long routes with sparse precedence (from 200 clusters, as cutting nests) take reinsertion, 2-opt,
+// Or-opt and swap only next to candidate neighbours and check the pairs only for improving moves: every
+// move must still keep them, never worsen the route, and the operators must find moves. Matrices of
+// 200-300 clusters with m/2 random pairs, and plates: a grid of holes with planar costs, every hole
+// before the plate's outer contour, a few holes before another hole (parts in holes).
+TEST(Operators, LongRoutesWithSparsePrecedenceKeepEveryPair) {
+  Rng rng(4242);
+  using Op = bool (*)(const Problem&, std::vector<NodeId>&);
+  const std::pair<const char*, Op> ops[] = {{"reinsertion", reinsertion_pass}, {"two_opt", two_opt_pass}, {"or_opt", or_opt_pass}, {"swap", swap_pass}};
+  int moves[4] = {0, 0, 0, 0};
+  for (int k = 0; k < 12; ++k) {
+    std::optional<Problem> built;
+    if (k % 3 != 2) {  // k % 3 == 0: symmetric (2-opt applies), 1: nearly symmetric
+      test::RandomSpec spec;
+      spec.clusters = 200 + static_cast<int>(rng.below(100));
+      spec.max_nodes = 1 + static_cast<int>(rng.below(3));
+      spec.closed = k % 2 == 0;
+      spec.precedence_pairs = spec.clusters / 2;
+      spec.inner_costs = k % 4 == 1;
+      if (k % 3 == 1) spec.asym_noise = 30;
+      built.emplace(test::random_problem(spec, rng));
+    } else {
+      constexpr int kSide = 16;  // 256 holes on a 20-mm grid, each entered at 1-3 points
+      PlanarCosts pc;
+      std::vector<std::vector<NodeId>> clusters;
+      int n = 0;
+      auto add = [&](double x, double y, int nodes) {
+        clusters.emplace_back();
+        for (int j = 0; j < nodes; ++j) {
+          const double a = 6.283 * rng.uniform01();
+          pc.in.push_back({x + 4 * std::cos(a), y + 4 * std::sin(a)}), pc.out.push_back({x + 4 * std::cos(a + 0.2), y + 4 * std::sin(a + 0.2)});
+          clusters.back().push_back(NodeId(n++));
+        }
+      };
+      add(-5, -5, 1);  // the machine's start
+      for (int r = 0; r < kSide; ++r)
+        for (int c = 0; c < kSide; ++c) add(20.0 * c + 3 * rng.uniform01(), 20.0 * r + 3 * rng.uniform01(), 1 + static_cast<int>(rng.below(3)));
+      add(160, 160, 4);  // the outer contour
+      pc.base = 0.25, pc.per_unit = 1.0 / 250, pc.scale = 1e6;
+      ProblemBuilder pb(n);
+      pb.set_planar_costs(pc);
+      for (const auto& c : clusters) pb.add_cluster(c);
+      const int outer = static_cast<int>(clusters.size()) - 1;
+      for (int h = 1; h < outer; ++h) pb.add_precedence(ClusterId(h), ClusterId(outer));
+      for (int j = 0; j < 20; ++j) {
+        const int a = 1 + static_cast<int>(rng.below(static_cast<std::uint64_t>(outer - 2)));
+        pb.add_precedence(ClusterId(a), ClusterId(a + 1));
+      }
+      pb.set_kind(k % 2 == 0 ? RouteKind::closed_tour : RouteKind::open_path);
+      auto r = pb.build();
+      ASSERT_TRUE(r.ok()) << r.error().message;
+      built.emplace(std::move(r).value());
+    }
+    const Problem& p = *built;
+    SCOPED_TRACE("instance " + std::to_string(k));
+    std::vector<NodeId> r = random_valid_route(p, rng);
+    expect_valid(p, r, "random order");
+    for (int round = 0; round < 4; ++round)
+      for (std::size_t o = 0; o < 4; ++o) {
+        const Cost before = route_cost(p, r);
+        const bool improved = ops[o].second(p, r);
+        const Cost after = route_cost(p, r);
+        expect_valid(p, r, ops[o].first);
+        EXPECT_LE(after, before) << ops[o].first;
+        EXPECT_EQ(improved, after < before) << ops[o].first;
+        moves[o] += improved ? 1 : 0;
+      }
+    const Cost before = route_cost(p, r);
+    local_search(p, r);
+    expect_valid(p, r, "local_search");
+    EXPECT_LE(route_cost(p, r), before);
+  }
+  for (std::size_t o = 0; o < 4; ++o) EXPECT_GE(moves[o], 4) << ops[o].first << " found too few moves";
 }
 
 // 2-opt with neighbour optimisation against enumeration: reversing route[i..j] with every choice of

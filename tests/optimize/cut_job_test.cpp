@@ -146,6 +146,43 @@ TEST(CutJob, SmallHoleFallsBackAndSaysSo) {
   check_job(nest, job, opt);
 }
 
+// The contours' candidates are found on several threads: the job must be the one a single thread
+// makes, candidate for candidate, with the diagnostics in contour order. A plate of 24 x 20 holes,
+// every seventh too small for a lead-in (a centre pierce and a warning each).
+TEST(CutJob, ThreadsMakeTheSameJob) {
+  std::vector<SourceContour> cs{src(square(0, 0, 500))};
+  for (int r = 0; r < 20; ++r)
+    for (int c = 0; c < 24; ++c) cs.push_back(src(circle({12.0 + 20.0 * c, 12.0 + 24.0 * r}, (r * 24 + c) % 7 == 0 ? 1.0 : 6.0)));
+  const Nest nest = build_nest(cs, NestOptions{});
+  const EntryOptions opt;
+  const EntryPlanner planner(nest, opt);
+  const CutJob one = make_cut_job(nest, planner, 1);
+  ASSERT_EQ(one.segments.size(), 481u);
+  EXPECT_EQ(one.diagnostics.size(), 69u);
+  for (const int threads : {2, 5}) {
+    const CutJob many = make_cut_job(nest, planner, threads);
+    ASSERT_EQ(many.segments.size(), one.segments.size());
+    EXPECT_EQ(many.precedence, one.precedence);
+    for (std::size_t k = 0; k < one.segments.size(); ++k) {
+      const auto& a = one.segments[k].candidates;
+      const auto& b = many.segments[k].candidates;
+      ASSERT_EQ(many.segments[k].contours, one.segments[k].contours);
+      ASSERT_EQ(a.size(), b.size()) << "segment " << k;
+      for (std::size_t j = 0; j < a.size(); ++j) {
+        EXPECT_EQ(a[j].s_mm, b[j].s_mm);
+        EXPECT_EQ(a[j].clockwise, b[j].clockwise);
+        EXPECT_EQ(a[j].fallback, b[j].fallback);
+        EXPECT_EQ(a[j].pierce.x, b[j].pierce.x);
+        EXPECT_EQ(a[j].pierce.y, b[j].pierce.y);
+        EXPECT_EQ(a[j].lead_in.vertices.size(), b[j].lead_in.vertices.size());
+      }
+    }
+    ASSERT_EQ(many.diagnostics.size(), one.diagnostics.size());
+    for (std::size_t k = 0; k < one.diagnostics.size(); ++k) EXPECT_EQ(many.diagnostics[k].message, one.diagnostics[k].message);
+    check_job(nest, many, opt);
+  }
+}
+
 TEST(CutJob, FreeDirectionOffersBothDirections) {
   std::vector<SourceContour> cs{src(square(0, 0, 50))};
   const Nest nest = build_nest(cs, NestOptions{});

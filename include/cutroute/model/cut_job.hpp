@@ -195,7 +195,8 @@ class EntryPlanner {
   std::unique_ptr<Impl> impl_;
 };
 
-// make_cut_job() with a planner already built for this nest (reused by the caller afterwards).
-CutJob make_cut_job(const Nest& nest, const EntryPlanner& planner);
+// make_cut_job() with a planner already built for this nest (reused by the caller afterwards),
+// the contours' candidates found on `threads` threads (the same job whatever their number).
+CutJob make_cut_job(const Nest& nest, const EntryPlanner& planner, int threads = 1);
 
 }  // namespace cutroute::model

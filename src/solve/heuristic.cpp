@@ -413,7 +413,7 @@ Solution solve_heuristic(const Problem& p, const SolveParams& params_in, const S
                               ? params.round_iterations
                               : std::max(10, static_cast<int>((40 + p.cluster_count() / 2) * std::min(1.0, 8.0 / avg_k)));
 
-  const Ops ops(p, &stop);
+  const Ops ops(p, &stop, threads);
   Rng master(params.seed);
   std::vector<Worker> workers;
   workers.reserve(static_cast<std::size_t>(threads));

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <thread>
 #include <utility>
 
 #include <nanoflann.hpp>
@@ -131,9 +132,13 @@ std::vector<Cost> planar_cheapest_arcs_in(const Problem& p) {
   return cheapest;
 }
 
-void planar_neighbours(const Problem& p, std::size_t kn, std::vector<ClusterId>& pred, std::vector<ClusterId>& succ) {
+void planar_neighbours(const Problem& p, std::size_t kn, std::vector<ClusterId>& pred, std::vector<ClusterId>& succ,
+                       bool two_threads) {
   const PlanarCosts& pc = *p.planar();
-  lists(p, kn, pc.out, pc.in, succ);  // a -> b: leave a at out, enter b at in
+  // Each list reads the problem only: 0.5 s each on a plate of 40 000 holes of 8 candidates.
+  std::jthread other;
+  if (two_threads) other = std::jthread([&] { lists(p, kn, pc.out, pc.in, succ); });  // a -> b: leave a at out, enter b at in
+  else lists(p, kn, pc.out, pc.in, succ);
   lists(p, kn, pc.in, pc.out, pred);  // b -> a: the out points nearest to a's in points
 }
 

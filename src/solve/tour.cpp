@@ -45,7 +45,7 @@ constexpr int kLocalPrecedenceClusters = 200;
 constexpr std::size_t kLocalPrecedencePairs = 8;
 }  // namespace
 
-Ops::Ops(const Problem& p, const StopToken* stop)
+Ops::Ops(const Problem& p, const StopToken* stop, int threads)
     : p_(p),
       mat_(p.matrix_data()),
       n_(static_cast<std::size_t>(p.node_count())),
@@ -144,7 +144,7 @@ Ops::Ops(const Problem& p, const StopToken* stop)
   // planar costs, at most a few hundred clusters) keep the sampled lists below, which cost little
   // there and served them better (100C10k.0: 0.02 % mean gap over 5 seeds, 0.43 % with the tree's).
   if (p.planar() && !(p.symmetric() && m_ <= kMaxSampledPlanarClusters)) {
-    planar_neighbours(p, kn_, pred_, succ_);
+    planar_neighbours(p, kn_, pred_, succ_, threads > 1);
     return;
   }
   // The lists cost m^2 * samples^2 arc evaluations: fewer samples on very large problems (a nest of

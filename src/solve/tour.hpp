@@ -44,7 +44,8 @@ struct ReversalTable {
 class Ops {
  public:
   // `stop` (optional) ends local search early: on huge routes one descent can take seconds.
-  explicit Ops(const Problem& p, const StopToken* stop = nullptr);
+  // `threads` > 1 lets the planar candidate lists be built on two threads.
+  explicit Ops(const Problem& p, const StopToken* stop = nullptr, int threads = 1);
   bool stopped() const { return stop_ && stop_->stop_requested(); }
 
   const Problem& problem() const { return p_; }

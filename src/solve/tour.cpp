@@ -42,6 +42,10 @@ constexpr int kMaxAsymTwoOptClusters = 300;
 // dense (rbg253a: 120 pairs per cluster, where most candidate places break a pair; with the lists
 // it ended at 2 951 instead of 2 950 in 1 of 3 seeds, and took 40 % longer).
 constexpr int kLocalPrecedenceClusters = 200;
+// A repair whose cluster has too few candidate neighbours left in a route longer than this looks
+// for the nearest clusters present (at most kMaxRepairSearch visited) before scanning it whole.
+constexpr int kFullScanRepairRoute = 2048;
+constexpr std::size_t kMaxRepairSearch = 4096;
 constexpr std::size_t kLocalPrecedencePairs = 8;
 }  // namespace
 
@@ -349,11 +353,15 @@ Ops::Insertion Ops::best_repair_insertion(const Tour& t, ClusterId c, double noi
   thread_local std::vector<int> cand;
   cand.clear();
   candidate_positions(t, c, cand);
+  int lo = 1, hi = L;
   if (prec_) {
-    const auto [lo, hi] = window(t, c);
+    std::tie(lo, hi) = window(t, c);
     std::erase_if(cand, [lo, hi](int at) { return at < lo || at > hi; });
   }
-  // Neighbours of c mostly removed too (large destroys): the whole route.
+  // Neighbours of c mostly removed too (large destroys): the whole route, or on long routes the
+  // places next to the nearest clusters still in it (a related removal of 5 000 of 100 000
+  // clusters scanned the whole route for each: one iteration of 3 s, which no time limit stops).
+  if (cand.size() < kn_ / 2 && L > kFullScanRepairRoute) nearest_present_positions(t, c, lo, hi, cand);
   if (cand.size() < kn_ / 2) return best_insertion(t, c, noise, &rng);
   std::sort(cand.begin(), cand.end());
   cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
@@ -365,6 +373,32 @@ Ops::Insertion Ops::best_repair_insertion(const Tour& t, ClusterId c, double noi
     if (key < best_key) best_key = key, best = ins;
   }
   return best;
+}
+
+void Ops::nearest_present_positions(const Tour& t, ClusterId c, int lo, int hi, std::vector<int>& out) const {
+  // Breadth first over the candidate lists from c, at most kMaxRepairSearch clusters visited.
+  thread_local std::vector<int> seen;
+  thread_local int stamp = 0;
+  if (seen.size() != static_cast<std::size_t>(m_)) seen.assign(static_cast<std::size_t>(m_), 0), stamp = 0;
+  ++stamp;
+  std::vector<ClusterId> frontier{c}, next;
+  seen[c.index()] = stamp;
+  std::size_t visited = 1;
+  while (out.size() < kn_ / 2 && !frontier.empty() && visited < kMaxRepairSearch) {
+    next.clear();
+    for (ClusterId u : frontier)
+      for (auto list : {preds(u), succs(u)})
+        for (ClusterId x : list) {
+          if (seen[x.index()] == stamp) continue;
+          seen[x.index()] = stamp, ++visited;
+          next.push_back(x);
+          const int q = t.pos[x.index()];
+          if (q < 0) continue;
+          for (int at : {q + 1, q})
+            if (at >= std::max(lo, 1) && at <= hi) out.push_back(at);
+        }
+    frontier.swap(next);
+  }
 }
 
 void Ops::insert(Tour& t, const Insertion& ins) const {
@@ -979,6 +1013,22 @@ bool Ops::windows_optimise(Tour& t, int since_epoch) const {
   return improved;
 }
 
+bool Ops::sequence_passes(Tour& t) const {
+  bool improved = reinsertion_pass(t);
+  begin_round(t);
+  // A stop is looked at between the passes too: each costs about 0.1 s on 100 000 clusters.
+  auto run = [&](bool (Ops::*pass)(Tour&) const) {
+    if (!stopped()) improved = (this->*pass)(t) || improved;
+  };
+  run(&Ops::two_opt_pass);
+  if (!stopped()) improved = lk_pass(t) || improved;
+  run(&Ops::or_opt_pass);
+  run(&Ops::segment_exchange_pass);
+  run(&Ops::reversing_exchange_pass);
+  if (prec_) run(&Ops::swap_pass);
+  return improved;
+}
+
 void Ops::local_search(Tour& t) const {
   if (expensive_co_) {
     // Large clusters: a full cluster optimisation costs more than all other moves together, so only
@@ -988,17 +1038,8 @@ void Ops::local_search(Tour& t) const {
     windows_optimise(t, start_epoch);
     for (int guard = 0; guard < 100; ++guard) {
       const int round_epoch = t.epoch;
-      for (int inner = 0; inner < 100 && !stopped(); ++inner) {
-        bool improved = reinsertion_pass(t);
-        begin_round(t);
-        improved = two_opt_pass(t) || improved;
-        improved = lk_pass(t) || improved;
-        improved = or_opt_pass(t) || improved;
-        improved = segment_exchange_pass(t) || improved;
-        improved = reversing_exchange_pass(t) || improved;
-        if (prec_) improved = swap_pass(t) || improved;
-        if (!improved) break;
-      }
+      for (int inner = 0; inner < 100 && !stopped(); ++inner)
+        if (!sequence_passes(t)) break;
       if (stopped() || !windows_optimise(t, round_epoch)) break;
     }
     return;
@@ -1008,17 +1049,8 @@ void Ops::local_search(Tour& t) const {
   // cluster optimisation again; repeat while it improves. Bounded so a plateau cannot loop forever.
   cluster_optimise(t, 2.0e6);
   for (int guard = 0; guard < 100; ++guard) {
-    for (int inner = 0; inner < 100 && !stopped(); ++inner) {
-      bool improved = reinsertion_pass(t);
-      begin_round(t);
-      improved = two_opt_pass(t) || improved;
-      improved = lk_pass(t) || improved;
-      improved = or_opt_pass(t) || improved;
-      improved = segment_exchange_pass(t) || improved;
-      improved = reversing_exchange_pass(t) || improved;
-      if (prec_) improved = swap_pass(t) || improved;
-      if (!improved) break;
-    }
+    for (int inner = 0; inner < 100 && !stopped(); ++inner)
+      if (!sequence_passes(t)) break;
     if (stopped() || !cluster_optimise(t, 2.0e6)) break;
   }
 }

@@ -149,6 +149,8 @@ class Ops {
   bool window_optimise(Tour& t, int lo, int hi) const;
   // window_optimise around every cluster touched at or after `since_epoch`.
   bool windows_optimise(Tour& t, int since_epoch) const;
+  // One round of reinsertion, 2-opt, LK, Or-opt, the exchanges and swap; true when one improved.
+  bool sequence_passes(Tour& t) const;
   void local_search(Tour& t) const;
   // Random topological order, each cluster at its cheapest place (construction.cpp).
   void construct(Tour& t, Rng& rng) const;
@@ -168,6 +170,9 @@ class Ops {
   void complete_nearby(Tour& t, Rng& rng, std::vector<int>& avail, std::vector<int>& indeg) const;
   // Indices next to c's candidate neighbours present in the route (appended to out, may repeat).
   void candidate_positions(const Tour& t, ClusterId c, std::vector<int>& out) const;
+  // Indices in [lo, hi] next to the clusters present in the route that are nearest to c in the
+  // candidate graph (breadth first), appended to out until it holds kn_ / 2.
+  void nearest_present_positions(const Tour& t, ClusterId c, int lo, int hi, std::vector<int>& out) const;
 
   const Problem& p_;
   const Cost* mat_;

@@ -412,6 +412,30 @@ TEST(PlanarCosts, ConstructionOfALargeNestPlacesClustersNearTheirNeighbours) {
   }
 }
 
+// Repairs on a route of more than 2 048 clusters whose removed cluster has too few candidate
+// neighbours left (a related removal takes a whole neighbourhood) go next to the nearest clusters
+// still in the route, inside the cluster's precedence window: every route the search keeps must
+// validate (solve() checks its result) and the search must improve on its first route.
+TEST(PlanarCosts, RepairsOnALongRouteKeepPrecedence) {
+  for (const std::uint64_t seed : {1u, 2u}) {
+    Rng rng(seed);
+    const Problem p = grid_nest(50, true, false, rng);  // 2 500 clusters, 250 pairs
+    SolveParams sp;
+    sp.solver = SolverKind::heuristic;
+    sp.threads = 1;
+    sp.seed = seed;
+    sp.time_limit_s = 0;
+    sp.work_budget = 1;  // the first route: construction and local search
+    const Solution first = solve(p, sp);
+    sp.work_budget = 2e5;
+    const Solution s = solve(p, sp);
+    ASSERT_EQ(s.status, SolveStatus::feasible);
+    EXPECT_TRUE(validate(p, s).empty());
+    EXPECT_GT(s.stats.iterations, 20);
+    EXPECT_LT(s.cost, first.cost);
+  }
+}
+
 TEST(PlanarCosts, EntryBoundIsEveryClustersCheapestEntry) {
   Rng rng(35);
   int equal = 0, brute = 0;

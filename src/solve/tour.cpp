@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <tuple>
 
@@ -35,18 +36,18 @@ constexpr std::size_t kMaxNeighbourBounds = std::size_t{1} << 22;
 // Exact asymmetric 2-opt up to this many clusters: above it the O(L^2) scan costs more than it finds.
 constexpr int kMaxAsymTwoOptClusters = 300;
 // Precedence problems from this many clusters on, with at most kLocalPrecedencePairs closure pairs
-// per cluster, get neighbour-list reinsertion, Or-opt and swap (Ops::local_prec_): cutting nests,
-// whose holes come before their outer contour (about one pair per cluster), from the size at which
-// the metaheuristic already treats them as long routes (solve_heuristic's automatic settings). The
+// per cluster, get neighbour-list reinsertion, 2-opt, Or-opt, swap and repair (Ops::local_prec_):
+// cutting nests, whose holes come before their outer contour (about one pair per cluster), from the
+// size at which the metaheuristic already treats them as long routes (solve_heuristic). The
 // SOP instances keep the window scans tuned on them: below 200 clusters (prob.100, kro124p), or
 // dense (rbg253a: 120 pairs per cluster, where most candidate places break a pair; with the lists
 // it ended at 2 951 instead of 2 950 in 1 of 3 seeds, and took 40 % longer).
 constexpr int kLocalPrecedenceClusters = 200;
+constexpr std::size_t kLocalPrecedencePairs = 8;
 // A repair whose cluster has too few candidate neighbours left in a route longer than this looks
 // for the nearest clusters present (at most kMaxRepairSearch visited) before scanning it whole.
 constexpr int kFullScanRepairRoute = 2048;
 constexpr std::size_t kMaxRepairSearch = 4096;
-constexpr std::size_t kLocalPrecedencePairs = 8;
 }  // namespace
 
 Ops::Ops(const Problem& p, const StopToken* stop, int threads)
@@ -377,10 +378,10 @@ Ops::Insertion Ops::best_repair_insertion(const Tour& t, ClusterId c, double noi
 
 void Ops::nearest_present_positions(const Tour& t, ClusterId c, int lo, int hi, std::vector<int>& out) const {
   // Breadth first over the candidate lists from c, at most kMaxRepairSearch clusters visited.
-  thread_local std::vector<int> seen;
-  thread_local int stamp = 0;
-  if (seen.size() != static_cast<std::size_t>(m_)) seen.assign(static_cast<std::size_t>(m_), 0), stamp = 0;
-  ++stamp;
+  thread_local std::vector<std::uint32_t> seen;
+  thread_local std::uint32_t stamp = 0;
+  // A new size, or the stamp wrapping round after 2^32 searches (a run of hours): clear the marks.
+  if (seen.size() != static_cast<std::size_t>(m_) || ++stamp == 0) seen.assign(static_cast<std::size_t>(m_), 0), stamp = 1;
   std::vector<ClusterId> frontier{c}, next;
   seen[c.index()] = stamp;
   std::size_t visited = 1;

@@ -153,6 +153,34 @@ TEST(Segment, ArcBoxThroughQuadrantExtremes) {
   EXPECT_NEAR(bc.xmin, p1.x, 1e-12);
 }
 
+// The box of any arc against a dense sampling of it: every sample inside (within 1e-9), and every
+// side reached by a sample or an end point to within the sampling's chord error. Random end points,
+// bulges from 1e-3 (a flat arc) to 50 (nearly the full circle), both directions.
+TEST(Segment, ArcBoxIsTheSampledArcsBox) {
+  Rng rng(12345);
+  auto uniform = [&rng] { return rng.uniform01(); };
+  for (int k = 0; k < 2000; ++k) {
+    const Vec2 a{uniform() * 200 - 100, uniform() * 200 - 100}, b{uniform() * 200 - 100, uniform() * 200 - 100};
+    const double bulge = (k % 2 ? 1 : -1) * std::exp(std::log(1e-3) + uniform() * (std::log(50.0) - std::log(1e-3)));
+    const Segment s{a, b, bulge};
+    if (!s.is_arc()) continue;
+    const Box box = s.bounding_box();
+    Box sampled;
+    constexpr int kSamples = 20000;
+    for (int j = 0; j <= kSamples; ++j) sampled.add(s.point_at(static_cast<double>(j) / kSamples));
+    // Chord error of the sampling: r (1 - cos(sweep / 2n)), well below 1e-4 here.
+    const double slack = s.radius() * (1 - std::cos(std::abs(s.sweep()) / (2.0 * kSamples))) + 1e-9;
+    EXPECT_LE(box.xmin, sampled.xmin + 1e-9) << k;
+    EXPECT_LE(box.ymin, sampled.ymin + 1e-9) << k;
+    EXPECT_GE(box.xmax, sampled.xmax - 1e-9) << k;
+    EXPECT_GE(box.ymax, sampled.ymax - 1e-9) << k;
+    EXPECT_GE(box.xmin, sampled.xmin - slack) << k;
+    EXPECT_GE(box.ymin, sampled.ymin - slack) << k;
+    EXPECT_LE(box.xmax, sampled.xmax + slack) << k;
+    EXPECT_LE(box.ymax, sampled.ymax + slack) << k;
+  }
+}
+
 TEST(Segment, DegenerateInputGivesNoNaN) {
   const Segment zero{{1, 1}, {1, 1}, 0.5};
   EXPECT_FALSE(zero.is_arc());

@@ -61,8 +61,9 @@ void Ops::construct(Tour& t, Rng& rng) const {
   while (!avail.empty()) {
     // Cheapest insertion over the whole route is O(m^2 k): on a nest of 10 000 small circles
     // `optimize --time-limit 1` took 4.0 s, most of it here. Once the run is stopped (or on more
-    // than kFullConstructionClusters clusters) the rest goes next to its candidate neighbours: 1.5 s, T_cut 17 002.9 s against 17 002.4 s (clusters whose
-    // nodes lie far apart lose more; Heuristic.StoppedConstruction...).
+    // than kFullConstructionClusters clusters) the rest goes next to its candidate neighbours:
+    // 1.5 s, T_cut 17 002.9 s against 17 002.4 s (clusters whose nodes lie far apart lose more;
+    // Heuristic.StoppedConstruction...).
     if (static_cast<int>(t.seq.size()) > kFullScanRoute && (stopped() || m_ > kFullConstructionClusters)) {
       complete_nearby(t, rng, avail, indeg);
       return;
@@ -111,9 +112,9 @@ void Ops::complete_nearby(Tour& t, Rng& rng, std::vector<int>& avail, std::vecto
     const NodeId next = b != kNone ? node[static_cast<std::size_t>(b)] : (closed_ ? node[static_cast<std::size_t>(head)] : NodeId{});
     return insertion_between(c, node[static_cast<std::size_t>(a)], next, 0);
   };
-  std::vector<int> cand, frontier, nextf;
-  std::vector<int> seen(m, 0);
-  int stamp = 0;
+  std::vector<int> cand;
+  std::vector<std::uint32_t> seen(m, 0);
+  std::uint32_t stamp = 0;
   std::size_t scanned = 0;
   while (!avail.empty()) {
     const ClusterId c = take_random(avail, rng);
@@ -152,30 +153,16 @@ void Ops::complete_nearby(Tour& t, Rng& rng, std::vector<int>& avail, std::vecto
     // Scanning every time took 2.6 s on 100 000 singleton clusters stopped at 2 048 placed; the
     // nearest places alone cost 1-11 % more on 2 600 clusters (Heuristic.StoppedConstruction...),
     // where the scans stay cheap.
-    if (near == 0 && scanned >= kFallbackScans) {
-      ++stamp;
-      frontier.assign(1, c.value());
-      seen[c.index()] = stamp;
-      std::size_t visited = 1;
-      while (near == 0 && !frontier.empty() && visited < kMaxSearched) {
-        nextf.clear();
-        for (int u : frontier)
-          for (auto list : {preds(ClusterId(u)), succs(ClusterId(u))})
-            for (ClusterId x : list) {
-              if (seen[x.index()] == stamp) continue;
-              seen[x.index()] = stamp, ++visited;
-              nextf.push_back(x.value());
-              if (!placed[x.index()]) continue;
-              // Both sides of a placed cluster, as the candidate lists give them one way or the other.
-              for (int a : {x.value(), x.value() == head ? kNone : prv[x.index()]}) {
-                if (a == kNone || !in_window(a)) continue;
-                ++near;
-                consider(a);
-              }
-            }
-        frontier.swap(nextf);
-      }
-    }
+    if (near == 0 && scanned >= kFallbackScans)
+      breadth_first(c, kMaxSearched, seen, ++stamp, [&] { return near > 0; }, [&](ClusterId x) {
+        if (!placed[x.index()]) return;
+        // Both sides of a placed cluster, as the candidate lists give them one way or the other.
+        for (int a : {x.value(), x.value() == head ? kNone : prv[x.index()]}) {
+          if (a == kNone || !in_window(a)) continue;
+          ++near;
+          consider(a);
+        }
+      });
     if (near == 0) {  // every place in the window, the first cheapest
       best.delta = kHuge;
       for (int a = lo;; a = nxt[static_cast<std::size_t>(a)]) {

@@ -377,29 +377,16 @@ Ops::Insertion Ops::best_repair_insertion(const Tour& t, ClusterId c, double noi
 }
 
 void Ops::nearest_present_positions(const Tour& t, ClusterId c, int lo, int hi, std::vector<int>& out) const {
-  // Breadth first over the candidate lists from c, at most kMaxRepairSearch clusters visited.
   thread_local std::vector<std::uint32_t> seen;
   thread_local std::uint32_t stamp = 0;
   // A new size, or the stamp wrapping round after 2^32 searches (a run of hours): clear the marks.
   if (seen.size() != static_cast<std::size_t>(m_) || ++stamp == 0) seen.assign(static_cast<std::size_t>(m_), 0), stamp = 1;
-  std::vector<ClusterId> frontier{c}, next;
-  seen[c.index()] = stamp;
-  std::size_t visited = 1;
-  while (out.size() < kn_ / 2 && !frontier.empty() && visited < kMaxRepairSearch) {
-    next.clear();
-    for (ClusterId u : frontier)
-      for (auto list : {preds(u), succs(u)})
-        for (ClusterId x : list) {
-          if (seen[x.index()] == stamp) continue;
-          seen[x.index()] = stamp, ++visited;
-          next.push_back(x);
-          const int q = t.pos[x.index()];
-          if (q < 0) continue;
-          for (int at : {q + 1, q})
-            if (at >= std::max(lo, 1) && at <= hi) out.push_back(at);
-        }
-    frontier.swap(next);
-  }
+  breadth_first(c, kMaxRepairSearch, seen, stamp, [&] { return out.size() >= kn_ / 2; }, [&](ClusterId x) {
+    const int q = t.pos[x.index()];
+    if (q < 0) return;
+    for (int at : {q + 1, q})
+      if (at >= std::max(lo, 1) && at <= hi) out.push_back(at);
+  });
 }
 
 void Ops::insert(Tour& t, const Insertion& ins) const {

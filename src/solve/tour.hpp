@@ -173,6 +173,29 @@ class Ops {
   // Indices in [lo, hi] next to the clusters present in the route that are nearest to c in the
   // candidate graph (breadth first), appended to out until it holds kn_ / 2.
   void nearest_present_positions(const Tour& t, ClusterId c, int lo, int hi, std::vector<int>& out) const;
+  // Breadth first over the candidate lists (predecessors, then successors) from c: visit(x) for
+  // each cluster reached, layer by layer, until done() after a layer or max_visited clusters are
+  // reached. seen[x] == stamp marks a reached cluster (the caller's buffer, m_ entries, with a
+  // stamp no entry holds yet).
+  template <class Done, class Visit>
+  void breadth_first(ClusterId c, std::size_t max_visited, std::vector<std::uint32_t>& seen, std::uint32_t stamp, Done&& done,
+                     Visit&& visit) const {
+    std::vector<ClusterId> frontier{c}, next;
+    seen[c.index()] = stamp;
+    std::size_t visited = 1;
+    while (!done() && !frontier.empty() && visited < max_visited) {
+      next.clear();
+      for (ClusterId u : frontier)
+        for (auto list : {preds(u), succs(u)})
+          for (ClusterId x : list) {
+            if (seen[x.index()] == stamp) continue;
+            seen[x.index()] = stamp, ++visited;
+            next.push_back(x);
+            visit(x);
+          }
+      frontier.swap(next);
+    }
+  }
 
   const Problem& p_;
   const Cost* mat_;

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
+#include <vector>
 
 #include <cutroute/core/number_format.hpp>
 #include <cutroute/io/svg.hpp>
@@ -83,6 +85,17 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
   std::vector<std::size_t> pieces_drawn(nest.contours.size(), 0);
   geometry::Vec2 at = path.start;
   std::vector<geometry::Vec2> placed;  // label positions so far
+  // A label keeps its x and only moves up, so only labels in its column can push it: they are
+  // looked up by column (cells of the push distance in x), in the order they were placed, which
+  // gives the same positions as scanning every label. That scan was O(n^2): 5 000 parts with two
+  // holes each (13 333 pierces) spent 1 s in each picture.
+  const double push_x = label_mm * 1.6, push_y = label_mm * 0.9;
+  std::map<long long, std::vector<std::size_t>> columns;  // column -> indices into `placed`
+  auto column_of = [push_x](double x) {
+    const double c = x / push_x;
+    return std::isfinite(c) ? static_cast<long long>(std::floor(std::clamp(c, -1e15, 1e15))) : 0LL;
+  };
+  std::vector<std::size_t> near;
   std::vector<std::size_t> risky = options.compensation_at_risk;
   std::sort(risky.begin(), risky.end());
   for (std::size_t k = 0; k < path.segments.size(); ++k) {
@@ -111,15 +124,23 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
     if (at_risk) svg.add_circle(s.pierce, mark_mm * 3, "class=\"risk\" fill=\"none\" stroke=\"#e00000\" stroke-width=\"2\" " + std::string(kNs));
     // Numbers of pierces that stand close together are stacked upwards instead of overprinted.
     geometry::Vec2 label_at = s.pierce + geometry::Vec2{mark_mm * 1.5, mark_mm * 1.5};
+    const long long col = column_of(label_at.x);
+    near.clear();
+    // Two columns either side: x / push_x may round across a cell boundary.
+    for (auto it = columns.lower_bound(col - 2); it != columns.end() && it->first <= col + 2; ++it)
+      for (std::size_t i : it->second)
+        if (std::abs(placed[i].x - label_at.x) < push_x) near.push_back(i);
+    std::sort(near.begin(), near.end());
     for (bool moved = true; moved;) {
       moved = false;
-      for (const auto& q : placed) {
-        if (std::abs(q.x - label_at.x) < label_mm * 1.6 && std::abs(q.y - label_at.y) < label_mm * 0.9) {
-          label_at.y = q.y + label_mm;
+      for (std::size_t i : near) {
+        if (std::abs(placed[i].y - label_at.y) < push_y) {
+          label_at.y = placed[i].y + label_mm;
           moved = true;
         }
       }
     }
+    columns[col].push_back(placed.size());
     placed.push_back(label_at);
     svg.add_text(label_at, std::to_string(k + 1), label_mm,
                  "fill=\"#5b1a12\" font-family=\"sans-serif\" font-weight=\"bold\"");

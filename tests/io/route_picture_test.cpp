@@ -1,0 +1,90 @@
+// route_to_svg(): the pierce numbers of close pierces are stacked, never printed over each other.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include <cutroute/core/random.hpp>
+#include <cutroute/io/route_picture.hpp>
+
+namespace cutroute::io {
+namespace {
+
+struct Label {
+  double x, y, size;
+};
+
+// The order numbers written (k -> position in picture units), with the "start" label left out.
+std::map<int, Label> order_labels(const std::string& svg) {
+  static const std::regex text(R"re(<text x="([-0-9.]+)" y="([-0-9.]+)" font-size="([0-9.]+)"[^>]*>([^<]*)</text>)re");
+  std::map<int, Label> out;
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), text); it != std::sregex_iterator(); ++it) {
+    const auto& m = *it;
+    if (m[4] == "start") continue;
+    const int k = std::stoi(m[4]);
+    EXPECT_FALSE(out.count(k)) << "number " << k << " written twice";
+    out[k] = {std::stod(m[1]), std::stod(m[2]), std::stod(m[3])};
+  }
+  return out;
+}
+
+// 400 pierces in a 20 x 20 mm block (jittered, so that labels straddle the picture's label columns)
+// and a few far away: on a 900 mm picture the numbers are 10 mm tall, so most of the block's stack.
+// The positions must be those of the rule the picture states, checked here by brute force: each
+// number starts up and right of its pierce and moves up above every earlier number it would
+// overlap (closer than 1.6 sizes across and 0.9 sizes up or down), scanning them all until none does.
+TEST(RoutePicture, PierceNumbersOfClosePiercesStackWithoutOverprinting) {
+  nc::Toolpath path;
+  path.start = path.end = {0, 0};
+  Rng rng(5);
+  std::vector<geometry::Vec2> pierces;
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j) pierces.push_back({300 + j + 0.9 * rng.uniform01(), 300 + i + 0.9 * rng.uniform01()});
+  for (double x : {800.0, 850.0, 900.0}) pierces.push_back({x, 900});
+  for (std::size_t k = 0; k < pierces.size(); ++k) {
+    nc::CutSegment s;
+    s.pierce = pierces[k];
+    s.label = "hole " + std::to_string(k + 1);
+    path.segments.push_back(s);
+  }
+  const std::string svg = route_to_svg(model::Nest{}, path, RoutePictureOptions{});
+  const auto labels = order_labels(svg);
+  ASSERT_EQ(labels.size(), pierces.size());
+  EXPECT_EQ(labels.begin()->first, 1);
+  EXPECT_EQ(labels.rbegin()->first, static_cast<int>(pierces.size()));
+
+  // The picture's frame: world box (0, 0)-(900, 900), margin 2 % of it + 1 mm, y pointing down.
+  const double size = labels.begin()->second.size;  // [mm] 900 / 90
+  ASSERT_NEAR(size, 10.0, 1e-9);
+  const double mark = 900.0 / 400.0, margin = 900.0 * 0.02 + 1.0;
+  std::vector<geometry::Vec2> placed;
+  int stacked = 0;
+  for (std::size_t k = 0; k < pierces.size(); ++k) {
+    geometry::Vec2 at = pierces[k] + geometry::Vec2{1.5 * mark, 1.5 * mark};
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (const auto& q : placed)
+        if (std::abs(q.x - at.x) < size * 1.6 && std::abs(q.y - at.y) < size * 0.9) at.y = q.y + size, moved = true;
+    }
+    if (at.y > pierces[k].y + 1.5 * mark) ++stacked;
+    placed.push_back(at);
+    const Label& got = labels.at(static_cast<int>(k + 1));
+    EXPECT_NEAR(got.x, at.x + margin, 1.5e-3) << k + 1;
+    EXPECT_NEAR(got.y, 900.0 - at.y + margin, 1.5e-3) << k + 1;
+  }
+  EXPECT_GT(stacked, 350);  // the case is the stacking one
+  // And as written: no two numbers overlap (1 µm rounding allowed).
+  for (auto a = labels.begin(); a != labels.end(); ++a)
+    for (auto b = std::next(a); b != labels.end(); ++b) {
+      const bool apart = std::abs(a->second.x - b->second.x) >= 1.6 * size - 2e-3 ||
+                         std::abs(a->second.y - b->second.y) >= 0.9 * size - 2e-3;
+      EXPECT_TRUE(apart) << a->first << " and " << b->first;
+    }
+}
+
+}  // namespace
+}  // namespace cutroute::io

@@ -2,12 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <iterator>
 #include <numbers>
-#include <thread>
 
 #include <cutroute/core/number_format.hpp>
+#include <cutroute/core/parallel.hpp>
 #include <cutroute/core/tolerances.hpp>
 #include <cutroute/geometry/intersect.hpp>
 #include <cutroute/geometry/segment_set.hpp>
@@ -708,23 +707,10 @@ CutJob make_cut_job(const Nest& nest, const EntryPlanner& planner, int threads) 
   // large nest's job: 3.0 s of a plate of 40 000 holes), so the contours are dealt round-robin to
   // the threads and their diagnostics merged in contour order afterwards.
   const std::size_t count = job.segments.size();
-  const std::size_t workers = std::clamp<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), 1, std::max<std::size_t>(1, count / 64));
   std::vector<Diagnostics> said(count);
-  std::vector<std::exception_ptr> failed(workers);
-  auto work = [&](std::size_t w) {
-    try {
-      for (std::size_t k = w; k < count; k += workers) job.segments[k].candidates = planner.candidates(job.segments[k].contours.front(), said[k]);
-    } catch (...) {
-      failed[w] = std::current_exception();
-    }
-  };
-  {
-    std::vector<std::jthread> pool;
-    for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(work, w);
-    work(0);
-  }
-  for (const auto& e : failed)
-    if (e) std::rethrow_exception(e);
+  deal(count, std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), count / 64), [&](std::size_t k) {
+    job.segments[k].candidates = planner.candidates(job.segments[k].contours.front(), said[k]);
+  });
   for (auto& d : said) job.diagnostics.insert(job.diagnostics.end(), std::make_move_iterator(d.begin()), std::make_move_iterator(d.end()));
   for (std::size_t i = 0; i < nest.contours.size(); ++i) {
     const auto& c = nest.contours[ContourId(static_cast<std::int32_t>(i))];

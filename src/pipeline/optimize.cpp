@@ -327,13 +327,11 @@ class RunLimit {
 // `standard`: the standard job when already built (other techniques start from its candidates).
 Result<model::CutJob> build_job(const model::Nest& nest, const model::EntryPlanner& planner, const model::EntryOptions& entries,
                                 const OptimizeOptions& o, Technique t, const model::CutJob* standard) {
+  // As many threads as the solver gets (0: one per core).
+  const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   switch (t) {
-    case Technique::standard: {
-      // As many threads as the solver gets (0: one per core).
-      const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-      return model::make_cut_job(nest, planner, threads);
-    }
-    case Technique::chain: return model::make_chain_job(nest, entries, o.chain, standard, &planner);
+    case Technique::standard: return model::make_cut_job(nest, planner, threads);
+    case Technique::chain: return model::make_chain_job(nest, entries, o.chain, standard, &planner, threads);
     case Technique::common:
       // Common lines are cut on the centre line between two parts, uncompensated; the cam offset
       // would move each part's side of it away from the other.

@@ -91,6 +91,49 @@ TEST(Chains, DemoSheetHasExactlyTheThreeBracketPairs) {
   EXPECT_TRUE(chain_links(nest, tight).empty());
 }
 
+// 300 plates 20 x 10 mm, 6 mm apart, with a hole each: the links and the chains are found on
+// several threads (outers and runs dealt round-robin), and must be what one thread finds.
+TEST(Chains, ThreadsMakeTheSameJob) {
+  std::vector<SourceContour> cs;
+  for (int r = 0; r < 15; ++r)
+    for (int c = 0; c < 20; ++c) {
+      const double x = 26.0 * c + (r % 2) * 3.0, y = 16.0 * r;
+      cs.push_back(src(rect(x, y, 20, 10)));
+      cs.push_back(src(geometry::circle({x + 10, y + 5}, 2.0 + 0.1 * (c % 3))));
+    }
+  const Nest nest = loose_nest(cs);
+  const auto links = chain_links(nest, ChainOptions{}, 1);
+  ASSERT_GT(links.size(), 500u);
+  const CutJob one = make_chain_job(nest, EntryOptions{}, ChainOptions{}, nullptr, nullptr, 1);
+  std::size_t chained = 0;
+  for (const auto& seg : one.segments) chained += seg.contours.size() > 1 ? 1 : 0;
+  ASSERT_GT(chained, 60u);
+  for (const int threads : {2, 5}) {
+    const auto many_links = chain_links(nest, ChainOptions{}, threads);
+    ASSERT_EQ(many_links.size(), links.size());
+    for (std::size_t k = 0; k < links.size(); ++k) {
+      EXPECT_EQ(many_links[k].a, links[k].a);
+      EXPECT_EQ(many_links[k].b, links[k].b);
+      EXPECT_EQ(many_links[k].gap_mm, links[k].gap_mm);
+    }
+    const CutJob many = make_chain_job(nest, EntryOptions{}, ChainOptions{}, nullptr, nullptr, threads);
+    ASSERT_EQ(many.segments.size(), one.segments.size());
+    EXPECT_EQ(many.precedence, one.precedence);
+    for (std::size_t k = 0; k < one.segments.size(); ++k) {
+      ASSERT_EQ(many.segments[k].contours, one.segments[k].contours) << "segment " << k;
+      const auto& a = one.segments[k].candidates;
+      const auto& b = many.segments[k].candidates;
+      ASSERT_EQ(a.size(), b.size()) << "segment " << k;
+      for (std::size_t j = 0; j < a.size(); ++j) {
+        EXPECT_EQ(a[j].pierce.x, b[j].pierce.x);
+        EXPECT_EQ(a[j].pierce.y, b[j].pierce.y);
+        EXPECT_EQ(a[j].pieces.size(), b[j].pieces.size());
+        EXPECT_EQ(tool_off_point(a[j]).x, tool_off_point(b[j]).x);
+      }
+    }
+  }
+}
+
 TEST(Chains, DemoChainJobHas18BasicSegments) {
   const Nest nest = build_nest(make_demo_sheet(), NestOptions{});
   EntryOptions entries;

@@ -23,8 +23,9 @@ struct ChainLink {
 };
 
 // Pairs of outer contours (of different parts) whose boundaries come closer than max_gap, with
-// their gap, sorted by gap (then by contour ids).
-std::vector<ChainLink> chain_links(const Nest& nest, const ChainOptions& options);
+// their gap, sorted by gap (then by contour ids). `threads`: how many may share the work (the
+// result is the same).
+std::vector<ChainLink> chain_links(const Nest& nest, const ChainOptions& options, int threads = 1);
 
 // The chain technique's cut job: the standard job in which runs of neighbouring outer contours
 // become one basic segment each. Runs are formed greedily from the closest pairs (each contour in
@@ -38,8 +39,9 @@ std::vector<ChainLink> chain_links(const Nest& nest, const ChainOptions& options
 // candidate is shortened (then dropped); a chain that would make the precedence cyclic is
 // dropped. Standard segments for all contours left. `standard`: the standard job of the same nest
 // and entry options when the caller has it already (saves building it again); `planner`: a
-// planner of this nest with these entry options, likewise.
+// planner of this nest with these entry options, likewise. `threads`: how many may share the work
+// (the job is the same).
 CutJob make_chain_job(const Nest& nest, const EntryOptions& entries, const ChainOptions& options,
-                      const CutJob* standard = nullptr, const EntryPlanner* planner = nullptr);
+                      const CutJob* standard = nullptr, const EntryPlanner* planner = nullptr, int threads = 1);
 
 }  // namespace cutroute::model

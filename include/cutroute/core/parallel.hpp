@@ -1,0 +1,37 @@
+// deal(): independent work items dealt round-robin to a few threads, deterministic by construction.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <exception>
+#include <thread>
+#include <vector>
+
+namespace cutroute {
+
+// Runs work(k) for every k in [0, count), item k on thread k mod `workers` (at most `workers`
+// threads, the caller's being one of them), and returns when all are done; the first exception
+// thrown by a thread is rethrown then. Each work(k) must write only its own result slot, so the
+// outcome is the same whatever the thread count. Hand-written over std::jthread: the items are
+// few and coarse (one contour's geometry each), a thread pool library would add nothing here.
+template <class Work>
+void deal(std::size_t count, std::size_t workers, Work&& work) {
+  workers = std::clamp<std::size_t>(workers, 1, std::max<std::size_t>(count, 1));
+  std::vector<std::exception_ptr> failed(workers);
+  auto run = [&](std::size_t w) {
+    try {
+      for (std::size_t k = w; k < count; k += workers) work(k);
+    } catch (...) {
+      failed[w] = std::current_exception();
+    }
+  };
+  {
+    std::vector<std::jthread> pool;
+    for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(run, w);
+    run(0);
+  }
+  for (const auto& e : failed)
+    if (e) std::rethrow_exception(e);
+}
+
+}  // namespace cutroute

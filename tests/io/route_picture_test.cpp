@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
-#include <regex>
 #include <string>
 #include <vector>
 
@@ -18,16 +17,25 @@ struct Label {
   double x, y, size;
 };
 
+// The value of attribute `name` in the element text `el` (empty when absent).
+std::string attribute(const std::string& el, const std::string& name) {
+  const auto at = el.find(" " + name + "=\"");
+  if (at == std::string::npos) return {};
+  const auto begin = at + name.size() + 3;
+  return el.substr(begin, el.find('"', begin) - begin);
+}
+
 // The order numbers written (k -> position in picture units), with the "start" label left out.
 std::map<int, Label> order_labels(const std::string& svg) {
-  static const std::regex text(R"re(<text x="([-0-9.]+)" y="([-0-9.]+)" font-size="([0-9.]+)"[^>]*>([^<]*)</text>)re");
   std::map<int, Label> out;
-  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), text); it != std::sregex_iterator(); ++it) {
-    const auto& m = *it;
-    if (m[4] == "start") continue;
-    const int k = std::stoi(m[4]);
+  for (auto at = svg.find("<text "); at != std::string::npos; at = svg.find("<text ", at + 1)) {
+    const auto open_end = svg.find('>', at), close = svg.find("</text>", at);
+    if (open_end == std::string::npos || close == std::string::npos) break;
+    const std::string el = svg.substr(at, open_end - at), body = svg.substr(open_end + 1, close - open_end - 1);
+    if (body == "start") continue;
+    const int k = std::stoi(body);
     EXPECT_FALSE(out.count(k)) << "number " << k << " written twice";
-    out[k] = {std::stod(m[1]), std::stod(m[2]), std::stod(m[3])};
+    out[k] = {std::stod(attribute(el, "x")), std::stod(attribute(el, "y")), std::stod(attribute(el, "font-size"))};
   }
   return out;
 }

@@ -412,6 +412,28 @@ void Ops::remove_at(Tour& t, int i) const {
   mark(t, i);
 }
 
+void Ops::move_to(Tour& t, int i, const Insertion& ins) const {
+  const int L = static_cast<int>(t.seq.size());
+  t.cost -= removal_gain(t, i);
+  // remove_at's marks: the old neighbours, the one after wrapping to the start on a closed tour
+  // (positions i - 1 and i of the route without seq[i]).
+  auto flag = [&](NodeId v) {
+    const std::size_t c = cl(v).index();
+    t.dirty[c] = 1;
+    t.touched[c] = t.epoch;
+  };
+  flag(t.seq[static_cast<std::size_t>(i - 1)]);
+  if (i + 1 < L) flag(t.seq[static_cast<std::size_t>(i + 1)]);
+  else if (closed_ && L > 1) flag(t.seq[0]);
+  const auto first = t.seq.begin();
+  if (ins.at <= i) std::rotate(first + ins.at, first + i, first + i + 1);
+  else std::rotate(first + i, first + i + 1, first + ins.at + 1);
+  t.seq[static_cast<std::size_t>(ins.at)] = ins.node;
+  reindex(t, std::min(i, ins.at), std::max(i, ins.at) + 1);
+  t.cost += ins.delta;
+  mark_around(t, ins.at);
+}
+
 // Reinsertion (Or-opt of one cluster with node re-selection), e.g. cluster C in
 //   S a1 B2 C3 D1 E2  ->  S a1 B2 D1 C1 E2   (C moved after D, entered at its node 1 instead of 3).
 // Fixed: position 0. Precedence: C only between its last predecessor and first successor present.
@@ -451,8 +473,7 @@ bool Ops::reinsertion_pass(Tour& t) const {
       for (ClusterId y : succs(cc))
         if (t.pos[y.index()] >= 0 && rpos(y) > 0) consider(rpos(y));
       if (best.delta < removal_gain(t, i)) {
-        remove_at(t, i);
-        insert(t, best);
+        move_to(t, i, best);
         improved = true;
       }
       continue;

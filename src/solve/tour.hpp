@@ -112,6 +112,9 @@ class Ops {
   void insert(Tour& t, const Insertion& ins) const;
   Cost removal_gain(const Tour& t, int i) const;
   void remove_at(Tour& t, int i) const;
+  // remove_at(t, i) then insert(t, ins) (ins.at a place of the route without seq[i]): the same
+  // route, cost and marks, but only the positions between the two places shift.
+  void move_to(Tour& t, int i, const Insertion& ins) const;
 
   // Candidate lists (LKH-style): the clusters with the cheapest arcs into c (preds) and out of c
   // (succs), measured between up to 12 sampled nodes per cluster; moves are only tried next to them.

@@ -352,7 +352,7 @@ void add_optimize(CLI::App& root, Commands& out) {
                   "machine: with --time-limit 0 a run is bounded and reproducible (report: solver.work_m)")
       ->check(finite_range(0.0, 1e9));
   app->add_option("--seed", o->seed, "Random seed: same seed, input and options give identical outputs")->capture_default_str();
-  app->add_option("--threads", o->threads, "Threads of the route solver and of the entry candidates (0: all cores; several nests share them)")->check(CLI::Range(0, 64));
+  app->add_option("--threads", o->threads, "Threads of the route solver and of the cut jobs: entry candidates, chains (0: all cores; several nests share them)")->check(CLI::Range(0, 64));
   app->add_option("--solver", o->solver, "auto, exact or heuristic")->check(CLI::IsMember({"auto", "exact", "heuristic"}));
   app->add_option("--start", o->start, "Machine start and park position X,Y [mm] (default 0,0)");
   app->add_option("--kerf", o->kerf, "Kerf width [mm] (default from the machine profile)")->check(finite_range(0.0, 20.0));

@@ -12,8 +12,9 @@ namespace cutroute {
 // Runs work(k) for every k in [0, count), item k on thread k mod `workers` (at most `workers`
 // threads, the caller's being one of them), and returns when all are done; the first exception
 // thrown by a thread is rethrown then. Each work(k) must write only its own result slot, so the
-// outcome is the same whatever the thread count. Hand-written over std::jthread: the items are
-// few and coarse (one contour's geometry each), a thread pool library would add nothing here.
+// outcome is the same whatever the thread count. Hand-written over std::jthread: a handful of
+// threads over coarse items (one contour's or one chain's geometry each), where a thread-pool
+// library would add nothing.
 template <class Work>
 void deal(std::size_t count, std::size_t workers, Work&& work) {
   workers = std::clamp<std::size_t>(workers, 1, std::max<std::size_t>(count, 1));

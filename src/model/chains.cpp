@@ -202,9 +202,8 @@ std::vector<ChainLink> chain_links(const Nest& nest, const ChainOptions& options
   // gaps: each step dealt to the threads by outer, item i writing its own slot (the chain job of
   // 24 000 parts took 2.6 s on one thread). The links come out as one thread finds them.
   const std::size_t m = outers.size();
-  const std::size_t workers = std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), m / 64);
   std::vector<std::vector<std::uint32_t>> pairs(m);  // outer i -> later outers h within the gap, same parent
-  deal(m, workers, [&](std::size_t i) {
+  deal(m, threads, 64, [&](std::size_t i) {
     std::vector<std::uint32_t> hits;
     index.query(boxes[i].inflated(options.max_gap_mm), hits);
     for (auto h : hits)
@@ -215,11 +214,11 @@ std::vector<ChainLink> chain_links(const Nest& nest, const ChainOptions& options
   for (std::size_t i = 0; i < m; ++i)
     for (auto h : pairs[i]) wanted[i] = wanted[h] = 1;
   std::vector<geometry::SegmentSet> sets(m);
-  deal(m, workers, [&](std::size_t k) {
+  deal(m, threads, 64, [&](std::size_t k) {
     if (wanted[k]) sets[k] = geometry::make_segment_set(nest.contours[outers[k]].source.contour);
   });
   std::vector<std::vector<ChainLink>> found(m);
-  deal(m, workers, [&](std::size_t i) {
+  deal(m, threads, 64, [&](std::size_t i) {
     for (auto h : pairs[i]) {
       const auto& a = nest.contours[outers[i]];
       const auto& b = nest.contours[outers[h]];
@@ -284,8 +283,7 @@ CutJob make_chain_job(const Nest& nest, const EntryOptions& entries, const Chain
   // its end.
   const ChainBuilder builder(nest, planner, base, seg_of, entries, options);
   std::vector<std::optional<BasicSegment>> per_run(chains.size());
-  deal(chains.size(), std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), chains.size() / 16),
-       [&](std::size_t r) {
+  deal(chains.size(), threads, 16, [&](std::size_t r) {
          auto& run = chains[r];
          while (run.size() >= 2) {
            auto cands = builder.candidates(run);

@@ -708,7 +708,7 @@ CutJob make_cut_job(const Nest& nest, const EntryPlanner& planner, int threads) 
   // the threads and their diagnostics merged in contour order afterwards.
   const std::size_t count = job.segments.size();
   std::vector<Diagnostics> said(count);
-  deal(count, std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), count / 64), [&](std::size_t k) {
+  deal(count, threads, 64, [&](std::size_t k) {
     job.segments[k].candidates = planner.candidates(job.segments[k].contours.front(), said[k]);
   });
   for (auto& d : said) job.diagnostics.insert(job.diagnostics.end(), std::make_move_iterator(d.begin()), std::make_move_iterator(d.end()));

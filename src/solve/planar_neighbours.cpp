@@ -4,10 +4,11 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <thread>
 #include <utility>
 
 #include <nanoflann.hpp>
+
+#include <cutroute/core/parallel.hpp>
 
 namespace cutroute::solve::detail {
 
@@ -136,10 +137,10 @@ void planar_neighbours(const Problem& p, std::size_t kn, std::vector<ClusterId>&
                        bool two_threads) {
   const PlanarCosts& pc = *p.planar();
   // Each list reads the problem only: 0.5 s each on a plate of 40 000 holes of 8 candidates.
-  std::jthread other;
-  if (two_threads) other = std::jthread([&] { lists(p, kn, pc.out, pc.in, succ); });  // a -> b: leave a at out, enter b at in
-  else lists(p, kn, pc.out, pc.in, succ);
-  lists(p, kn, pc.in, pc.out, pred);  // b -> a: the out points nearest to a's in points
+  deal(2, two_threads ? 2 : 1, 1, [&](std::size_t k) {
+    if (k == 0) lists(p, kn, pc.out, pc.in, succ);  // a -> b: leave a at out, enter b at in
+    else lists(p, kn, pc.in, pc.out, pred);         // b -> a: the out points nearest to a's in points
+  });
 }
 
 }  // namespace cutroute::solve::detail

@@ -413,18 +413,10 @@ void Ops::remove_at(Tour& t, int i) const {
 }
 
 void Ops::move_to(Tour& t, int i, const Insertion& ins) const {
-  const int L = static_cast<int>(t.seq.size());
   t.cost -= removal_gain(t, i);
-  // remove_at's marks: the old neighbours, the one after wrapping to the start on a closed tour
-  // (positions i - 1 and i of the route without seq[i]).
-  auto flag = [&](NodeId v) {
-    const std::size_t c = cl(v).index();
-    t.dirty[c] = 1;
-    t.touched[c] = t.epoch;
-  };
-  flag(t.seq[static_cast<std::size_t>(i - 1)]);
-  if (i + 1 < L) flag(t.seq[static_cast<std::size_t>(i + 1)]);
-  else if (closed_ && L > 1) flag(t.seq[0]);
+  // remove_at's marks: the old neighbours (the one after wraps to the start on a closed tour).
+  mark(t, i - 1);
+  mark(t, i + 1);
   const auto first = t.seq.begin();
   if (ins.at <= i) std::rotate(first + ins.at, first + i, first + i + 1);
   else std::rotate(first + i, first + i + 1, first + ins.at + 1);

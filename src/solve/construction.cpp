@@ -10,7 +10,6 @@
 namespace cutroute::solve::detail {
 
 namespace {
-constexpr Cost kHuge = std::numeric_limits<Cost>::max() / 4;
 // A stopped construction still scans routes of up to this many clusters whole: cheap enough there
 // (about 0.1 s on 10 000 circles), the first clusters placed are rarely anyone's candidate
 // neighbours, and the nests of the corpus (at most 1 186 contours) keep the routes they had.

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <utility>
 #include <vector>
@@ -12,6 +13,9 @@
 #include <cutroute/solve/problem.hpp>
 
 namespace cutroute::solve::detail {
+
+// "No move yet": larger than any route's cost, and still far from overflow when a few are added.
+inline constexpr Cost kHuge = std::numeric_limits<Cost>::max() / 4;
 
 // A route over some (partial) or all (complete) clusters; seq[0] is always in the start cluster.
 // Cost convention: closed tour = sum of link() around the cycle; open path = inner(seq[0]) + sum of

@@ -62,38 +62,52 @@ geometry::Vec2 tool_off_point(const EntryCandidate& e) {
 std::vector<ContourId> touched_contours(const BasicSegment& segment) {
   std::vector<ContourId> out = segment.contours;
   if (!segment.candidates.empty())
-    for (const auto& p : segment.candidates.front().pieces)
+    for (const auto& p : segment.candidates.front().pieces) {
       if (p.contour.valid()) out.push_back(p.contour);
+      if (p.other.valid()) out.push_back(p.other);  // a common edge cuts both contours' boundaries
+    }
   std::sort(out.begin(), out.end(), [](ContourId a, ContourId b) { return a.value() < b.value(); });
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 
 std::optional<std::vector<std::pair<std::int32_t, std::int32_t>>> segment_precedence(
-    const Nest& nest, const std::vector<BasicSegment>& segments) {
+    const Nest& nest, const std::vector<BasicSegment>& segments, std::vector<std::pair<std::int32_t, std::int32_t>> pairs) {
+  std::vector<std::vector<ContourId>> touched(segments.size());
+  for (std::size_t k = 0; k < segments.size(); ++k) touched[k] = touched_contours(segments[k]);
+  return segment_precedence(nest, touched, std::move(pairs));
+}
+
+std::optional<std::vector<std::pair<std::int32_t, std::int32_t>>> segment_precedence(
+    const Nest& nest, const std::vector<std::vector<ContourId>>& finishes,
+    std::vector<std::pair<std::int32_t, std::int32_t>> pairs) {
+  const std::size_t m = finishes.size();
   // Which segments touch each contour (a contour cut in part by two segments has two).
   std::vector<std::vector<std::int32_t>> by_contour(nest.contours.size());
-  for (std::size_t k = 0; k < segments.size(); ++k)
-    for (auto c : touched_contours(segments[k])) by_contour[c.index()].push_back(static_cast<std::int32_t>(k));
-  std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
+  for (std::size_t k = 0; k < m; ++k)
+    for (auto c : finishes[k]) by_contour[c.index()].push_back(static_cast<std::int32_t>(k));
   for (std::size_t i = 0; i < nest.contours.size(); ++i) {
     const auto& c = nest.contours[ContourId(static_cast<std::int32_t>(i))];
     if (!c.parent.valid()) continue;
-    for (auto a : by_contour[i])
-      for (auto b : by_contour[c.parent.index()])
-        if (a != b) pairs.emplace_back(a, b);
+    const auto& inner = by_contour[i];
+    for (auto b : by_contour[c.parent.index()]) {
+      // A segment that cuts both (a line shared by a part and the edge of the hole it sits in)
+      // finishes either of them; it waits for nothing inside.
+      if (std::find(inner.begin(), inner.end(), b) != inner.end()) continue;
+      for (auto a : inner) pairs.emplace_back(a, b);
+    }
   }
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   // Kahn's algorithm: every segment is ordered exactly when the pairs have no cycle.
-  std::vector<int> indegree(segments.size(), 0);
-  std::vector<std::vector<std::int32_t>> next(segments.size());
+  std::vector<int> indegree(m, 0);
+  std::vector<std::vector<std::int32_t>> next(m);
   for (auto [a, b] : pairs) {
     next[static_cast<std::size_t>(a)].push_back(b);
     ++indegree[static_cast<std::size_t>(b)];
   }
   std::vector<std::int32_t> ready;
-  for (std::size_t k = 0; k < segments.size(); ++k)
+  for (std::size_t k = 0; k < m; ++k)
     if (indegree[k] == 0) ready.push_back(static_cast<std::int32_t>(k));
   std::size_t done = 0;
   while (!ready.empty()) {
@@ -103,7 +117,7 @@ std::optional<std::vector<std::pair<std::int32_t, std::int32_t>>> segment_preced
     for (auto b : next[static_cast<std::size_t>(k)])
       if (--indegree[static_cast<std::size_t>(b)] == 0) ready.push_back(b);
   }
-  if (done != segments.size()) return std::nullopt;
+  if (done != m) return std::nullopt;
   return pairs;
 }
 

@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <cutroute/geometry/shapes.hpp>
@@ -117,11 +119,11 @@ void expect_no_double_cut(const CommonLinePlan& plan) {
     }
 }
 
-// Transitive closure of the precedence pairs: before[a][b] = a must come before b. Also: acyclic.
-std::vector<std::vector<char>> closure(const CommonLinePlan& plan) {
-  const std::size_t n = plan.segments.size();
+// Transitive closure of precedence pairs over n segments: before[a][b] = a must come before b.
+// Also: acyclic.
+std::vector<std::vector<char>> closure(std::size_t n, const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs) {
   std::vector<std::vector<char>> r(n, std::vector<char>(n, 0));
-  for (const auto& [a, b] : plan.precedence) r[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)] = 1;
+  for (const auto& [a, b] : pairs) r[static_cast<std::size_t>(a)][static_cast<std::size_t>(b)] = 1;
   for (std::size_t k = 0; k < n; ++k)
     for (std::size_t i = 0; i < n; ++i)
       if (r[i][k])
@@ -130,6 +132,7 @@ std::vector<std::vector<char>> closure(const CommonLinePlan& plan) {
   for (std::size_t i = 0; i < n; ++i) EXPECT_FALSE(r[i][i]) << "precedence cycle through segment " << i;
   return r;
 }
+std::vector<std::vector<char>> closure(const CommonLinePlan& plan) { return closure(plan.segments.size(), plan.precedence); }
 
 std::size_t count(const CommonLinePlan& plan, CommonSegmentKind k) {
   return static_cast<std::size_t>(
@@ -271,6 +274,69 @@ TEST(CommonLines, ThreeByTwoWithHoles) {
     // Every hole before the loop that frees its part; no trail waits for a hole.
     EXPECT_TRUE(before[i][outer_loop(plan)]);
   }
+}
+
+// The middle part of 3 x 3 touches no edge of the group's outline: the last of its four common
+// lines cuts it free, whichever that is. In the cut job every hole must come before some segment
+// that cuts a piece of its part (a common edge counts for both parts it separates): then, in any
+// order the pairs allow, the hole is cut before its part is free. A part on the outline may wait
+// for the outline alone (after every line of the group); the middle part's hole comes before all
+// four of its lines, so it is cut while the part is held on every side.
+TEST(CommonLines, JobPutsEachHoleBeforeThePartIsCutFree) {
+  std::vector<Contour> cs;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      cs.push_back(rect(60.0 * c, 40.0 * r, 60.0 * (c + 1), 40.0 * (r + 1)));
+      cs.push_back(geometry::circle(Vec2{60.0 * c + 30, 40.0 * r + 20}, 8));
+    }
+  const Nest nest = make_nest(std::move(cs), true);
+  const auto job = make_common_job(nest, EntryOptions{}, CommonLineOptions{});
+  ASSERT_TRUE(job.ok()) << job.error().message;
+  const std::size_t n = job->segments.size();
+  const auto before = closure(n, job->precedence);
+  int holes = 0;
+  for (std::size_t h = 0; h < n; ++h) {
+    const auto& hc = job->segments[h].contours;
+    if (hc.size() != 1 || nest.contours[hc.front()].role != ContourRole::hole) continue;
+    ++holes;
+    const ContourId part = nest.contours[hc.front()].parent;
+    int around = 0, after_hole = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto touched = touched_contours(job->segments[k]);
+      if (k == h || std::find(touched.begin(), touched.end(), part) == touched.end()) continue;
+      ++around;
+      after_hole += before[h][k];
+    }
+    EXPECT_GE(around, 2);
+    EXPECT_GE(after_hole, 1) << "hole segment " << h << " may come after every cut around its part";
+    const Vec2 c = nest.contours[hc.front()].box.center();
+    if (std::abs(c.x - 90) < 1e-6 && std::abs(c.y - 60) < 1e-6) {
+      EXPECT_EQ(around, 4);  // the four common lines, no piece of the outline
+      EXPECT_EQ(after_hole, 4);
+    } else {
+      EXPECT_EQ(after_hole, 1) << "a part on the outline waits for the outline alone";
+    }
+  }
+  EXPECT_EQ(holes, 9);
+}
+
+// A part drawn inside a hole, sharing two edges with it: the common line and the loop each cut a
+// piece of both, so neither has to wait for the other (that would be a cycle); both come before
+// the frame around the hole.
+TEST(CommonLines, JobWithAPartSharingTheEdgeOfItsHole) {
+  const Nest nest = make_nest({rect(0, 0, 300, 200), rect(50, 50, 250, 150, false), rect(50, 50, 120, 100)});
+  const auto job = make_common_job(nest, EntryOptions{}, CommonLineOptions{});
+  ASSERT_TRUE(job.ok()) << job.error().message;
+  const std::size_t n = job->segments.size();
+  const auto before = closure(n, job->precedence);
+  std::size_t frame = n;
+  for (std::size_t k = 0; k < n; ++k)
+    if (job->segments[k].contours == std::vector<ContourId>{ContourId(0)}) frame = k;
+  ASSERT_LT(frame, n);
+  for (std::size_t k = 0; k < n; ++k)
+    if (k != frame) {
+      EXPECT_TRUE(before[k][frame]) << k;
+    }
 }
 
 // A row drawn kerf apart: the common cuts run on the centre lines of the gaps.

@@ -127,11 +127,20 @@ struct CutJob {
 // its first candidate's non-bridge pieces), sorted, without repeats.
 std::vector<ContourId> touched_contours(const BasicSegment& segment);
 
-// Precedence between basic segments from the containment tree: a before b when a contour touched
-// by a lies directly inside (parent) a contour touched by b. Pairs within one segment are
-// dropped. Returns nullopt when the pairs form a cycle (no admissible order exists).
+// Precedence between basic segments from the containment tree, added to `pairs`: a before b when
+// a contour touched by a lies directly inside (parent) a contour touched by b, unless b touches
+// the inner contour too (a line that a part inside a hole shares with the hole's edge). So all
+// that lies inside a contour comes before every segment that cuts a piece of it, whichever of
+// them ends up finishing it. Returns the pairs, sorted and without repeats, or nullopt when they
+// form a cycle (no admissible order exists).
 std::optional<std::vector<std::pair<std::int32_t, std::int32_t>>> segment_precedence(
-    const Nest& nest, const std::vector<BasicSegment>& segments);
+    const Nest& nest, const std::vector<BasicSegment>& segments, std::vector<std::pair<std::int32_t, std::int32_t>> pairs = {});
+// The same with finishes[k], the contours segment k may be the last to cut, in place of each
+// segment's touched_contours(): a caller whose own pairs already put one segment after every
+// other around a contour (common lines: a group's outline) names only that one.
+std::optional<std::vector<std::pair<std::int32_t, std::int32_t>>> segment_precedence(
+    const Nest& nest, const std::vector<std::vector<ContourId>>& finishes,
+    std::vector<std::pair<std::int32_t, std::int32_t>> pairs);
 
 // Generates entry candidates and leads for every cut contour of the nest and the precedence
 // pairs: every contour before the contour that directly contains it (holes before their outer

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <cutroute/core/random.hpp>
@@ -44,8 +45,9 @@ std::map<int, Label> order_labels(const std::string& svg) {
 // and a few far away: on a 900 mm picture the numbers are 10 mm tall, so most of the block's stack.
 // The positions must be those of the rule the picture states, checked here by brute force: each
 // number starts up and right of its pierce and moves up above every earlier number it would
-// overlap (closer than 1.6 sizes across and 0.9 sizes up or down), scanning them all until none
-// does; a number pushed above the picture's top edge is left out.
+// overlap (their spans across meet, each 0.7 sizes per digit plus 0.1 from its x, and they are
+// closer than 0.9 sizes up or down), scanning them all until none does; a number pushed above the
+// picture's top edge is left out. Numbers of 1 to 3 digits.
 TEST(RoutePicture, PierceNumbersOfClosePiercesStackWithoutOverprinting) {
   nc::Toolpath path;
   path.start = path.end = {0, 0};
@@ -70,23 +72,25 @@ TEST(RoutePicture, PierceNumbersOfClosePiercesStackWithoutOverprinting) {
   const double size = labels.begin()->second.size;  // [mm] 900 / 90
   ASSERT_NEAR(size, 10.0, 1e-9);
   const double mark = 900.0 / 400.0, margin = 900.0 * 0.02 + 1.0, top = 900.0 + margin;
-  std::vector<geometry::Vec2> placed;
+  auto span = [size](int number) { return size * (0.7 * static_cast<double>(std::to_string(number).size()) + 0.1); };
+  std::vector<std::pair<geometry::Vec2, double>> placed;  // position, span across
   int stacked = 0, left_out = 0;
   for (std::size_t k = 0; k < pierces.size(); ++k) {
+    const int number = static_cast<int>(k + 1);
     geometry::Vec2 at = pierces[k] + geometry::Vec2{1.5 * mark, 1.5 * mark};
     for (bool moved = true; moved && at.y <= top;) {
       moved = false;
-      for (const auto& q : placed)
-        if (at.y <= top && std::abs(q.x - at.x) < size * 1.6 && std::abs(q.y - at.y) < size * 0.9) at.y = q.y + size, moved = true;
+      for (const auto& [q, w] : placed)
+        if (at.y <= top && q.x < at.x + span(number) && at.x < q.x + w && std::abs(q.y - at.y) < size * 0.9)
+          at.y = q.y + size, moved = true;
     }
-    const int number = static_cast<int>(k + 1);
     if (at.y > top) {
       ++left_out;
       EXPECT_FALSE(labels.count(number)) << number;
       continue;
     }
     if (at.y > pierces[k].y + 1.5 * mark) ++stacked;
-    placed.push_back(at);
+    placed.push_back({at, span(number)});
     ASSERT_TRUE(labels.count(number)) << number;
     const Label& got = labels.at(number);
     EXPECT_NEAR(got.x, at.x + margin, 1.5e-3) << number;
@@ -95,10 +99,12 @@ TEST(RoutePicture, PierceNumbersOfClosePiercesStackWithoutOverprinting) {
   EXPECT_EQ(labels.size(), pierces.size() - static_cast<std::size_t>(left_out));
   EXPECT_GT(stacked, 50);     // the case is the stacking one,
   EXPECT_GT(left_out, 200);   // up to the top and past it
-  // And as written: no two numbers overlap (1 µm rounding allowed).
+  // And as written: no two numbers overlap (1 µm rounding allowed), their digits 0.7 sizes wide.
   for (auto a = labels.begin(); a != labels.end(); ++a)
     for (auto b = std::next(a); b != labels.end(); ++b) {
-      const bool apart = std::abs(a->second.x - b->second.x) >= 1.6 * size - 2e-3 ||
+      const double wa = 0.7 * size * static_cast<double>(std::to_string(a->first).size());
+      const double wb = 0.7 * size * static_cast<double>(std::to_string(b->first).size());
+      const bool apart = a->second.x + wa <= b->second.x + 2e-3 || b->second.x + wb <= a->second.x + 2e-3 ||
                          std::abs(a->second.y - b->second.y) >= 0.9 * size - 2e-3;
       EXPECT_TRUE(apart) << a->first << " and " << b->first;
     }

@@ -71,26 +71,39 @@ std::vector<ContourId> touched_contours(const BasicSegment& segment) {
   return out;
 }
 
-std::optional<std::vector<std::pair<std::int32_t, std::int32_t>>> segment_precedence(
-    const Nest& nest, const std::vector<BasicSegment>& segments, std::vector<std::pair<std::int32_t, std::int32_t>> pairs) {
-  std::vector<std::vector<ContourId>> touched(segments.size());
-  for (std::size_t k = 0; k < segments.size(); ++k) touched[k] = touched_contours(segments[k]);
-  return segment_precedence(nest, touched, std::move(pairs));
+namespace {
+
+// Parts drawn edge to edge (Nest::shared_edges, both outer contours in the same container): each
+// part's neighbours, whose cuts also cut pieces of its boundary and may free it before its own.
+std::vector<std::vector<ContourId>> edge_neighbours(const Nest& nest) {
+  std::vector<std::vector<ContourId>> out(nest.contours.size());
+  for (const auto& [a, b] : nest.shared_edges) {
+    const auto &ca = nest.contours[a], &cb = nest.contours[b];
+    if (ca.role != ContourRole::outer || cb.role != ContourRole::outer || ca.parent != cb.parent) continue;
+    out[a.index()].push_back(b);
+    out[b.index()].push_back(a);
+  }
+  return out;
 }
 
-std::optional<std::vector<std::pair<std::int32_t, std::int32_t>>> segment_precedence(
+std::optional<std::vector<std::pair<std::int32_t, std::int32_t>>> containment_order(
     const Nest& nest, const std::vector<std::vector<ContourId>>& finishes,
-    std::vector<std::pair<std::int32_t, std::int32_t>> pairs) {
+    std::vector<std::pair<std::int32_t, std::int32_t>> pairs, const std::vector<std::vector<ContourId>>* neighbours) {
   const std::size_t m = finishes.size();
   // Which segments touch each contour (a contour cut in part by two segments has two).
   std::vector<std::vector<std::int32_t>> by_contour(nest.contours.size());
   for (std::size_t k = 0; k < m; ++k)
     for (auto c : finishes[k]) by_contour[c.index()].push_back(static_cast<std::int32_t>(k));
+  std::vector<std::int32_t> outer_cuts;
   for (std::size_t i = 0; i < nest.contours.size(); ++i) {
     const auto& c = nest.contours[ContourId(static_cast<std::int32_t>(i))];
     if (!c.parent.valid()) continue;
     const auto& inner = by_contour[i];
-    for (auto b : by_contour[c.parent.index()]) {
+    outer_cuts = by_contour[c.parent.index()];
+    if (neighbours)
+      for (const ContourId q : (*neighbours)[c.parent.index()])
+        outer_cuts.insert(outer_cuts.end(), by_contour[q.index()].begin(), by_contour[q.index()].end());
+    for (auto b : outer_cuts) {
       // A segment that cuts both (a line shared by a part and the edge of the hole it sits in)
       // finishes either of them; it waits for nothing inside.
       if (std::find(inner.begin(), inner.end(), b) != inner.end()) continue;
@@ -119,6 +132,22 @@ std::optional<std::vector<std::pair<std::int32_t, std::int32_t>>> segment_preced
   }
   if (done != m) return std::nullopt;
   return pairs;
+}
+
+}  // namespace
+
+std::optional<std::vector<std::pair<std::int32_t, std::int32_t>>> segment_precedence(
+    const Nest& nest, const std::vector<BasicSegment>& segments, std::vector<std::pair<std::int32_t, std::int32_t>> pairs) {
+  std::vector<std::vector<ContourId>> touched(segments.size());
+  for (std::size_t k = 0; k < segments.size(); ++k) touched[k] = touched_contours(segments[k]);
+  const auto neighbours = edge_neighbours(nest);
+  return containment_order(nest, touched, std::move(pairs), &neighbours);
+}
+
+std::optional<std::vector<std::pair<std::int32_t, std::int32_t>>> segment_precedence(
+    const Nest& nest, const std::vector<std::vector<ContourId>>& finishes,
+    std::vector<std::pair<std::int32_t, std::int32_t>> pairs) {
+  return containment_order(nest, finishes, std::move(pairs), nullptr);
 }
 
 const char* to_string(Fallback f) {
@@ -726,11 +755,17 @@ CutJob make_cut_job(const Nest& nest, const EntryPlanner& planner, int threads) 
     job.segments[k].candidates = planner.candidates(job.segments[k].contours.front(), said[k]);
   });
   for (auto& d : said) job.diagnostics.insert(job.diagnostics.end(), std::make_move_iterator(d.begin()), std::make_move_iterator(d.end()));
+  const auto neighbours = edge_neighbours(nest);
   for (std::size_t i = 0; i < nest.contours.size(); ++i) {
     const auto& c = nest.contours[ContourId(static_cast<std::int32_t>(i))];
     if (job_index[i] < 0 || !c.parent.valid()) continue;
     const auto parent = job_index[c.parent.index()];
     if (parent >= 0) job.precedence.emplace_back(job_index[i], parent);
+    // Parts drawn edge to edge: each neighbour's cut cuts a piece of the parent's boundary, and
+    // together they can free it before its own cut (the middle of a grid drawn touching had a
+    // hole cut in a free part). What lies inside a part comes before its neighbours' cuts too.
+    for (const ContourId q : neighbours[c.parent.index()])
+      if (job_index[q.index()] >= 0) job.precedence.emplace_back(job_index[i], job_index[q.index()]);
   }
   return job;
 }

@@ -242,6 +242,7 @@ std::optional<SheetCandidate> find_sheet_candidate(const Nest& nest, const NestO
 
 struct Tree {
   std::vector<std::int32_t> parent;  // -1 at the top
+  std::vector<std::pair<std::int32_t, std::int32_t>> shared_edges;  // every pair, listed or not
   Diagnostics crossings;
   std::size_t unlisted_errors = 0;    // pairs beyond kMaxPairDiagnostics
   std::size_t unlisted_warnings = 0;
@@ -325,6 +326,7 @@ Tree build_tree(const Nest& nest, const Prepared& prep, std::optional<std::size_
         // Parts placed edge to edge can still be cut one after the other (the shared edge twice,
         // or once with common-line cutting): a warning, not an error.
         if (contact.overlaps > 0) {
+          tree.shared_edges.emplace_back(static_cast<std::int32_t>(i), static_cast<std::int32_t>(j));
           tree.report(diagnostic_for(Severity::warning, pair + " share a boundary stretch (common edge)" + where,
                                      ci.source, "nest.common_edge"));
         } else {
@@ -444,6 +446,8 @@ Nest build_nest(std::vector<SourceContour> contours, const NestOptions& options)
   if (sheet) sheet_index = sheet->index;
   assign_tree(nest, tree, sheet_index);
   nest.diagnostics.insert(nest.diagnostics.end(), tree.crossings.begin(), tree.crossings.end());
+  std::sort(tree.shared_edges.begin(), tree.shared_edges.end());
+  for (const auto& [a, b] : tree.shared_edges) nest.shared_edges.emplace_back(ContourId(a), ContourId(b));
   if (tree.unlisted_errors + tree.unlisted_warnings > 0) {
     Diagnostic d;
     d.severity = tree.unlisted_errors > 0 ? Severity::error : Severity::warning;

@@ -1,8 +1,12 @@
 // Entry candidates and precedence of a cut job, checked against independent geometric facts.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 #include <cutroute/geometry/contour.hpp>
 #include <cutroute/model/cut_job.hpp>
@@ -107,6 +111,55 @@ TEST(CutJob, PrecedenceFollowsContainmentAtAnyDepth) {
     EXPECT_EQ(ca.depth, cb.depth + 1);
   }
   check_job(nest, job, EntryOptions{});
+}
+
+// 3 x 3 squares drawn edge to edge, a hole in each: the middle square's four neighbours cut all of
+// its boundary between them, so their cuts can free it before its own. Every hole comes before
+// its own square and before each square that shares an edge with it; the nest names the 12 shared
+// edges. A chain of the same job keeps the rule (segment_precedence()).
+TEST(CutJob, HolesComeBeforeTheCutsOfPartsDrawnEdgeToEdge) {
+  std::vector<SourceContour> cs;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      cs.push_back(src(square(40.0 * c, 40.0 * r, 40)));
+      cs.push_back(src(circle({40.0 * c + 20, 40.0 * r + 20}, 6)));
+    }
+  const Nest nest = build_nest(cs, NestOptions{});
+  ASSERT_EQ(nest.shared_edges.size(), 12u);
+  const CutJob job = make_cut_job(nest, EntryOptions{});
+  ASSERT_EQ(job.segments.size(), 18u);
+  auto segment_of = [&](ContourId id) {
+    for (std::size_t k = 0; k < job.segments.size(); ++k)
+      if (job.segments[k].contours.front() == id) return static_cast<std::int32_t>(k);
+    return -1;
+  };
+  const auto standard = job.precedence;
+  const auto chained = segment_precedence(nest, job.segments);
+  ASSERT_TRUE(chained.has_value());
+  for (const auto* pairs : {&standard, &*chained}) {
+    std::size_t expected = 0;
+    for (std::size_t i = 0; i < nest.contours.size(); ++i) {
+      const auto& hole = nest.contours[ContourId(static_cast<std::int32_t>(i))];
+      if (hole.role != ContourRole::hole) continue;
+      const Vec2 at = hole.box.center();
+      for (std::size_t j = 0; j < nest.contours.size(); ++j) {
+        const auto& part = nest.contours[ContourId(static_cast<std::int32_t>(j))];
+        if (part.role != ContourRole::outer) continue;
+        // The hole's own square, or one whose box touches it along an edge (not only at a corner).
+        const geometry::Box own = nest.contours[hole.parent].box;
+        const double dx = std::max(part.box.xmin - own.xmax, own.xmin - part.box.xmax);
+        const double dy = std::max(part.box.ymin - own.ymax, own.ymin - part.box.ymax);
+        const bool edge = (std::abs(dx) < 1e-9 && dy < -1e-9) || (std::abs(dy) < 1e-9 && dx < -1e-9);
+        if (!part.box.contains(at) && !edge) continue;
+        ++expected;
+        const std::pair<std::int32_t, std::int32_t> pair{segment_of(ContourId(static_cast<std::int32_t>(i))),
+                                                         segment_of(ContourId(static_cast<std::int32_t>(j)))};
+        EXPECT_NE(std::find(pairs->begin(), pairs->end(), pair), pairs->end()) << "hole " << i << " before part " << j;
+      }
+    }
+    EXPECT_EQ(expected, 9u + 2u * 12u);  // its own square, and both sides of each shared edge
+    EXPECT_EQ(pairs->size(), expected);
+  }
 }
 
 TEST(CutJob, NoPierceInANarrowGapBetweenParts) {

@@ -72,6 +72,9 @@ struct Nest {
   // The sheet's extent [mm]: the border's box when there is a border contour; with
   // options.sheet_size and no matching border, the rectangle (0, 0)–(W, H).
   std::optional<geometry::Box> sheet_box;
+  // Pairs of contours whose boundaries share a stretch (parts drawn edge to edge; warning
+  // "nest.common_edge"), lower index first, in index order. Cutting either cuts a piece of both.
+  std::vector<std::pair<ContourId, ContourId>> shared_edges;
   std::size_t dropped_duplicates = 0;  // exact repeats of an earlier contour (error diagnostic each)
   std::size_t dropped_invalid = 0;     // open, empty, zero-length or non-finite input (error diagnostic each)
 };

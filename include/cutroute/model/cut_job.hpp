@@ -131,13 +131,15 @@ std::vector<ContourId> touched_contours(const BasicSegment& segment);
 // a contour touched by a lies directly inside (parent) a contour touched by b, unless b touches
 // the inner contour too (a line that a part inside a hole shares with the hole's edge). So all
 // that lies inside a contour comes before every segment that cuts a piece of it, whichever of
-// them ends up finishing it. Returns the pairs, sorted and without repeats, or nullopt when they
+// them ends up finishing it. The segments of parts drawn edge to edge with a contour
+// (Nest::shared_edges, outer contours in the same container) count as touching it: their cuts cut
+// pieces of its boundary too. Returns the pairs, sorted and without repeats, or nullopt when they
 // form a cycle (no admissible order exists).
 std::optional<std::vector<std::pair<std::int32_t, std::int32_t>>> segment_precedence(
     const Nest& nest, const std::vector<BasicSegment>& segments, std::vector<std::pair<std::int32_t, std::int32_t>> pairs = {});
 // The same with finishes[k], the contours segment k may be the last to cut, in place of each
-// segment's touched_contours(): a caller whose own pairs already put one segment after every
-// other around a contour (common lines: a group's outline) names only that one.
+// segment's touched_contours() and the edge neighbours: a caller whose own pairs already put one
+// segment after every other around a contour (common lines: a group's outline) names only that one.
 std::optional<std::vector<std::pair<std::int32_t, std::int32_t>>> segment_precedence(
     const Nest& nest, const std::vector<std::vector<ContourId>>& finishes,
     std::vector<std::pair<std::int32_t, std::int32_t>> pairs);
@@ -145,7 +147,8 @@ std::optional<std::vector<std::pair<std::int32_t, std::int32_t>>> segment_preced
 // Generates entry candidates and leads for every cut contour of the nest and the precedence
 // pairs: every contour before the contour that directly contains it (holes before their outer
 // contour, parts inside a hole before that hole, at any depth: transitively, everything inside a
-// contour before it). A candidate is admissible when its pierce point lies in scrap (not inside
+// contour before it), and before the parts drawn edge to edge with that contour (their cuts cut
+// pieces of its boundary and can free it first). A candidate is admissible when its pierce point lies in scrap (not inside
 // any part's material), and its pierce point and lead-in keep `clearance` from every other
 // contour and do not cross their own contour. When no candidate is admissible, fall back to a
 // shorter lead, a centre pierce for small holes, or a pierce on the contour, and say so.

@@ -284,16 +284,16 @@ CutJob make_chain_job(const Nest& nest, const EntryOptions& entries, const Chain
   const ChainBuilder builder(nest, planner, base, seg_of, entries, options);
   std::vector<std::optional<BasicSegment>> per_run(chains.size());
   deal(chains.size(), threads, 16, [&](std::size_t r) {
-         auto& run = chains[r];
-         while (run.size() >= 2) {
-           auto cands = builder.candidates(run);
-           if (!cands.empty()) {
-             per_run[r] = BasicSegment{run, std::move(cands)};
-             break;
-           }
-           run.pop_back();
-         }
-       });
+    auto& run = chains[r];
+    while (run.size() >= 2) {
+      auto cands = builder.candidates(run);
+      if (!cands.empty()) {
+        per_run[r] = BasicSegment{run, std::move(cands)};
+        break;
+      }
+      run.pop_back();
+    }
+  });
   std::vector<BasicSegment> chain_segments;
   for (auto& s : per_run)
     if (s) chain_segments.push_back(std::move(*s));

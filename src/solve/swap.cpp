@@ -41,15 +41,7 @@ bool Ops::swap_pass(Tour& t) const {
         // x moves over everything in (i, j]: stop at the first cluster x must precede.
         if (precedes(cl(x), cl(y))) break;
         // y moves over everything in [i, j): skip it if one of them must precede y.
-        bool blocked = false;
-        for (ClusterId a : p_.all_before(cl(y))) {
-          const int pa = t.pos[a.index()];
-          if (pa >= i && pa < j) {
-            blocked = true;
-            break;
-          }
-        }
-        if (blocked) continue;
+        if (before_within(t, cl(y), i, j)) continue;
       }
       const Cost delta = swap_delta(t, i, j);
       if (delta < 0) {
@@ -73,9 +65,7 @@ bool Ops::swap_pass_local(Tour& t) const {
   auto allowed = [&](int i, int j) {  // i < j
     for (ClusterId b : p_.all_after(cl(t.seq[static_cast<std::size_t>(i)])))
       if (t.pos[b.index()] > i && t.pos[b.index()] <= j) return false;
-    for (ClusterId a : p_.all_before(cl(t.seq[static_cast<std::size_t>(j)])))
-      if (t.pos[a.index()] >= i && t.pos[a.index()] < j) return false;
-    return true;
+    return !before_within(t, cl(t.seq[static_cast<std::size_t>(j)]), i, j);
   };
   for (int i = 1; i < L; ++i) {
     const ClusterId cx = cl(t.seq[static_cast<std::size_t>(i)]);

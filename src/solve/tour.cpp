@@ -540,17 +540,7 @@ bool Ops::two_opt_pass(Tour& t) const {
     for (int j = i + 1; j < L; ++j) {
       const NodeId a = t.seq[static_cast<std::size_t>(i - 1)], b = t.seq[static_cast<std::size_t>(i)];
       const NodeId c = t.seq[static_cast<std::size_t>(j)];
-      if (prec_) {
-        bool blocked = false;
-        for (ClusterId x : p_.all_before(cl(c))) {
-          const int px = t.pos[x.index()];
-          if (px >= i && px < j) {
-            blocked = true;
-            break;
-          }
-        }
-        if (blocked) break;  // any longer segment contains the same pair
-      }
+      if (prec_ && before_within(t, cl(c), i, j)) break;  // any longer segment contains the same pair
       const NodeId d = after(t, j);
       Cost delta = arc(a, c) - arc(a, b);
       if (d.valid() && d != b) delta += arc(b, d) - arc(c, d);

@@ -133,6 +133,16 @@ class Ops {
     return (prec_bits_[k >> 6] >> (k & 63)) & 1u;
   }
 
+  // Does a cluster that must come before c stand at a position in [lo, hi) of t? (A move that
+  // takes c back over that stretch, or reverses it with c, would break the pair.)
+  bool before_within(const Tour& t, ClusterId c, int lo, int hi) const {
+    for (ClusterId a : p_.all_before(c)) {
+      const int pa = t.pos[a.index()];
+      if (pa >= lo && pa < hi) return true;
+    }
+    return false;
+  }
+
   bool reinsertion_pass(Tour& t) const;
   bool two_opt_pass(Tour& t) const;
   bool asym_two_opt_pass(Tour& t) const;  // two_opt_pass on asymmetric costs (asym_two_opt.cpp)

@@ -11,6 +11,8 @@
 
 #include <cutroute/core/tolerances.hpp>
 
+#include "chain_faces.hpp"
+
 namespace cutroute::geometry {
 
 namespace {
@@ -103,8 +105,10 @@ bool same_canonical(const Contour& a, bool a_back, const Contour& b, bool b_back
   return true;
 }
 
-// Removes later copies from `ids` (input order kept); returns how many were removed.
-std::size_t drop_duplicates(const std::vector<ChainPiece>& pieces, std::vector<std::uint32_t>& ids) {
+// Removes later copies from `ids` (input order kept); returns how many were removed. With
+// `copies`, lists each removed piece under the index into `ids` of the piece it repeats.
+std::size_t drop_duplicates(const std::vector<ChainPiece>& pieces, std::vector<std::uint32_t>& ids,
+                            std::vector<std::vector<std::uint32_t>>* copies = nullptr) {
   struct Key {
     std::int32_t group;
     std::uint64_t hash;
@@ -127,6 +131,7 @@ std::size_t drop_duplicates(const std::vector<ChainPiece>& pieces, std::vector<s
     return std::tie(a.group, a.hash, a.id) < std::tie(b.group, b.hash, b.id);
   });
   std::vector<char> dropped(pieces.size(), 0);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> copy_of;  // (kept, copy) piece indices
   std::size_t count = 0;
   for (std::size_t i = 0; i < keys.size();) {
     std::size_t j = i;
@@ -137,6 +142,7 @@ std::size_t drop_duplicates(const std::vector<ChainPiece>& pieces, std::vector<s
         if (dropped[keys[y].id]) continue;
         if (same_canonical(pieces[keys[x].id].path, keys[x].backwards, pieces[keys[y].id].path, keys[y].backwards)) {
           dropped[keys[y].id] = 1;
+          copy_of.emplace_back(keys[x].id, keys[y].id);
           ++count;
         }
       }
@@ -144,22 +150,21 @@ std::size_t drop_duplicates(const std::vector<ChainPiece>& pieces, std::vector<s
     i = j;
   }
   std::erase_if(ids, [&](std::uint32_t id) { return dropped[id] != 0; });
+  if (copies != nullptr) {
+    copies->assign(ids.size(), {});
+    std::sort(copy_of.begin(), copy_of.end());
+    for (const auto& [kept, copy] : copy_of) {
+      const auto at = std::lower_bound(ids.begin(), ids.end(), kept) - ids.begin();
+      (*copies)[static_cast<std::size_t>(at)].push_back(copy);
+    }
+  }
   return count;
 }
 
-// --- step 3: match end points, nearest pairs first ---
+// --- step 4: match end points, nearest pairs first (step 3 is chain_faces.cpp) ---
 
-// End e of open piece k: e = 2k (start) or 2k + 1 (end); k indexes `open`.
-Vec2 end_point(const Contour& c, std::size_t e) {
-  return (e & 1) ? c.vertices.back().p : c.vertices.front().p;
-}
-
-// Grid cell index of a coordinate, clamped so that absurd coordinates cannot overflow.
-std::int64_t cell_of(double v, double cell) {
-  const double q = std::floor(v / cell);
-  constexpr double kLimit = 4.0e18;
-  return static_cast<std::int64_t>(std::clamp(q, -kLimit, kLimit));
-}
+using detail::cell_of;
+using detail::end_point;
 
 // Why a grid and not nanoflann: the search radius is fixed (the snap), so a uniform grid with
 // cell = snap answers each query from 3×3 cells; sorted cell keys make it deterministic and
@@ -257,7 +262,7 @@ std::vector<std::int32_t> match_ends(const std::vector<ChainPiece>& pieces, cons
   return partner;
 }
 
-// --- step 4: walk the matched ends into chains, snapping each joint to its midpoint ---
+// --- step 5: walk the matched ends into chains, snapping each joint to its midpoint ---
 
 struct Walker {
   const std::vector<ChainPiece>& pieces;
@@ -309,17 +314,33 @@ ChainResult chain_contours(const std::vector<ChainPiece>& pieces, double snap_mm
   ChainResult result;
   Sorted sorted = classify(pieces, result);
   result.dropped_duplicates += drop_duplicates(pieces, sorted.closed);
-  result.dropped_duplicates += drop_duplicates(pieces, sorted.open);
-  const std::vector<std::uint32_t>& open = sorted.open;
+  std::vector<std::vector<std::uint32_t>> copies;
+  const std::size_t open_copies = drop_duplicates(pieces, sorted.open, &copies);
+  result.dropped_duplicates += open_copies;
+
+  // Parts drawn edge to edge first, as faces; the rest by pairing ends.
+  detail::FaceChains faces;
+  std::vector<std::uint32_t> open = std::move(sorted.open);
+  if (open_copies > 0) {
+    faces = detail::chain_faces(pieces, open, copies, snap_mm);
+    result.dropped_duplicates -= faces.copies_used;
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < open.size(); ++k) {
+      if (!faces.taken[k]) open[kept++] = open[k];
+    }
+    open.resize(kept);
+  }
   const std::vector<std::int32_t> partner = match_ends(pieces, open, snap_mm);
   const Walker walker{pieces, open, partner};
 
-  // Output in input order of each chain's first piece; closed inputs interleaved likewise.
+  // Output in input order of each contour's lowest piece; closed inputs and faces interleaved likewise.
+  std::vector<std::uint32_t> closed_key;
   std::vector<char> used(open.size(), 0);
   std::size_t next_closed = 0;
   auto flush_closed_before = [&](std::uint32_t piece_index) {
     while (next_closed < sorted.closed.size() && sorted.closed[next_closed] < piece_index) {
-      const ChainPiece& p = pieces[sorted.closed[next_closed++]];
+      const ChainPiece& p = pieces[sorted.closed[next_closed]];
+      closed_key.push_back(sorted.closed[next_closed++]);
       result.closed.push_back({p.path, {p.source}, p.group});
     }
   };
@@ -349,9 +370,23 @@ ChainResult chain_contours(const std::vector<ChainPiece>& pieces, double snap_mm
       if (next == kNone || static_cast<std::size_t>(next) / 2 == first) break;
       e_in = static_cast<std::size_t>(next);
     }
+    if (cycle) closed_key.push_back(open[k]);
     (cycle ? result.closed : result.open).push_back(std::move(chain));
   }
   flush_closed_before(std::numeric_limits<std::uint32_t>::max());
+  if (!faces.contours.empty()) {
+    for (std::size_t i = 0; i < faces.contours.size(); ++i) {
+      closed_key.push_back(faces.first_piece[i]);
+      result.closed.push_back(std::move(faces.contours[i]));
+    }
+    std::vector<std::size_t> order(result.closed.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return closed_key[a] < closed_key[b]; });
+    std::vector<ChainedContour> sorted_closed;
+    sorted_closed.reserve(order.size());
+    for (std::size_t i : order) sorted_closed.push_back(std::move(result.closed[i]));
+    result.closed = std::move(sorted_closed);
+  }
   return result;
 }
 

@@ -53,9 +53,10 @@ const Row kRows[] = {
    "inch file: our snap is 0.01 mm, the README's 0.01 in = 0.254 mm; ELLIPSE arc ends meet within 0.254 mm"
    " but not 0.01 mm. With --snap 0.254 we get exactly the README (SnapInDrawingUnits below)"},
   {"d2g_fraesen_test_02_2004", 7, 0, 3, 4, 2250, 7, 0, 3, 4, false, 1, ""},
-  {"d2g_pumpenteile", 59, 2, 29, 29, 6043, 58, 3, 31, 27, false, 360,
-   "a milling drawing: 3 outlines repeated on a second MILL layer are dropped as duplicates (their length is"
-   " missing), pockets cross rings (error diagnostics), so parity differs"},
+  {"d2g_pumpenteile", 59, 2, 29, 29, 6043, 60, 2, 29, 31, false, 142,
+   "a milling drawing: a circle drawn twice on layer MILL: 2 counts once (its 141 mm are missing); three"
+   " squares drawn edge to edge on MILL: 3 close each from its own lines, where the README pairs ends that"
+   " meet three and four to a point; pockets cross rings (error diagnostics), so parity differs"},
   {"deepnestsharp_ReadMeExampleSmall", 29, 4, 19, 10, 7821, 30, 1, 11, 18, true, 10,
    "the README's fallback read lost the file's last entity (its L is ours minus that entity); parts that"
    " overlap by ~0.2 mm change parity; sheet 'Plate H200 W600' recognised (README outer 19 = sheet + 18)"},

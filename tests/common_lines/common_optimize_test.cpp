@@ -35,7 +35,8 @@ struct Layout {
 
 // cols x rows rectangles of w x h drawn touching on a 1000 x 600 sheet, each with a round hole
 // of radius r (none when r = 0). Shared length: (cols - 1) * rows * h + (rows - 1) * cols * w.
-Layout grid(const fs::path& dir, int cols, int rows, double w, double h, double r) {
+// With `lines` each rectangle is four LINE entities, so a shared edge is drawn once per part.
+Layout grid(const fs::path& dir, int cols, int rows, double w, double h, double r, bool lines = false) {
   DxfBuilder b;
   b.insunits(4);
   b.lwpolyline({Vertex{{0, 0}, 0}, Vertex{{1000, 0}, 0}, Vertex{{1000, 600}, 0}, Vertex{{0, 600}, 0}}, true, "SHEET");
@@ -44,8 +45,13 @@ Layout grid(const fs::path& dir, int cols, int rows, double w, double h, double 
   for (int j = 0; j < rows; ++j)
     for (int i = 0; i < cols; ++i) {
       const double x = o.x + i * w, y = o.y + j * h;
-      b.lwpolyline({Vertex{{x, y}, 0}, Vertex{{x + w, y}, 0}, Vertex{{x + w, y + h}, 0}, Vertex{{x, y + h}, 0}}, true,
-                   "PARTS");
+      if (lines) {
+        const Vec2 c[4] = {{x, y}, {x + w, y}, {x + w, y + h}, {x, y + h}};
+        for (int k = 0; k < 4; ++k) b.line(c[k], c[(k + 1) % 4], "PARTS");
+      } else {
+        b.lwpolyline({Vertex{{x, y}, 0}, Vertex{{x + w, y}, 0}, Vertex{{x + w, y + h}, 0}, Vertex{{x, y + h}, 0}}, true,
+                     "PARTS");
+      }
       l.perimeters += 2 * (w + h);
       if (r > 0) {
         b.circle({x + w / 2, y + h / 2}, r, "PARTS");
@@ -168,6 +174,31 @@ TEST(CommonOptimize, HolesOfInnerPartsBeforeTheLinesAroundThem) {
     for (const auto& f : check.failures) ADD_FAILURE() << f;
     EXPECT_EQ(check.runs, 36 + 36);
   }
+  std::filesystem::remove_all(dir);
+}
+
+// Parts drawn edge to edge with LINE entities draw each shared edge twice, once per part. Every
+// part is read closed from its own lines (before, the second copy was dropped as a duplicate and
+// one part of each pair left open, uncut), and both techniques cut every part and hole.
+TEST(CommonOptimize, PartsDrawnWithLinesEdgeToEdge) {
+  const auto dir = fresh_temp_dir("common-lines-drawn");
+  const Layout l = grid(dir, 4, 3, 20, 12, 3, true);
+  const model::Nest nest = load(l.dxf);
+  std::size_t outers = 0, holes = 0;
+  for (const auto& c : nest.contours) {
+    outers += c.role == model::ContourRole::outer;
+    holes += c.role == model::ContourRole::hole;
+  }
+  EXPECT_EQ(outers, 12u);
+  EXPECT_EQ(holes, 12u);
+  const auto common = optimize_and_check(l.dxf, dir, "--technique common --time-limit 0 --work-limit 0.05 --threads 1", 0.005);
+  EXPECT_NEAR(common.boundary_cut_mm, l.perimeters - l.shared, 0.01);
+  EXPECT_EQ(common.runs, 12 + 1 + 3 + 2);  // holes, the outline, 3 vertical and 2 horizontal lines
+  const OptRun standard = optimize(l.dxf, dir, "--technique standard --time-limit 0 --work-limit 0.05 --threads 1");
+  ASSERT_EQ(standard.cmd.exit_code, 0) << standard.cmd.err;
+  const auto check = check_common_program(nest, standard.program, 0.005, false);
+  for (const auto& f : check.failures) ADD_FAILURE() << f;
+  EXPECT_EQ(check.runs, 12 + 12);
   std::filesystem::remove_all(dir);
 }
 

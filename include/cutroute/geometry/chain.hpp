@@ -28,7 +28,8 @@ struct ChainResult {
   std::vector<ChainedContour> closed;   // closed contours (closed inputs pass through)
   std::vector<ChainedContour> open;     // chains whose ends found no partner
   std::size_t dropped_zero_length = 0;  // pieces shorter than tol::kSamePointMm
-  std::size_t dropped_duplicates = 0;   // pieces identical to another (either direction)
+  std::size_t dropped_duplicates = 0;   // pieces identical to another (either direction), less
+                                        // the copies kept as the edge of a second part (step 3)
   std::size_t dropped_invalid = 0;      // pieces with a NaN or infinite coordinate or bulge
 };
 
@@ -42,13 +43,19 @@ struct ChainResult {
 //  2. drop exact duplicates: the same vertices (bit-exact, -0 == +0) read forwards or backwards,
 //     in the same group; the first in input order is kept. (Closed pieces that repeat another
 //     from a different start vertex are not caught here; model::build_nest() reports them.)
-//  3. match end points: all pairs of ends (same group) within snap_mm, found through a uniform
+//  3. parts drawn edge to edge: where an open piece has an exact copy and more than two ends
+//     meet at a point, its connected group of pieces is traced as the faces of a planar graph
+//     and each face that is a part becomes a contour; an edge drawn twice then bounds two parts,
+//     one drawing each; its points lie at the mean of the ends that meet there
+//     (detail::chain_faces(), src/geometry/chain_faces.hpp, says when a group
+//     is left to the next steps instead, its copies dropped).
+//  4. match end points: all pairs of ends (same group) within snap_mm, found through a uniform
 //     grid of cell snap_mm, sorted by distance (ties by index) and matched greedily, so each end
 //     gets its nearest partner not already taken. Both ends of one piece may match each other
 //     (an open polyline or arc that closes itself), a single straight line may not.
-//  4. walk: pieces linked through matched ends form paths (open) and cycles (closed); each
+//  5. walk: pieces linked through matched ends form paths (open) and cycles (closed); each
 //     joint is moved to the midpoint of its two ends.
-// Output is deterministic: contours in input order of their first piece; a cycle starts at its
+// Output is deterministic: contours in input order of their lowest piece; a cycle starts at its
 // lowest-index piece, travelled in that piece's direction; an open chain starts at its free end
 // reached by walking backwards from its lowest-index piece.
 // Cost: O(n log n) for n pieces (plus k² distance checks, not memory, for k ends crowded

@@ -321,7 +321,7 @@ ChainResult chain_contours(const std::vector<ChainPiece>& pieces, double snap_mm
   // Parts drawn edge to edge first, as faces; the rest by pairing ends.
   detail::FaceChains faces;
   std::vector<std::uint32_t> open = std::move(sorted.open);
-  if (open_copies > 0) {
+  if (!open.empty()) {
     faces = detail::chain_faces(pieces, open, copies, snap_mm);
     result.dropped_duplicates -= faces.copies_used;
     std::size_t kept = 0;

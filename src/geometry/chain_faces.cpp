@@ -6,6 +6,9 @@
 #include <numbers>
 #include <tuple>
 
+#include <cutroute/geometry/intersect.hpp>
+#include <cutroute/geometry/spatial_index.hpp>
+
 namespace cutroute::geometry::detail {
 
 namespace {
@@ -14,24 +17,23 @@ constexpr std::int32_t kUnset = -1;
 // More ends than this in one snap cell is a crowd (a fan of lines), not a corner of parts.
 constexpr std::size_t kMaxEndsPerCell = 64;
 
-// The ends of all open pieces in a grid of cell `snap`, to find the ends that meet an end.
+// The ends of all pieces in a grid of cell `snap`, to find the ends that meet an end.
 struct EndGrid {
   struct Cell {
     std::int64_t ix, iy;
     std::uint32_t end;
   };
   std::vector<Cell> cells;
-  double snap;
+  double snap = 0;
 
   // Calls f(end) for the ends in the 3 × 3 cells around p; false when a cell is crowded.
   template <class F>
   bool for_near(Vec2 p, F&& f) const {
     const std::int64_t ix = cell_of(p.x, snap), iy = cell_of(p.y, snap);
+    auto less = [](const Cell& a, const Cell& b) { return std::tie(a.ix, a.iy) < std::tie(b.ix, b.iy); };
     for (std::int64_t dx = -1; dx <= 1; ++dx) {
       for (std::int64_t dy = -1; dy <= 1; ++dy) {
-        const Cell key{ix + dx, iy + dy, 0};
-        auto less = [](const Cell& a, const Cell& b) { return std::tie(a.ix, a.iy) < std::tie(b.ix, b.iy); };
-        const auto [lo, hi] = std::equal_range(cells.begin(), cells.end(), key, less);
+        const auto [lo, hi] = std::equal_range(cells.begin(), cells.end(), Cell{ix + dx, iy + dy, 0}, less);
         if (static_cast<std::size_t>(hi - lo) > kMaxEndsPerCell) return false;
         for (auto it = lo; it != hi; ++it) f(it->end);
       }
@@ -58,22 +60,50 @@ Leaving leaving(const Contour& c, std::uint32_t half, bool forward) {
   return {std::atan2(t.y, t.x), k, half};
 }
 
-// One connected group of pieces: its pieces (indices into `open`) and points.
+// A piece, or the stretch of a piece between two points where other pieces end on it.
+struct Sub {
+  Contour path;          // open
+  std::uint32_t parent;  // index into `open`
+};
+
+// One drawing of an edge: the stretch and the piece (the parent or one of its exact copies).
+struct Drawing {
+  std::uint32_t sub;
+  std::uint32_t piece;  // index into `pieces`
+};
+
+// A connected group of stretches: their indices and points.
 struct Group {
-  std::vector<std::uint32_t> pieces;
+  std::vector<std::uint32_t> subs;
   std::vector<Vec2> points;
   bool usable = true;
+};
+
+// An edge of the planar graph: stretches joining the same two points along the same curve.
+struct Edge {
+  std::vector<Drawing> drawings;  // ascending piece index
+  std::uint32_t rep = 0;          // the stretch whose geometry and direction the edge takes
+};
+
+// A stretch of a face boundary drawn by one piece (consecutive stretches of a piece merged).
+struct Run {
+  Contour path;  // open, in the face's direction
+  std::uint32_t piece;
+  bool along;  // runs in the direction the piece was drawn
 };
 
 class Tracer {
  public:
   Tracer(const std::vector<ChainPiece>& pieces, const std::vector<std::uint32_t>& open,
          const std::vector<std::vector<std::uint32_t>>& copies, double snap)
-      : pieces_(pieces), open_(open), copies_(copies), snap_(snap), point_of_(2 * open.size(), kUnset),
-        in_group_(open.size(), 0), end_serial_(2 * open.size(), 0) {
+      : pieces_(pieces), open_(open), copies_(copies), snap_(snap) {
+    split();
+    point_of_.assign(2 * subs_.size(), kUnset);
+    end_serial_.assign(2 * subs_.size(), 0);
+    in_group_.assign(subs_.size(), 0);
     grid_.snap = snap;
-    grid_.cells.resize(2 * open.size());
-    for (std::size_t e = 0; e < 2 * open.size(); ++e) {
+    grid_.cells.resize(2 * subs_.size());
+    for (std::size_t e = 0; e < 2 * subs_.size(); ++e) {
       const Vec2 p = end_pos(e);
       grid_.cells[e] = {cell_of(p.x, snap), cell_of(p.y, snap), static_cast<std::uint32_t>(e)};
     }
@@ -84,19 +114,89 @@ class Tracer {
 
   void run(FaceChains& out) {
     out.taken.assign(open_.size(), 0);
-    for (std::size_t k = 0; k < open_.size(); ++k) {
-      if (copies_[k].empty() || in_group_[k]) continue;
-      Group g = collect(static_cast<std::uint32_t>(k));
+    for (std::uint32_t s = 0; s < subs_.size(); ++s) {
+      if (in_group_[s] || !is_seed(s)) continue;
+      Group g = collect(s);
       if (g.usable) trace(g, out);
     }
   }
 
  private:
   const Contour& path(std::uint32_t k) const { return pieces_[open_[k]].path; }
-  std::int32_t group_id(std::uint32_t k) const { return pieces_[open_[k]].group; }
-  Vec2 end_pos(std::size_t e) const { return end_point(path(static_cast<std::uint32_t>(e / 2)), e); }
+  std::int32_t layer(std::uint32_t sub) const { return pieces_[open_[subs_[sub].parent]].group; }
+  Vec2 end_pos(std::size_t e) const { return end_point(subs_[e / 2].path, e); }
+  std::size_t point(std::uint32_t sub, bool end) const { return static_cast<std::size_t>(point_of_[2 * sub + end]); }
 
-  // Breadth-first over pieces joined at points (ends within snap of each other, same layer).
+  // Cuts each single line or arc where another piece of its layer ends on it, away from its
+  // ends: there the pieces of two neighbours meet a longer edge of a third (a T), and the
+  // stretches on either side can then be told apart. A cut point is the other piece's end.
+  void split() {
+    const std::size_t n = open_.size();
+    std::vector<Box> boxes(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      if (segment_count(path(static_cast<std::uint32_t>(k))) == 1)
+        boxes[k] = segment(path(static_cast<std::uint32_t>(k)), 0).bounding_box().inflated(snap_);
+    }
+    const StaticSpatialIndex index(boxes);
+    std::vector<std::vector<std::pair<double, Vec2>>> cuts(n);
+    for (std::size_t e = 0; e < 2 * n; ++e) {
+      const auto own = static_cast<std::uint32_t>(e / 2);
+      const Vec2 p = end_point(path(own), e);
+      index.visit(Box{p.x, p.y, p.x, p.y}, [&](std::uint32_t k) {
+        if (k == own || pieces_[open_[k]].group != pieces_[open_[own]].group) return true;
+        const Segment s = segment(path(k), 0);
+        const SegmentClosest c = closest_point(s, p);
+        if (c.distance <= snap_ && c.length_along > snap_ && c.length_along < s.length() - snap_)
+          cuts[k].emplace_back(c.length_along, p);
+        return true;
+      });
+    }
+    subs_of_.resize(n);
+    for (std::uint32_t k = 0; k < n; ++k) {
+      auto& at = cuts[k];
+      std::sort(at.begin(), at.end(), [](const auto& a, const auto& b) {
+        return std::tie(a.first, a.second.x, a.second.y) < std::tie(b.first, b.second.x, b.second.y);
+      });
+      if (at.empty()) {
+        subs_of_[k].push_back(static_cast<std::uint32_t>(subs_.size()));
+        subs_.push_back({path(k), k});
+        continue;
+      }
+      const Segment s = segment(path(k), 0);
+      const double length = s.length(), sweep = s.sweep();
+      double from = 0;
+      Vec2 start = s.a;
+      auto add = [&](double to, Vec2 end) {
+        const double bulge = s.is_arc() ? std::tan(sweep * (to - from) / length / 4) : 0.0;
+        subs_of_[k].push_back(static_cast<std::uint32_t>(subs_.size()));
+        subs_.push_back({Contour{{{start, bulge}, {end, 0.0}}, false}, k});
+        from = to;
+        start = end;
+      };
+      for (const auto& [along, p] : at) {
+        if (along - from > snap_) add(along, p);
+      }
+      add(length, s.b);
+    }
+  }
+
+  // Where pieces of parts drawn edge to edge may be: a piece with an exact copy or cut by
+  // another's end, or an end where more than two ends meet.
+  bool is_seed(std::uint32_t s) {
+    const std::uint32_t k = subs_[s].parent;
+    if (!copies_[k].empty() || subs_of_[k].size() > 1) return true;
+    for (std::uint32_t e = 2 * s; e <= 2 * s + 1; ++e) {
+      std::size_t meeting = 0;
+      const Vec2 p = end_pos(e);
+      grid_.for_near(p, [&](std::uint32_t f) {
+        if (layer(f / 2) == layer(s) && norm2(end_pos(f) - p) <= snap_ * snap_) ++meeting;
+      });
+      if (meeting > 2) return true;
+    }
+    return false;
+  }
+
+  // Breadth-first over stretches joined at points (ends within snap of each other, same layer).
   Group collect(std::uint32_t start) {
     Group g;
     ++serial_;
@@ -104,9 +204,9 @@ class Tracer {
     in_group_[start] = 1;
     std::vector<std::uint32_t> cluster;
     for (std::size_t q = 0; q < queue.size(); ++q) {
-      const std::uint32_t k = queue[q];
-      g.pieces.push_back(k);
-      for (std::uint32_t e = 2 * k; e <= 2 * k + 1; ++e) {
+      const std::uint32_t s = queue[q];
+      g.subs.push_back(s);
+      for (std::uint32_t e = 2 * s; e <= 2 * s + 1; ++e) {
         if (point_of_[e] != kUnset) continue;
         const auto id = static_cast<std::int32_t>(g.points.size());
         cluster.assign(1, e);
@@ -115,7 +215,7 @@ class Tracer {
         for (std::size_t c = 0; c < cluster.size(); ++c) {
           const Vec2 p = end_pos(cluster[c]);
           const bool calm = grid_.for_near(p, [&](std::uint32_t f) {
-            if (group_id(f / 2) != group_id(k) || !(norm2(end_pos(f) - p) <= snap_ * snap_)) return;
+            if (layer(f / 2) != layer(s) || !(norm2(end_pos(f) - p) <= snap_ * snap_)) return;
             if (point_of_[f] != kUnset) {
               // Met through an end that a crowded cell hid from an earlier group, or joined to
               // another point of this one: the points are not what they seem.
@@ -146,16 +246,60 @@ class Tracer {
     return g;
   }
 
-  std::size_t times_drawn(std::uint32_t k) const { return 1 + copies_[k].size(); }
+  // Stretches between the same two points along the same curve (exact copies, or the halves
+  // of a long edge that two neighbours draw) are one edge, drawn once per stretch and copy.
+  std::vector<Edge> edges_of(const Group& g) const {
+    std::vector<std::uint32_t> subs = g.subs;
+    auto key = [&](std::uint32_t s) {
+      const std::size_t a = point(s, false), b = point(s, true);
+      return std::pair<std::size_t, std::size_t>(std::min(a, b), std::max(a, b));
+    };
+    std::sort(subs.begin(), subs.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return std::pair(key(a), a) < std::pair(key(b), b);
+    });
+    std::vector<Edge> edges;
+    for (std::size_t i = 0; i < subs.size();) {
+      std::size_t j = i;
+      while (j < subs.size() && key(subs[j]) == key(subs[i])) ++j;
+      const std::size_t first_edge = edges.size();
+      for (std::size_t x = i; x < j; ++x) {
+        const std::uint32_t s = subs[x];
+        const Contour& c = subs_[s].path;
+        const Vec2 mid = point_at_length(c, length(c) / 2);
+        Edge* same = nullptr;
+        for (std::size_t e = first_edge; e < edges.size() && same == nullptr; ++e) {
+          const Contour& r = subs_[edges[e].rep].path;
+          if (norm2(point_at_length(r, length(r) / 2) - mid) <= snap_ * snap_) same = &edges[e];
+        }
+        if (same == nullptr) {
+          edges.emplace_back();
+          same = &edges.back();
+          same->rep = s;
+        }
+        const std::uint32_t k = subs_[s].parent;
+        same->drawings.push_back({s, open_[k]});
+        for (std::uint32_t copy : copies_[k]) same->drawings.push_back({s, copy});
+      }
+      i = j;
+    }
+    for (Edge& e : edges) {
+      std::sort(e.drawings.begin(), e.drawings.end(),
+                [](const Drawing& a, const Drawing& b) { return std::tie(a.piece, a.sub) < std::tie(b.piece, b.sub); });
+    }
+    return edges;
+  }
 
   void trace(const Group& g, FaceChains& out) {
-    const std::size_t n = g.pieces.size();
-    // Degrees count each drawing of an edge.
+    const std::vector<Edge> edges = edges_of(g);
+    const std::size_t n = edges.size();
+    // Half-edge 2i runs along edge i's stretch `rep` in its direction, 2i + 1 against it.
+    auto tail = [&](std::uint32_t h) { return point(edges[h / 2].rep, (h & 1) != 0); };
+    auto head = [&](std::uint32_t h) { return tail(h ^ 1u); };
     std::vector<std::size_t> degree(g.points.size(), 0);
-    for (std::uint32_t k : g.pieces) {
-      if (times_drawn(k) > 2 || point_of_[2 * k] == point_of_[2 * k + 1]) return;
-      degree[static_cast<std::size_t>(point_of_[2 * k])] += times_drawn(k);
-      degree[static_cast<std::size_t>(point_of_[2 * k + 1])] += times_drawn(k);
+    for (const Edge& e : edges) {
+      if (e.drawings.size() > 2 || point(e.rep, false) == point(e.rep, true)) return;
+      degree[point(e.rep, false)] += e.drawings.size();
+      degree[point(e.rep, true)] += e.drawings.size();
     }
     bool junction = false;
     for (std::size_t d : degree) {
@@ -164,11 +308,8 @@ class Tracer {
     }
     if (!junction) return;
 
-    // Half-edge 2i runs along piece g.pieces[i] in its direction, 2i + 1 against it.
-    auto tail = [&](std::uint32_t h) { return static_cast<std::size_t>(point_of_[2 * g.pieces[h / 2] + (h & 1)]); };
-    auto head = [&](std::uint32_t h) { return tail(h ^ 1u); };
     std::vector<std::vector<Leaving>> around(g.points.size());
-    for (std::uint32_t h = 0; h < 2 * n; ++h) around[tail(h)].push_back(leaving(path(g.pieces[h / 2]), h, (h & 1) == 0));
+    for (std::uint32_t h = 0; h < 2 * n; ++h) around[tail(h)].push_back(leaving(subs_[edges[h / 2].rep].path, h, (h & 1) == 0));
     std::vector<std::uint32_t> slot(2 * n);
     for (auto& list : around) {
       std::sort(list.begin(), list.end(), [](const Leaving& a, const Leaving& b) {
@@ -179,8 +320,8 @@ class Tracer {
         const Leaving& b = list[(i + 1) % list.size()];
         double gap = std::abs(b.angle - a.angle);
         gap = std::min(gap, 2 * std::numbers::pi - gap);
-        // Two pieces leaving along one curve overlap: the order around the point is unknown.
-        if (gap < 1e-9 && std::abs(b.curvature - a.curvature) < 1e-9) return;
+        // Two edges leaving along one curve overlap: the order around the point is unknown.
+        if (list.size() > 1 && gap < 1e-9 && std::abs(b.curvature - a.curvature) < 1e-9) return;
         slot[a.half] = static_cast<std::uint32_t>(i);
       }
     }
@@ -200,11 +341,17 @@ class Tracer {
         face_of[h] = static_cast<std::int32_t>(faces.size() - 1);
         faces.back().push_back(h);
       }
-      if (faces.back().front() != h0 || next(faces.back().back()) != h0) return;
+      if (next(faces.back().back()) != h0) return;
     }
     std::int32_t outside = kUnset;
     for (std::size_t f = 0; f < faces.size(); ++f) {
-      const double area = signed_area(face_contour(g, faces[f]));
+      Contour c;
+      c.closed = true;
+      for (std::uint32_t h : faces[f]) {
+        const Contour& p = subs_[edges[h / 2].rep].path;
+        append(c, (h & 1) ? reversed(p) : p, g.points[tail(h)]);
+      }
+      const double area = signed_area(c);
       if (area < 0 && outside == kUnset) {
         outside = static_cast<std::int32_t>(f);
       } else if (!(area > snap_ * snap_)) {
@@ -223,7 +370,7 @@ class Tracer {
     for (std::size_t i = 0; i < n; ++i) {
       const auto a = static_cast<std::size_t>(face_of[2 * i]), b = static_cast<std::size_t>(face_of[2 * i + 1]);
       if (a == b) return;
-      if (times_drawn(g.pieces[i]) == 2) {
+      if (edges[i].drawings.size() == 2) {
         for (std::size_t f : {a, b}) {
           if (part[f] == 0) return;
           if (part[f] == -1) queue.push_back(f);
@@ -256,74 +403,172 @@ class Tracer {
       }
     }
 
-    // Which part drew which copy is not in the drawing; parts are usually drawn one after the
-    // other, so each copy goes to the part whose other entities lie nearer to it in the file.
+    // Which part drew which drawing of a shared edge is not in the drawing; parts are usually
+    // drawn one after the other, so the first drawing goes to the part whose other edges were
+    // drawn nearer to it in the file.
     std::vector<double> mean_index(faces.size(), 0.0);
     for (std::size_t f = 0; f < faces.size(); ++f) {
-      for (std::uint32_t h : faces[f]) mean_index[f] += open_[g.pieces[h / 2]];
+      for (std::uint32_t h : faces[f]) mean_index[f] += edges[h / 2].drawings.front().piece;
       mean_index[f] /= static_cast<double>(faces[f].size());
     }
-    std::vector<char> swapped(n, 0);
+    std::vector<Drawing> drawing_of(2 * n);  // for the half-edges of parts
     for (std::size_t i = 0; i < n; ++i) {
-      const std::uint32_t k = g.pieces[i];
-      if (copies_[k].empty()) continue;
-      const double p = open_[k], q = copies_[k].front();
-      const double a = mean_index[static_cast<std::size_t>(face_of[2 * i])];
-      const double b = mean_index[static_cast<std::size_t>(face_of[2 * i + 1])];
-      swapped[i] = std::abs(p - b) + std::abs(q - a) < std::abs(p - a) + std::abs(q - b);
+      const auto& d = edges[i].drawings;
+      const std::size_t a = static_cast<std::size_t>(face_of[2 * i]), b = static_cast<std::size_t>(face_of[2 * i + 1]);
+      if (d.size() == 1) {
+        drawing_of[part[a] == 1 ? 2 * i : 2 * i + 1] = d[0];
+        continue;
+      }
+      const double p = d[0].piece, q = d[1].piece;
+      const bool swap = std::abs(p - mean_index[b]) + std::abs(q - mean_index[a]) <
+                        std::abs(p - mean_index[a]) + std::abs(q - mean_index[b]);
+      drawing_of[2 * i] = d[swap ? 1 : 0];
+      drawing_of[2 * i + 1] = d[swap ? 0 : 1];
     }
+    own_cut_pieces(edges, face_of, part, drawing_of);
+
+    std::vector<char> used(pieces_.size(), 0);
     for (std::size_t f = 0; f < faces.size(); ++f) {
-      if (part[f] == 1) emit(g, faces[f], swapped, out);
+      if (part[f] != 1) continue;
+      emit(g, edges, faces[f], drawing_of, out);
+      for (std::uint32_t h : faces[f]) used[drawing_of[h].piece] = 1;
     }
-    for (std::uint32_t k : g.pieces) {
+    for (std::uint32_t s : g.subs) {
+      const std::uint32_t k = subs_[s].parent;
       out.taken[k] = 1;
-      if (times_drawn(k) == 2) ++out.copies_used;
+      for (std::uint32_t copy : copies_[k]) {
+        if (used[copy]) {
+          ++out.copies_used;
+          used[copy] = 0;  // counted once
+        }
+      }
     }
   }
 
-  Contour face_contour(const Group& g, const std::vector<std::uint32_t>& face) const {
-    Contour c;
-    c.closed = true;
+  // A piece cut into stretches (the long edge of a T) is one part's edge: on one side all its
+  // stretches border that part, on the other its neighbours. Its stretches go to that side, so
+  // the part's contour keeps the piece whole instead of taking a neighbour's drawing of a stretch.
+  void own_cut_pieces(const std::vector<Edge>& edges, const std::vector<std::int32_t>& face_of,
+                      const std::vector<std::int8_t>& part, std::vector<Drawing>& drawing_of) const {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> by_parent;  // (parent, edge) per stretch
+    for (std::uint32_t e = 0; e < edges.size(); ++e) {
+      for (const Drawing& d : edges[e].drawings) {
+        if (d.piece == open_[subs_[d.sub].parent] && subs_of_[subs_[d.sub].parent].size() > 1)
+          by_parent.emplace_back(subs_[d.sub].parent, e);
+      }
+    }
+    std::sort(by_parent.begin(), by_parent.end());
+    // The half-edge of edge e on the given side of piece k's direction (0: its left).
+    auto half_on = [&](std::uint32_t k, std::uint32_t e, int side) {
+      std::uint32_t sub = 0;
+      for (const Drawing& d : edges[e].drawings) {
+        if (d.piece == open_[k]) sub = d.sub;
+      }
+      const bool same = point(sub, false) == point(edges[e].rep, false);
+      return 2 * e + ((side == 0) == same ? 0u : 1u);
+    };
+    for (std::size_t i = 0; i < by_parent.size();) {
+      std::size_t j = i;
+      while (j < by_parent.size() && by_parent[j].first == by_parent[i].first) ++j;
+      const std::uint32_t k = by_parent[i].first;
+      int owner = -1;
+      for (int side = 0; side < 2; ++side) {
+        const std::int32_t f = face_of[half_on(k, by_parent[i].second, side)];
+        bool one_face = part[static_cast<std::size_t>(f)] == 1;
+        for (std::size_t x = i; x < j; ++x) one_face = one_face && face_of[half_on(k, by_parent[x].second, side)] == f;
+        if (one_face) owner = owner == -1 ? side : 2;  // 2: both sides, undecided
+      }
+      if (owner == 0 || owner == 1) {
+        for (std::size_t x = i; x < j; ++x) {
+          const std::uint32_t e = by_parent[x].second;
+          const std::uint32_t h = half_on(k, e, owner);
+          if (edges[e].drawings.size() == 2 && drawing_of[h].piece != open_[k]) std::swap(drawing_of[h], drawing_of[h ^ 1u]);
+        }
+      }
+      i = j;
+    }
+  }
+
+  // Appends path p to c without its last vertex, its first vertex moved to `at`.
+  static void append(Contour& c, const Contour& p, Vec2 at) {
+    const std::size_t first = c.vertices.size();
+    c.vertices.insert(c.vertices.end(), p.vertices.begin(), p.vertices.end() - 1);
+    c.vertices[first].p = at;
+  }
+
+  // A part's face as a contour in chain_contours()'s conventions: one vertex per corner (the
+  // stretches of one piece merged back), starting at its lowest-index piece, travelled in that
+  // piece's direction.
+  void emit(const Group& g, const std::vector<Edge>& edges, const std::vector<std::uint32_t>& face,
+            const std::vector<Drawing>& drawing_of, FaceChains& out) const {
+    // Stretches in the face's direction, each from the point where the face enters it.
+    struct Step {
+      Contour path;
+      Drawing d;
+      bool forward;  // along the stretch's own (its piece's) direction
+    };
+    std::vector<Step> steps;
     for (std::uint32_t h : face) {
-      const Contour& p = path(g.pieces[h / 2]);
-      const Contour piece = (h & 1) ? reversed(p) : p;
-      const std::size_t first = c.vertices.size();
-      c.vertices.insert(c.vertices.end(), piece.vertices.begin(), piece.vertices.end() - 1);
-      c.vertices[first].p = g.points[static_cast<std::size_t>(point_of_[2 * g.pieces[h / 2] + (h & 1)])];
+      const Drawing d = drawing_of[h];
+      const std::size_t from = point(edges[h / 2].rep, (h & 1) != 0);
+      const bool forward = point(d.sub, false) == from;
+      Step st{forward ? subs_[d.sub].path : reversed(subs_[d.sub].path), d, forward};
+      st.path.vertices.front().p = g.points[from];
+      st.path.vertices.back().p = g.points[point(d.sub, forward)];
+      steps.push_back(std::move(st));
     }
-    return c;
-  }
-
-  // A part's face as a contour in chain_contours()'s conventions: it starts at its lowest-index
-  // piece, travelled in that piece's direction. An edge drawn twice gives its first drawing to the
-  // face that runs along it and its copy to the face that runs against it, or the other way
-  // round where `swapped`.
-  void emit(const Group& g, std::vector<std::uint32_t> face, const std::vector<char>& swapped, FaceChains& out) const {
-    // The drawing (piece index) each half-edge of the face takes, fixed before any reversal.
-    std::vector<std::uint32_t> drawn(face.size());
-    for (std::size_t i = 0; i < face.size(); ++i) {
-      const std::uint32_t h = face[i], k = g.pieces[h / 2];
-      const bool copy = !copies_[k].empty() && ((h & 1) != 0) != (swapped[h / 2] != 0);
-      drawn[i] = copy ? copies_[k].front() : open_[k];
+    auto joins = [&](const Step& a, const Step& b) {
+      return a.d.piece == b.d.piece && subs_[a.d.sub].parent == subs_[b.d.sub].parent && a.forward == b.forward &&
+             segment_count(a.path) == 1 && segment_count(b.path) == 1;
+    };
+    // Start at the beginning of a run of one piece.
+    std::size_t begin = 0;
+    while (begin < steps.size() && joins(steps[(begin + steps.size() - 1) % steps.size()], steps[begin])) ++begin;
+    if (begin == steps.size()) return;  // not reachable: a single segment cannot close
+    std::rotate(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(begin), steps.end());
+    std::vector<Run> runs;
+    for (std::size_t i = 0; i < steps.size();) {
+      std::size_t j = i + 1;
+      double sweep = steps[i].path.vertices.front().bulge == 0 ? 0 : segment(steps[i].path, 0).sweep();
+      while (j < steps.size() && joins(steps[j - 1], steps[j])) {
+        sweep += steps[j].path.vertices.front().bulge == 0 ? 0 : segment(steps[j].path, 0).sweep();
+        ++j;
+      }
+      Run r;
+      r.piece = steps[i].d.piece;
+      if (j == i + 1) {
+        r.path = steps[i].path;
+      } else {
+        r.path = Contour{{{steps[i].path.vertices.front().p, sweep == 0 ? 0.0 : std::tan(sweep / 4)},
+                          {steps[j - 1].path.vertices.back().p, 0.0}},
+                         false};
+      }
+      const std::uint32_t k = subs_[steps[i].d.sub].parent;
+      const bool same_start = r.piece == open_[k] || pieces_[r.piece].path.vertices.front().p == path(k).vertices.front().p;
+      r.along = steps[i].forward == same_start;
+      runs.push_back(std::move(r));
+      i = j;
     }
-    const auto lowest = std::min_element(drawn.begin(), drawn.end()) - drawn.begin();
-    std::rotate(face.begin(), face.begin() + lowest, face.end());
-    std::rotate(drawn.begin(), drawn.begin() + lowest, drawn.end());
-    // Whether the face runs along its first drawing as drawn (a copy may be drawn reversed).
-    const std::uint32_t k0 = g.pieces[face.front() / 2];
-    const bool same_start = drawn.front() == open_[k0] || pieces_[drawn.front()].path.vertices.front().p == path(k0).vertices.front().p;
-    if (((face.front() & 1) == 0) != same_start) {
-      std::reverse(face.begin(), face.end());
-      std::reverse(drawn.begin(), drawn.end());
-      for (std::uint32_t& h : face) h ^= 1u;  // the same pieces, run the other way
-      std::rotate(face.begin(), face.end() - 1, face.end());
-      std::rotate(drawn.begin(), drawn.end() - 1, drawn.end());
+    auto lowest = [&] {
+      return std::min_element(runs.begin(), runs.end(), [](const Run& a, const Run& b) { return a.piece < b.piece; });
+    };
+    std::rotate(runs.begin(), lowest(), runs.end());
+    if (!runs.front().along) {
+      std::reverse(runs.begin(), runs.end());
+      for (Run& r : runs) {
+        r.path = reversed(r.path);
+        r.along = !r.along;
+      }
+      std::rotate(runs.begin(), lowest(), runs.end());
     }
     ChainedContour c;
-    c.group = group_id(k0);
-    c.contour = face_contour(g, face);
-    for (std::uint32_t piece : drawn) c.sources.push_back(pieces_[piece].source);
-    out.first_piece.push_back(drawn.front());
+    c.group = layer(steps.front().d.sub);
+    c.contour.closed = true;
+    for (const Run& r : runs) {
+      append(c.contour, r.path, r.path.vertices.front().p);
+      c.sources.push_back(pieces_[r.piece].source);
+    }
+    out.first_piece.push_back(runs.front().piece);
     out.contours.push_back(std::move(c));
   }
 
@@ -331,10 +576,12 @@ class Tracer {
   const std::vector<std::uint32_t>& open_;
   const std::vector<std::vector<std::uint32_t>>& copies_;
   double snap_;
+  std::vector<Sub> subs_;
+  std::vector<std::vector<std::uint32_t>> subs_of_;  // per piece of `open`: its stretches in order
   EndGrid grid_;
-  std::vector<std::int32_t> point_of_;  // per end: its point in the group being collected
-  std::vector<char> in_group_;          // per piece: already collected
-  std::vector<std::uint32_t> end_serial_;  // per end: serial of the group that gave it a point
+  std::vector<std::int32_t> point_of_;      // per end of a stretch: its point in the group being collected
+  std::vector<std::uint32_t> end_serial_;   // per end: serial of the group that gave it a point
+  std::vector<char> in_group_;              // per stretch: already collected
   std::uint32_t serial_ = 0;
 };
 

@@ -1,4 +1,4 @@
-// chain_faces(): contours of parts drawn edge to edge, one copy of the shared edge per part, traced as faces.
+// chain_faces(): contours of parts drawn edge to edge with their own entities, traced as faces of a planar graph.
 #pragma once
 
 #include <algorithm>
@@ -28,17 +28,29 @@ inline std::int64_t cell_of(double v, double cell) {
 // whose bounded faces are the parts; an edge drawn twice bounds two of them, an edge drawn once
 // bounds one part and scrap.
 //
-// Works on connected groups of open pieces (joined by ends within `snap`) that hold an exact
-// duplicate and a point where more than two ends meet. Such a group is traced into faces (at each
-// point the next piece is the one turning tightest, by tangent angle then curvature) and its
-// faces are chosen so that an edge drawn twice lies between two chosen faces and an edge drawn
-// once between a chosen face and an unchosen one, the outside never chosen. A group is left to
-// the end pairing, its copies dropped as before, when that choice does not exist or the group
-// does not look like a planar drawing: an odd number of ends at a point, an edge drawn three
-// times, ends crowding more than 64 to a point or spread wider than the snap, two pieces leaving
-// a point along the same curve, a piece whose ends meet, or more than one face turning clockwise.
-// A whole outline drawn twice, or a single edge drawn twice by mistake, cannot be chosen so, and
-// keeps today's result.
+// Steps:
+//  1. a single line or arc is cut where another open piece of its layer ends on it away from its
+//     ends (a T: the long side of one part meets the sides of two neighbours, or neighbours' sides
+//     meet partly), at that end's position;
+//  2. connected groups of these stretches (ends within `snap`) are formed from the ones that may
+//     belong to parts drawn edge to edge: a piece with an exact copy, a piece cut in step 1, an end
+//     where more than two ends meet;
+//  3. in a group, stretches between the same two points along the same curve (midpoints within
+//     `snap`) are one edge, drawn once per stretch and exact copy;
+//  4. the group is traced into faces (at each point the next edge is the one turning tightest, by
+//     tangent angle then curvature), and faces are chosen so that an edge drawn twice lies between
+//     two chosen faces and an edge drawn once between a chosen face and an unchosen one, the
+//     outside never chosen;
+//  5. each drawing of an edge goes to one of its faces: a piece cut in step 1 to the side where all
+//     its stretches border one part, else the earlier drawing to the part whose other edges come
+//     nearer to it in the file; stretches of one piece that follow each other are merged back.
+// A group is left to the end pairing, its copies dropped and its pieces uncut, when that choice does
+// not exist or the group does not look like a planar drawing: an odd number of drawings at a point,
+// an edge drawn three times, ends crowding more than 64 to a snap cell or spread wider than the
+// snap, two edges leaving a point along the same curve, an edge whose ends meet, a face of no area,
+// more than one face turning clockwise, a part's face passing a point twice. A whole outline drawn
+// twice, or a single edge drawn twice by mistake, cannot be chosen so, and keeps the end pairing.
+// Cost: O(n log n) for n open pieces (a packed R-tree for step 1, a grid of ends for step 2).
 struct FaceChains {
   std::vector<ChainedContour> contours;       // closed: the faces that are parts
   std::vector<std::uint32_t> first_piece;     // per contour: its lowest piece index (output order)

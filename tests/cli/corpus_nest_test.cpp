@@ -60,9 +60,11 @@ const Row kRows[] = {
   {"deepnestsharp_ReadMeExampleSmall", 29, 4, 19, 10, 7821, 30, 1, 11, 18, true, 10,
    "the README's fallback read lost the file's last entity (its L is ours minus that entity); parts that"
    " overlap by ~0.2 mm change parity; sheet 'Plate H200 W600' recognised (README outer 19 = sheet + 18)"},
-  {"deepnestsharp_TopsNest", 205, 1, 1, 203, 18438, 216, 8, 113, 102, true, 1060,
-   "the README read ENTITIES only (malformed TABLES) and lost the last entity; 12 duplicated LINEs dropped"
-   " (their length is missing); parts sharing edges; sheet 'Plate H475 W595' recognised"},
+  {"deepnestsharp_TopsNest", 205, 1, 1, 203, 18438, 228, 0, 23, 204, true, 10,
+   "the README read ENTITIES only (malformed TABLES) and lost the last entity; its 23 parts are drawn edge to"
+   " edge with LINEs, each shared edge twice: we close every part from its own lines (the 204 slots and"
+   " holes lie in them), where the README pairs ends that meet three and four to a point; sheet"
+   " 'Plate H475 W595' recognised"},
   {"deepnestsharp_part_11", 5, 0, 1, 4, 479, 5, 0, 1, 4, false, 1, ""},
   {"deepnestsharp_part_6", 8, 0, 1, 7, 1045, 8, 0, 1, 7, false, 1, ""},
   {"jyo_waterjet_Part3-2", 1, 5, 1, 0, 63.4, 1, 6, 1, 0, false, 0.1,

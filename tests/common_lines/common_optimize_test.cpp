@@ -393,10 +393,10 @@ TEST(CommonOptimize, StandardTabsMoveOffSharedEdges) {
   std::filesystem::remove_all(dir);
 }
 
-// deepnestsharp_TopsNest (113 parts, many placed edge to edge) with common lines and two 1-mm tabs
-// each: every part gets its two gaps on its own edges, each 1 mm wide, none on a common line or
-// within half a tab of another part, and the program stays admissible (everything else cut,
-// holes and common lines first).
+// deepnestsharp_TopsNest (23 parts with 204 holes, placed edge to edge) with common lines and two
+// 1-mm tabs each: every part with room on its own edges gets its two gaps there, each 1 mm wide,
+// none on a common line or within half a tab of another part, and the program stays admissible
+// (everything else cut, holes and common lines first).
 TEST(CommonOptimize, TabsOnTopsNestStayOffTheCommonLines) {
   const auto dir = fresh_temp_dir("common-tabs-tops");
   const std::string dxf = shared("data/dxf/deepnestsharp_TopsNest.dxf");
@@ -409,18 +409,31 @@ TEST(CommonOptimize, TabsOnTopsNestStayOffTheCommonLines) {
   const auto report = nlohmann::json::parse(read_text(rep));
   const auto& tabs = report["rules"]["tabs"];
   const auto contours = drawn_contours(nest);
-  int outers = 0;
+  std::set<int> enclosed;
+  for (const auto& p : tabs["parts_without_skeleton_edge"]) enclosed.insert(p.get<int>());
+  int outers = 0, tabbed = 0;
   for (std::size_t k = 0; k < contours.size(); ++k) {
     if (!contours[k].outer) {
       EXPECT_TRUE(check.uncut[k].empty()) << "contour " << k + 1;
       continue;
     }
     ++outers;
+    // Left whole: a part enclosed by its neighbours, or one whose own edges are too short.
+    if (check.uncut[k].empty()) continue;
+    EXPECT_EQ(enclosed.count(contours[k].part), 0u) << "part " << contours[k].part;
     ASSERT_EQ(check.uncut[k].size(), 2u) << "part " << contours[k].part;
     for (const double gap : check.uncut[k]) EXPECT_NEAR(gap, 1.0, 0.05) << "part " << contours[k].part;
+    ++tabbed;
   }
-  EXPECT_EQ(tabs["contours"], outers);
-  EXPECT_EQ(tabs["tabs"], 2 * outers);
+  // 23 parts: six 118 x 34 plates share their whole outline with neighbours, and one 297.5 x 130
+  // panel keeps only a 6-mm stretch of its own edges, too short for two tabs between the margins
+  // kept from the junctions.
+  EXPECT_EQ(outers, 23);
+  EXPECT_EQ(enclosed, (std::set<int>{8, 9, 10, 14, 15, 16}));
+  EXPECT_EQ(tabbed, 16);
+  EXPECT_EQ(tabs["contours"], tabbed);
+  EXPECT_EQ(tabs["tabs"], 2 * tabbed);
+  EXPECT_EQ(tabs["contours_too_short"], outers - tabbed);
   EXPECT_EQ(report["pierces"], check.runs);
   std::filesystem::remove_all(dir);
 }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <vector>
@@ -191,6 +192,106 @@ TEST(ChainFaces, RepeatedOutlinesAndStrayCopiesStayDropped) {
   }
   r = chain_contours(three, 0.01);
   EXPECT_EQ(r.dropped_duplicates, 2u);
+}
+
+// Rectangles of a guillotine layout: a rectangle cut in two, each half cut again across, and so
+// on, so that a long side of one part often meets the shorter sides of two neighbours (T-junctions)
+// and sides meet partly (the halves were cut at different heights).
+void guillotine(Rng& rng, double x0, double y0, double x1, double y1, int depth, std::vector<std::array<double, 4>>& out) {
+  const bool vertical = depth % 2 == 0;
+  const double span = vertical ? x1 - x0 : y1 - y0;
+  if (depth == 0 || span < 8 || rng.chance(0.15)) {
+    out.push_back({x0, y0, x1, y1});
+    return;
+  }
+  const double cut = std::round(span * (0.25 + 0.5 * rng.uniform01()));
+  if (vertical) {
+    guillotine(rng, x0, y0, x0 + cut, y1, depth - 1, out);
+    guillotine(rng, x0 + cut, y0, x1, y1, depth - 1, out);
+  } else {
+    guillotine(rng, x0, y0, x1, y0 + cut, depth - 1, out);
+    guillotine(rng, x0, y0 + cut, x1, y1, depth - 1, out);
+  }
+}
+
+TEST(ChainFaces, GuillotineLayoutsWithTJunctionsAndPolylineParts) {
+  Rng rng(45);
+  for (int trial = 0; trial < 60; ++trial) {
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    std::vector<std::array<double, 4>> rects;
+    guillotine(rng, 0, 0, 200, 120, 1 + static_cast<int>(rng.below(6)), rects);
+    std::vector<ChainPiece> pieces;
+    std::vector<char> as_polyline(rects.size(), 0);
+    for (std::size_t r = 0; r < rects.size(); ++r) {
+      const auto& [x0, y0, x1, y1] = rects[r];
+      const Vec2 c[4] = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+      const auto id = static_cast<std::int32_t>(4 * r);
+      if (rng.chance(0.2)) {
+        as_polyline[r] = 1;
+        pieces.push_back({polygon({c[0], c[1], c[2], c[3]}), id, 0});
+        continue;
+      }
+      for (int k = 0; k < 4; ++k) {
+        ChainPiece p = piece(c[k], c[(k + 1) % 4], 0, id + k);
+        if (rng.chance(0.5)) p.path = reversed(p.path);
+        pieces.push_back(p);
+      }
+    }
+    rng.shuffle(pieces.begin(), pieces.end());
+    const ChainResult res = chain_contours(pieces, 0.01);
+    EXPECT_TRUE(res.open.empty());
+    ASSERT_EQ(res.closed.size(), rects.size());
+    std::vector<int> seen(rects.size(), 0);
+    for (const ChainedContour& c : res.closed) {
+      // Each part whole, one vertex per corner: a neighbour's drawing of a stretch of its side
+      // would leave a vertex in the middle of that side.
+      ASSERT_EQ(c.contour.vertices.size(), 4u);
+      const Box b = bounding_box(c.contour);
+      std::size_t r = 0;
+      while (r < rects.size() && !(rects[r][0] == b.xmin && rects[r][1] == b.ymin && rects[r][2] == b.xmax && rects[r][3] == b.ymax)) ++r;
+      ASSERT_LT(r, rects.size()) << "a contour that is no part";
+      ++seen[r];
+      EXPECT_NEAR(std::abs(signed_area(c.contour)), (rects[r][2] - rects[r][0]) * (rects[r][3] - rects[r][1]), 1e-9);
+      if (as_polyline[r]) continue;
+      int own = 0;
+      for (std::int32_t src : c.sources) own += src / 4 == static_cast<std::int32_t>(r);
+      // A side that a neighbour draws exactly alike may come from either drawing; a side that
+      // neighbours draw in stretches is the part's own.
+      EXPECT_GE(own, 1);
+    }
+    for (int k : seen) EXPECT_EQ(k, 1);
+  }
+}
+
+TEST(ChainFaces, TouchingCornersAndStrokesEndingOnAnEdge) {
+  // Two squares touching at a corner: two contours, whatever the order of their lines.
+  const std::vector<Vec2> a{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, b{{10, 10}, {20, 10}, {20, 20}, {10, 20}};
+  std::vector<ChainPiece> corner;
+  for (int i = 0; i < 4; ++i) {
+    corner.push_back(piece(a[i], a[(i + 1) % 4], 0, i));
+    corner.push_back(piece(b[i], b[(i + 1) % 4], 0, 4 + i));
+  }
+  Rng rng(5);
+  for (int order = 0; order < 8; ++order) {
+    rng.shuffle(corner.begin(), corner.end());
+    const ChainResult r = chain_contours(corner, 0.01);
+    ASSERT_EQ(r.closed.size(), 2u);
+    for (const ChainedContour& c : r.closed) {
+      EXPECT_EQ(c.contour.vertices.size(), 4u);
+      EXPECT_NEAR(std::abs(signed_area(c.contour)), 100, 1e-9);
+      for (std::int32_t s : c.sources) EXPECT_EQ(s / 4, c.sources.front() / 4);
+    }
+  }
+  // A stroke ending on a side (a mark, a construction line): the square stays as drawn, the
+  // stroke open; nothing is cut at the point where it ends.
+  std::vector<ChainPiece> stroke;
+  for (int i = 0; i < 4; ++i) stroke.push_back(piece(a[i], a[(i + 1) % 4], 0, i));
+  stroke.push_back(piece({10, 5}, {15, 5}, 0, 9));
+  const ChainResult r = chain_contours(stroke, 0.01);
+  ASSERT_EQ(r.closed.size(), 1u);
+  EXPECT_EQ(r.closed[0].contour.vertices.size(), 4u);
+  ASSERT_EQ(r.open.size(), 1u);
+  EXPECT_EQ(r.open[0].sources, (std::vector<std::int32_t>{9}));
 }
 
 TEST(ChainFaces, RepeatRunsGiveTheSameContours) {

@@ -535,8 +535,9 @@ TEST_P(CorpusOptimize, ChainAndAutoProgramsAreAdmissible) {
 // dialect resumes each cut on the path (compensation held over the gap), the plasma one with a
 // lead-in from scrap where one fits (the checker then finds it at the start of the run).
 // deepnestsharp_TopsNest's parts are placed edge to edge: its gaps move off the shared edges
-// (a neighbour's cut runs there), so no piece between two tabs lies wholly on one, where nothing
-// in the program would say which of the two parts it cuts.
+// where they can (a neighbour's cut runs there). A part shared all round has pieces between two
+// tabs that lie wholly on a shared stretch; the checker gives such a piece to the part whose
+// boundary it completes.
 TEST_P(CorpusOptimize, ChainProgramsWithTabsAreAdmissible) {
   const std::string dxf = shared("data/dxf/" + GetParam() + ".dxf");
   const auto dir = temp_dir(GetParam() + "-tabs");

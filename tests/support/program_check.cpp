@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <numbers>
 #include <set>
@@ -134,7 +135,36 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
     run_moves.back().push_back({&m, -1});
     run_on.back().push_back(contours_of(m));
   }
+  auto assign = [&](std::size_t r, std::size_t i, int k) {
+    run_moves[r][i].second = k;
+    if (k < 0) return;
+    covered[static_cast<std::size_t>(k)] += run_moves[r][i].first->length;
+    out.arc_moves[static_cast<std::size_t>(k)] += run_moves[r][i].first->arc != 0;
+    runs_of[static_cast<std::size_t>(k)].insert(static_cast<int>(r));
+  };
+  // Runs that lie wholly on a stretch two contours share (a piece between tabs on a part whose
+  // neighbours' cuts run along it): nothing in the program says which contour they cut, so they
+  // are given, after all other runs, to the candidate whose boundary they cut where no other run
+  // of it does.
+  std::vector<std::pair<std::size_t, std::vector<int>>> shared_runs;
   for (std::size_t r = 0; r < run_moves.size(); ++r) {
+    std::vector<int> common;
+    bool first = true;
+    for (const auto& on : run_on[r]) {
+      if (on.empty()) continue;
+      if (first) {
+        common = on;
+        first = false;
+      } else {
+        std::vector<int> both;
+        std::set_intersection(common.begin(), common.end(), on.begin(), on.end(), std::back_inserter(both));
+        common = std::move(both);
+      }
+    }
+    if (common.size() >= 2) {
+      shared_runs.emplace_back(r, std::move(common));
+      continue;
+    }
     std::map<int, double> length_on;
     for (std::size_t i = 0; i < run_moves[r].size(); ++i) {
       for (int k : run_on[r][i]) length_on[k] += run_moves[r][i].first->length;
@@ -147,18 +177,34 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
         main_contour = k;
       }
     }
-    for (std::size_t i = 0; i < run_moves[r].size(); ++i) {
+    // A move on several contours (a stretch shared by parts drawn edge to edge) goes to the one
+    // the run stays on the longest around it: the run cuts that contour whole, or between its tabs,
+    // and a neighbour only along the shared stretch. That tells the two apart in a chain of
+    // touching parts too, where a neighbour outside the chain may have more length in the run
+    // than the chain's part. Ties: the run's main contour, then the lowest.
+    const auto& moves = run_moves[r];
+    auto around = [&](std::size_t i, int k) {
+      auto has = [&](std::size_t j) { return std::find(run_on[r][j].begin(), run_on[r][j].end(), k) != run_on[r][j].end(); };
+      double len = 0;
+      for (std::size_t j = i; j < moves.size() && has(j); ++j) len += moves[j].first->length;
+      for (std::size_t j = i; j-- > 0 && has(j);) len += moves[j].first->length;
+      return len;
+    };
+    for (std::size_t i = 0; i < moves.size(); ++i) {
       const auto& on = run_on[r][i];
       int k = -1;
-      if (!on.empty()) k = std::find(on.begin(), on.end(), main_contour) != on.end() ? main_contour : on.front();
-      run_moves[r][i].second = k;
-      if (k >= 0) {
-        covered[static_cast<std::size_t>(k)] += run_moves[r][i].first->length;
-        out.arc_moves[static_cast<std::size_t>(k)] += run_moves[r][i].first->arc != 0;
-        runs_of[static_cast<std::size_t>(k)].insert(static_cast<int>(r));
+      double longest = -1;
+      for (const int c : on) {
+        const double len = around(i, c);
+        if (len > longest + 1e-9 || (std::abs(len - longest) <= 1e-9 && c == main_contour)) {
+          longest = len;
+          k = c;
+        }
       }
+      assign(r, i, k);
     }
   }
+
   // A pierce starts a run even where the probe saw the beam switched on without a move.
   out.runs = static_cast<int>(run_moves.size());
 
@@ -170,6 +216,28 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
         if (on == static_cast<int>(k)) on_k.push_back(m);
     return on_k;
   };
+
+  for (const auto& [r, candidates] : shared_runs) {
+    std::vector<const ProbeMove*> run_cut;
+    for (std::size_t i = 0; i < run_moves[r].size(); ++i)
+      if (!run_on[r][i].empty()) run_cut.push_back(run_moves[r][i].first);
+    const MoveIndex by_run(run_cut, opt.on_contour_mm + off);
+    int k = -1;
+    int most = -1;
+    for (const int c : candidates) {
+      const MoveIndex by_c(moves_on(static_cast<std::size_t>(c)), opt.on_contour_mm + off);
+      int fills = 0;
+      for (const Vec2 q : boundary_samples(cut[static_cast<std::size_t>(c)]->source.contour, 0.5)) {
+        fills += by_run.first_within(q, opt.on_contour_mm + off) != by_run.size() &&
+                 by_c.first_within(q, opt.on_contour_mm + off) == by_c.size();
+      }
+      if (fills > most) {
+        most = fills;
+        k = c;
+      }
+    }
+    for (std::size_t i = 0; i < run_moves[r].size(); ++i) assign(r, i, run_on[r][i].empty() ? -1 : k);
+  }
 
   // With a kerf offset: the run passes within `off` of every drawn point where the tool fits, and
   // is no longer than the offset curve can be.

@@ -43,12 +43,13 @@ struct ChainResult {
 //  2. drop exact duplicates: the same vertices (bit-exact, -0 == +0) read forwards or backwards,
 //     in the same group; the first in input order is kept. (Closed pieces that repeat another
 //     from a different start vertex are not caught here; model::build_nest() reports them.)
-//  3. parts drawn edge to edge: where an open piece has an exact copy and more than two ends
-//     meet at a point, its connected group of pieces is traced as the faces of a planar graph
-//     and each face that is a part becomes a contour; an edge drawn twice then bounds two parts,
-//     one drawing each; its points lie at the mean of the ends that meet there
-//     (detail::chain_faces(), src/geometry/chain_faces.hpp, says when a group
-//     is left to the next steps instead, its copies dropped).
+//  3. parts drawn edge to edge: where an open piece has an exact copy, ends on another piece's
+//     side (a T) or meets more than two ends at a point, its connected group of pieces is traced
+//     as the faces of a planar graph and each face that is a part becomes a contour; an edge drawn
+//     twice then bounds two parts, one drawing each, and a long side that neighbours meet in
+//     stretches stays one piece of its part; points lie at the mean of the ends that meet there
+//     (detail::chain_faces(), src/geometry/chain_faces.hpp, says when a group is left to the next
+//     steps instead, its copies dropped).
 //  4. match end points: all pairs of ends (same group) within snap_mm, found through a uniform
 //     grid of cell snap_mm, sorted by distance (ties by index) and matched greedily, so each end
 //     gets its nearest partner not already taken. Both ends of one piece may match each other

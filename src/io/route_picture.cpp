@@ -14,14 +14,46 @@ namespace {
 
 constexpr const char* kNs = "vector-effect=\"non-scaling-stroke\"";
 
-geometry::Box world_box(const model::Nest& nest, const nc::Toolpath& path) {
+// Distance from p to box b (0 inside) [mm].
+double distance_to(const geometry::Box& b, geometry::Vec2 p) {
+  const double dx = std::max({b.xmin - p.x, 0.0, p.x - b.xmax}), dy = std::max({b.ymin - p.y, 0.0, p.y - b.ymax});
+  return std::hypot(dx, dy);
+}
+
+// A start or park point farther from the nest than the nest is wide stays off the picture: a
+// nest drawn far from the machine's origin would otherwise shrink to a corner of it, its pierce
+// numbers pushed off the top (a nest at (10 000, 20 000) showed 9 of its 139).
+bool far_off(const geometry::Box& nest, geometry::Vec2 p) {
+  return !nest.empty() && distance_to(nest, p) > std::max(nest.width(), nest.height());
+}
+
+geometry::Box nest_box(const model::Nest& nest, const nc::Toolpath& path) {
   geometry::Box b;
   for (const auto& c : nest.contours) b.add(c.box);
-  b.add(path.start);
-  b.add(path.end);
   for (const auto& s : path.segments) b.add(s.pierce);
+  return b;
+}
+
+geometry::Box world_box(const model::Nest& nest, const nc::Toolpath& path) {
+  geometry::Box b = nest_box(nest, path);
+  const geometry::Box drawn = b;
+  for (const geometry::Vec2 p : {path.start, path.end})
+    if (!far_off(drawn, p)) b.add(p);
   if (b.empty()) b = geometry::Box{0, 0, 100, 100};
   return b;
+}
+
+// Where the straight line from `from` (outside) to `to` enters box b, clipped to it.
+geometry::Vec2 entry_point(const geometry::Box& b, geometry::Vec2 from, geometry::Vec2 to) {
+  double t0 = 0.0;
+  const geometry::Vec2 d = to - from;
+  for (int axis = 0; axis < 2; ++axis) {
+    const double p = axis == 0 ? from.x : from.y, v = axis == 0 ? d.x : d.y;
+    const double lo = axis == 0 ? b.xmin : b.ymin, hi = axis == 0 ? b.xmax : b.ymax;
+    if (v == 0.0) continue;
+    t0 = std::max(t0, std::min((lo - p) / v, (hi - p) / v));
+  }
+  return from + d * std::clamp(t0, 0.0, 1.0);
 }
 
 // A rapid as drawn: straight, or through the waypoints of a detour (shop rules).
@@ -171,9 +203,14 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
   svg.begin_group("class=\"seg\" data-k=\"" + std::to_string(path.segments.size() + 1) + "\"");
   add_rapid(svg, at, path.end_via, path.end);
   svg.end_group();
-  svg.add_circle(path.start, mark_mm * 2.5, "fill=\"none\" stroke=\"#111111\" stroke-width=\"2\" " + std::string(kNs));
-  svg.add_text(path.start + geometry::Vec2{mark_mm * 3, -mark_mm * 6}, "start", label_mm,
-               "fill=\"#111111\" font-family=\"sans-serif\"");
+  // A start off the picture is marked where its rapid comes in, with its coordinates.
+  const bool start_off = far_off(nest_box(nest, path), path.start);
+  const geometry::Vec2 first = path.segments.empty() ? path.end : path.segments.front().pierce;
+  const geometry::Vec2 start_mark = start_off ? entry_point(world, path.start, first) : path.start;
+  svg.add_circle(start_mark, mark_mm * 2.5, "fill=\"none\" stroke=\"#111111\" stroke-width=\"2\" " + std::string(kNs));
+  svg.add_text(start_mark + geometry::Vec2{mark_mm * 3, -mark_mm * 6},
+               start_off ? "start (" + format_fixed(path.start.x, 1) + ", " + format_fixed(path.start.y, 1) + ")" : "start",
+               label_mm, "fill=\"#111111\" font-family=\"sans-serif\"");
   return svg.str();
 }
 

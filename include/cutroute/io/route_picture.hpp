@@ -26,8 +26,10 @@ std::vector<std::size_t> compensation_at_risk(const nlohmann::json& report);
 // Parts (filled, holes open), then per cutting segment in order: the rapid to its pierce (dashed),
 // the pierce mark, the lead-in, the cut, the lead-out, and the segment's order number at the
 // pierce (the numbers of close pierces stacked upwards; one pushed above the picture is left out,
-// the segment's <title> still names it); the start point is marked. Each segment is one
-// <g class="seg" data-k="k"> (k from 1).
+// the segment's <title> still names it); the start point is marked. A start or park point
+// farther from the nest than the nest is wide is left out of the frame, and the start is marked
+// where its rapid comes in, with its coordinates. Each segment is one <g class="seg" data-k="k">
+// (k from 1).
 std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, const RoutePictureOptions& options);
 
 // One self-contained HTML page: the picture, a summary table (label, value rows as given) and a

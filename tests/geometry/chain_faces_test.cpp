@@ -294,6 +294,37 @@ TEST(ChainFaces, TouchingCornersAndStrokesEndingOnAnEdge) {
   EXPECT_EQ(r.open[0].sources, (std::vector<std::int32_t>{9}));
 }
 
+// A part of a grid drawn twice by mistake (its four lines again, before or after the rest): its
+// edges shared with neighbours are then drawn three times. The second outline is dropped as
+// duplicates and every part closes once (before, the part and its neighbours were left open).
+TEST(ChainFaces, PartOfAGridDrawnTwice) {
+  for (const int twice : {0, 4}) {  // a corner part, the middle one
+    for (const bool before : {false, true}) {
+      SCOPED_TRACE("part " + std::to_string(twice) + (before ? ", repeated first" : ", repeated last"));
+      Rng rng(9);
+      Grid g = make_grid(rng, 3, 3, 20, 15);
+      std::vector<ChainPiece> repeat;
+      for (int side = 0; side < 4; ++side) {
+        ChainPiece p = g.pieces[static_cast<std::size_t>(4 * twice + side)];
+        p.source += 1000;
+        repeat.push_back(p);
+      }
+      std::vector<ChainPiece> pieces = g.pieces;
+      pieces.insert(before ? pieces.begin() : pieces.end(), repeat.begin(), repeat.end());
+      const ChainResult r = chain_contours(pieces, 0.01);
+      EXPECT_TRUE(r.open.empty());
+      EXPECT_EQ(r.dropped_duplicates, 4u);
+      ASSERT_EQ(r.closed.size(), 9u);
+      double area = 0;
+      for (const ChainedContour& c : r.closed) {
+        EXPECT_EQ(c.contour.vertices.size(), 4u);
+        area += std::abs(signed_area(c.contour));
+      }
+      EXPECT_NEAR(area, 60.0 * 45.0, 1e-9);
+    }
+  }
+}
+
 TEST(ChainFaces, RepeatRunsGiveTheSameContours) {
   Rng rng(11);
   const Grid g = make_grid(rng, 4, 3, 20, 15);

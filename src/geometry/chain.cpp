@@ -10,6 +10,7 @@
 #include <utility>
 
 #include <cutroute/core/tolerances.hpp>
+#include <cutroute/geometry/spatial_index.hpp>
 
 #include "chain_faces.hpp"
 
@@ -307,6 +308,38 @@ struct Walker {
   }
 };
 
+// --- step 6: open chains that only repeat closed contours ---
+
+// An open chain that lies wholly on closed contours of its group (a LINE drawn again over an edge
+// of a closed polyline) is a repeat, like an exact duplicate: it would only be reported as an
+// open path not cut. Tested at its vertices and at the quarter points of its segments, within
+// tol::kCollinearMm (a repeat drawn by the same program is exact).
+void drop_repeated_strokes(ChainResult& result) {
+  if (result.open.empty() || result.closed.empty()) return;
+  std::vector<Box> boxes;
+  boxes.reserve(result.closed.size());
+  for (const ChainedContour& c : result.closed) boxes.push_back(bounding_box(c.contour).inflated(tol::kCollinearMm));
+  const StaticSpatialIndex index(boxes);
+  auto on_closed = [&](Vec2 p, std::int32_t group) {
+    bool on = false;
+    index.visit(Box{p.x, p.y, p.x, p.y}, [&](std::uint32_t k) {
+      on = result.closed[k].group == group && distance(result.closed[k].contour, p) <= tol::kCollinearMm;
+      return !on;
+    });
+    return on;
+  };
+  std::erase_if(result.open, [&](const ChainedContour& chain) {
+    for (std::size_t i = 0; i < segment_count(chain.contour); ++i) {
+      const Segment s = segment(chain.contour, i);
+      for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+        if (!on_closed(s.point_at(t), chain.group)) return false;
+      }
+    }
+    result.dropped_duplicates += chain.sources.size();
+    return true;
+  });
+}
+
 }  // namespace
 
 ChainResult chain_contours(const std::vector<ChainPiece>& pieces, double snap_mm) {
@@ -387,6 +420,7 @@ ChainResult chain_contours(const std::vector<ChainPiece>& pieces, double snap_mm
     for (std::size_t i : order) sorted_closed.push_back(std::move(result.closed[i]));
     result.closed = std::move(sorted_closed);
   }
+  drop_repeated_strokes(result);
   return result;
 }
 

@@ -198,6 +198,26 @@ TEST(Chain, FanOfLinesFromOnePointStaysFastAndPairsUp) {
   for (const ChainedContour& c : r.open) EXPECT_EQ(c.sources.size(), 2u);
 }
 
+TEST(Chain, OpenChainsRepeatingAClosedContourAreDropped) {
+  // A closed square (a polyline) and lines over it: one along an edge, a chain of two along two
+  // edges, one that leaves the edge halfway, one across, and one along an edge on another layer.
+  std::vector<ChainPiece> pieces{{polygon({{0, 0}, {10, 0}, {10, 10}, {0, 10}}), 0, 0},
+                                 line({2, 0}, {7, 0}, 1),
+                                 line({10, 3}, {10, 10}, 2),
+                                 line({10, 10}, {4, 10}, 3),
+                                 line({5, 10}, {5, 20}, 4),
+                                 line({0, 5}, {15, 5}, 5),
+                                 line({0, 2}, {0, 8}, 6)};
+  pieces.back().group = 1;
+  const ChainResult r = chain_contours(pieces, 0.01);
+  EXPECT_EQ(r.dropped_duplicates, 3u);  // piece 1, and the chain of pieces 2 and 3
+  ASSERT_EQ(r.open.size(), 3u);
+  EXPECT_EQ(r.open[0].sources, (std::vector<std::int32_t>{4}));
+  EXPECT_EQ(r.open[1].sources, (std::vector<std::int32_t>{5}));
+  EXPECT_EQ(r.open[2].sources, (std::vector<std::int32_t>{6}));
+  ASSERT_EQ(r.closed.size(), 1u);
+}
+
 TEST(Chain, NonFiniteAndNoPieces) {
   EXPECT_TRUE(chain_contours({}, 0.01).closed.empty());
   std::vector<ChainPiece> pieces{line({0, 0}, {std::nan(""), 0}), line({0, 0}, {1e300, 1e300})};

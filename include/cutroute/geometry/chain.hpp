@@ -29,7 +29,8 @@ struct ChainResult {
   std::vector<ChainedContour> open;     // chains whose ends found no partner
   std::size_t dropped_zero_length = 0;  // pieces shorter than tol::kSamePointMm
   std::size_t dropped_duplicates = 0;   // pieces identical to another (either direction), less
-                                        // the copies kept as the edge of a second part (step 3)
+                                        // the copies kept as the edge of a second part (step 3),
+                                        // and pieces of open chains repeating closed ones (step 6)
   std::size_t dropped_invalid = 0;      // pieces with a NaN or infinite coordinate or bulge
 };
 
@@ -56,6 +57,8 @@ struct ChainResult {
 //     (an open polyline or arc that closes itself), a single straight line may not.
 //  5. walk: pieces linked through matched ends form paths (open) and cycles (closed); each
 //     joint is moved to the midpoint of its two ends.
+//  6. an open chain lying wholly on closed contours of its group (within tol::kCollinearMm: a
+//     LINE drawn again over an edge of a closed polyline) is dropped, counted as duplicates.
 // Output is deterministic: contours in input order of their lowest piece; a cycle starts at its
 // lowest-index piece, travelled in that piece's direction; an open chain starts at its free end
 // reached by walking backwards from its lowest-index piece.

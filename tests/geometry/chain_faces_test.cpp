@@ -263,6 +263,31 @@ TEST(ChainFaces, GuillotineLayoutsWithTJunctionsAndPolylineParts) {
   }
 }
 
+// A curved T: one part's arc side (a circle of radius 25 about (0, 15), from (-20, 0) to (20, 0)
+// through (0, -10)) meets the arc sides of two parts below it, each drawn as its own half of that
+// arc. All three close, the upper one with its arc whole; together they fill 40 x 50 mm.
+TEST(ChainFaces, ArcSideMetByTheArcsOfTwoNeighbours) {
+  const double whole = std::tan(std::atan2(20.0, 15.0) / 2), half = std::tan(std::atan2(20.0, 15.0) / 4);
+  const std::vector<ChainPiece> pieces{
+      piece({-20, 0}, {20, 0}, whole, 0),    piece({20, 0}, {20, 20}, 0, 1),    piece({20, 20}, {-20, 20}, 0, 2),
+      piece({-20, 20}, {-20, 0}, 0, 3),      piece({-20, 0}, {0, -10}, half, 4), piece({0, -10}, {0, -30}, 0, 5),
+      piece({0, -30}, {-20, -30}, 0, 6),     piece({-20, -30}, {-20, 0}, 0, 7), piece({0, -10}, {20, 0}, half, 8),
+      piece({20, 0}, {20, -30}, 0, 9),       piece({20, -30}, {0, -30}, 0, 10), piece({0, -30}, {0, -10}, 0, 11)};
+  const ChainResult r = chain_contours(pieces, 0.01);
+  EXPECT_TRUE(r.open.empty());
+  ASSERT_EQ(r.closed.size(), 3u);
+  const double segment = 25.0 * 25.0 / 2 * (2 * std::atan2(20.0, 15.0) - std::sin(2 * std::atan2(20.0, 15.0)));
+  EXPECT_EQ(r.closed[0].sources, (std::vector<std::int32_t>{0, 1, 2, 3}));
+  EXPECT_NEAR(std::abs(signed_area(r.closed[0].contour)), 40 * 20 + segment, 1e-6);
+  double total = 0;
+  for (const ChainedContour& c : r.closed) {
+    EXPECT_EQ(c.contour.vertices.size(), 4u);
+    for (std::int32_t s : c.sources) EXPECT_EQ(s / 4, c.sources.front() / 4);
+    total += std::abs(signed_area(c.contour));
+  }
+  EXPECT_NEAR(total, 40 * 50, 1e-6);
+}
+
 TEST(ChainFaces, TouchingCornersAndStrokesEndingOnAnEdge) {
   // Two squares touching at a corner: two contours, whatever the order of their lines.
   const std::vector<Vec2> a{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, b{{10, 10}, {20, 10}, {20, 20}, {10, 20}};

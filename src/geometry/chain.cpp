@@ -170,9 +170,12 @@ using detail::end_point;
 // Why a grid and not nanoflann: the search radius is fixed (the snap), so a uniform grid with
 // cell = snap answers each query from 3×3 cells; sorted cell keys make it deterministic and
 // allocation-light, where a k-d tree would add a build and still need its results re-sorted.
+// With `meeting`: per end, how many ends (itself included, capped at 255) lie within snap of it,
+// for step 3, which looks only where other than two meet.
 std::vector<std::int32_t> match_ends(const std::vector<ChainPiece>& pieces, const std::vector<std::uint32_t>& open,
-                                     double snap) {
+                                     double snap, std::vector<std::uint8_t>* meeting = nullptr) {
   const std::size_t n_ends = 2 * open.size();
+  if (meeting != nullptr) meeting->assign(n_ends, 1);
   struct Cell {
     std::int64_t ix, iy;
     std::uint32_t end;
@@ -240,6 +243,7 @@ std::vector<std::int32_t> match_ends(const std::vector<ChainPiece>& pieces, cons
                         gap});
       }
     }
+    if (meeting != nullptr) (*meeting)[e] = static_cast<std::uint8_t>(std::min<std::size_t>(near.size() + 1, 255));
     if (near.size() > kMaxPartners) {
       std::partial_sort(near.begin(), near.begin() + kMaxPartners, near.end(), [](const Near& a, const Near& b) {
         return std::tie(a.c.dist, a.rank_gap, a.c.e, a.c.f) < std::tie(b.c.dist, b.rank_gap, b.c.e, b.c.f);
@@ -351,19 +355,21 @@ ChainResult chain_contours(const std::vector<ChainPiece>& pieces, double snap_mm
   const std::size_t open_copies = drop_duplicates(pieces, sorted.open, &copies);
   result.dropped_duplicates += open_copies;
 
-  // Parts drawn edge to edge first, as faces; the rest by pairing ends.
-  detail::FaceChains faces;
+  // Ends paired first; parts drawn edge to edge, where the pairing is unsure, then traced as faces
+  // and the ends of what is left paired again.
   std::vector<std::uint32_t> open = std::move(sorted.open);
-  if (!open.empty()) {
-    faces = detail::chain_faces(pieces, open, copies, snap_mm);
+  std::vector<std::uint8_t> meeting;
+  std::vector<std::int32_t> partner = match_ends(pieces, open, snap_mm, &meeting);
+  detail::FaceChains faces = detail::chain_faces(pieces, open, copies, meeting, snap_mm);
+  if (!faces.contours.empty()) {
     result.dropped_duplicates -= faces.copies_used;
     std::size_t kept = 0;
     for (std::size_t k = 0; k < open.size(); ++k) {
       if (!faces.taken[k]) open[kept++] = open[k];
     }
     open.resize(kept);
+    partner = match_ends(pieces, open, snap_mm);
   }
-  const std::vector<std::int32_t> partner = match_ends(pieces, open, snap_mm);
   const Walker walker{pieces, open, partner};
 
   // Output in input order of each contour's lowest piece; closed inputs and faces interleaved likewise.

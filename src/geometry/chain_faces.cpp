@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <tuple>
 
@@ -62,7 +63,7 @@ Leaving leaving(const Contour& c, std::uint32_t half, bool forward) {
 
 // A piece, or the stretch of a piece between two points where other pieces end on it.
 struct Sub {
-  Contour path;          // open
+  std::int32_t owned;    // its path in Tracer::owned_ (a cut piece's stretch), or -1: the piece's
   std::uint32_t parent;  // index into `open`
 };
 
@@ -92,30 +93,48 @@ struct Run {
   bool along;  // runs in the direction the piece was drawn
 };
 
+EndGrid make_grid(std::size_t ends, double snap, const std::function<Vec2(std::size_t)>& pos) {
+  EndGrid grid;
+  grid.snap = snap;
+  grid.cells.resize(ends);
+  for (std::size_t e = 0; e < ends; ++e) {
+    const Vec2 p = pos(e);
+    grid.cells[e] = {cell_of(p.x, snap), cell_of(p.y, snap), static_cast<std::uint32_t>(e)};
+  }
+  std::sort(grid.cells.begin(), grid.cells.end(), [](const EndGrid::Cell& a, const EndGrid::Cell& b) {
+    return std::tie(a.ix, a.iy, a.end) < std::tie(b.ix, b.iy, b.end);
+  });
+  return grid;
+}
+
 class Tracer {
  public:
   Tracer(const std::vector<ChainPiece>& pieces, const std::vector<std::uint32_t>& open,
-         const std::vector<std::vector<std::uint32_t>>& copies, double snap)
+         const std::vector<std::vector<std::uint32_t>>& copies, const std::vector<std::uint8_t>& meeting, double snap)
       : pieces_(pieces), open_(open), copies_(copies), snap_(snap) {
-    split();
+    const std::size_t n = open.size();
+    // Pieces that may belong to parts drawn edge to edge: one with an exact copy, or with an end
+    // where other than two ends meet (a corner of three or four parts, a T, a free end). A clean
+    // drawing has none and costs nothing more here.
+    suspect_.assign(n, 0);
+    bool any = false;
+    for (std::size_t k = 0; k < n; ++k) {
+      suspect_[k] = !copies[k].empty() || meeting[2 * k] != 2 || meeting[2 * k + 1] != 2;
+      any = any || suspect_[k];
+    }
+    if (!any) return;
+    grid_ = make_grid(2 * n, snap, [&](std::size_t e) { return end_point(path(static_cast<std::uint32_t>(e / 2)), e); });
+    if (split()) grid_ = make_grid(2 * subs_.size(), snap, [&](std::size_t e) { return end_pos(e); });
     point_of_.assign(2 * subs_.size(), kUnset);
     end_serial_.assign(2 * subs_.size(), 0);
     in_group_.assign(subs_.size(), 0);
-    grid_.snap = snap;
-    grid_.cells.resize(2 * subs_.size());
-    for (std::size_t e = 0; e < 2 * subs_.size(); ++e) {
-      const Vec2 p = end_pos(e);
-      grid_.cells[e] = {cell_of(p.x, snap), cell_of(p.y, snap), static_cast<std::uint32_t>(e)};
-    }
-    std::sort(grid_.cells.begin(), grid_.cells.end(), [](const EndGrid::Cell& a, const EndGrid::Cell& b) {
-      return std::tie(a.ix, a.iy, a.end) < std::tie(b.ix, b.iy, b.end);
-    });
   }
 
   void run(FaceChains& out) {
     out.taken.assign(open_.size(), 0);
     for (std::uint32_t s = 0; s < subs_.size(); ++s) {
-      if (in_group_[s] || !is_seed(s)) continue;
+      const std::uint32_t k = subs_[s].parent;
+      if (in_group_[s] || !(suspect_[k] || subs_of_[k].size() > 1)) continue;
       Group g = collect(s);
       if (g.usable) trace(g, out);
     }
@@ -123,14 +142,20 @@ class Tracer {
 
  private:
   const Contour& path(std::uint32_t k) const { return pieces_[open_[k]].path; }
+  const Contour& sub_path(std::uint32_t s) const {
+    return subs_[s].owned >= 0 ? owned_[static_cast<std::size_t>(subs_[s].owned)] : path(subs_[s].parent);
+  }
   std::int32_t layer(std::uint32_t sub) const { return pieces_[open_[subs_[sub].parent]].group; }
-  Vec2 end_pos(std::size_t e) const { return end_point(subs_[e / 2].path, e); }
+  Vec2 end_pos(std::size_t e) const { return end_point(sub_path(static_cast<std::uint32_t>(e / 2)), e); }
   std::size_t point(std::uint32_t sub, bool end) const { return static_cast<std::size_t>(point_of_[2 * sub + end]); }
 
   // Cuts each single line or arc where another piece of its layer ends on it, away from its
   // ends: there the pieces of two neighbours meet a longer edge of a third (a T), and the
-  // stretches on either side can then be told apart. A cut point is the other piece's end.
-  void split() {
+  // stretches on either side can then be told apart. A cut point is the other piece's end. Only
+  // pieces joined to a suspect (through points, or a T found on the way) are looked at: the
+  // others are never traced. Widens the suspects to them; returns whether any piece was cut (the
+  // stretch of a piece not cut is the piece itself, with the piece's index).
+  bool split() {
     const std::size_t n = open_.size();
     std::vector<Box> boxes(n);
     for (std::size_t k = 0; k < n; ++k) {
@@ -139,29 +164,50 @@ class Tracer {
     }
     const StaticSpatialIndex index(boxes);
     std::vector<std::vector<std::pair<double, Vec2>>> cuts(n);
-    for (std::size_t e = 0; e < 2 * n; ++e) {
-      const auto own = static_cast<std::uint32_t>(e / 2);
-      const Vec2 p = end_point(path(own), e);
-      index.visit(Box{p.x, p.y, p.x, p.y}, [&](std::uint32_t k) {
-        if (k == own || pieces_[open_[k]].group != pieces_[open_[own]].group) return true;
-        const Segment s = segment(path(k), 0);
-        const SegmentClosest c = closest_point(s, p);
-        if (c.distance <= snap_ && c.length_along > snap_ && c.length_along < s.length() - snap_)
-          cuts[k].emplace_back(c.length_along, p);
-        return true;
-      });
+    bool any = false;
+    std::vector<std::uint32_t> queue;
+    for (std::uint32_t k = 0; k < n; ++k) {
+      if (suspect_[k]) queue.push_back(k);
+    }
+    auto reach = [&](std::uint32_t k) {
+      if (!suspect_[k]) {
+        suspect_[k] = 1;
+        queue.push_back(k);
+      }
+    };
+    for (std::size_t q = 0; q < queue.size(); ++q) {
+      const std::uint32_t own = queue[q];
+      const std::int32_t group = pieces_[open_[own]].group;
+      for (std::size_t e = 2 * own; e <= 2 * own + 1; ++e) {
+        const Vec2 p = end_point(path(own), e);
+        grid_.for_near(p, [&](std::uint32_t f) {
+          if (pieces_[open_[f / 2]].group == group && norm2(end_point(path(f / 2), f) - p) <= snap_ * snap_) reach(f / 2);
+        });
+        index.visit(Box{p.x, p.y, p.x, p.y}, [&](std::uint32_t k) {
+          if (k == own || pieces_[open_[k]].group != group) return true;
+          const Segment s = segment(path(k), 0);
+          const SegmentClosest c = closest_point(s, p);
+          if (c.distance <= snap_ && c.length_along > snap_ && c.length_along < s.length() - snap_) {
+            cuts[k].emplace_back(c.length_along, p);
+            any = true;
+            reach(k);
+          }
+          return true;
+        });
+      }
     }
     subs_of_.resize(n);
+    subs_.reserve(n);
     for (std::uint32_t k = 0; k < n; ++k) {
       auto& at = cuts[k];
+      if (!any || at.empty()) {
+        subs_of_[k].push_back(static_cast<std::uint32_t>(subs_.size()));
+        subs_.push_back({-1, k});
+        continue;
+      }
       std::sort(at.begin(), at.end(), [](const auto& a, const auto& b) {
         return std::tie(a.first, a.second.x, a.second.y) < std::tie(b.first, b.second.x, b.second.y);
       });
-      if (at.empty()) {
-        subs_of_[k].push_back(static_cast<std::uint32_t>(subs_.size()));
-        subs_.push_back({path(k), k});
-        continue;
-      }
       const Segment s = segment(path(k), 0);
       const double length = s.length(), sweep = s.sweep();
       double from = 0;
@@ -169,7 +215,8 @@ class Tracer {
       auto add = [&](double to, Vec2 end) {
         const double bulge = s.is_arc() ? std::tan(sweep * (to - from) / length / 4) : 0.0;
         subs_of_[k].push_back(static_cast<std::uint32_t>(subs_.size()));
-        subs_.push_back({Contour{{{start, bulge}, {end, 0.0}}, false}, k});
+        subs_.push_back({static_cast<std::int32_t>(owned_.size()), k});
+        owned_.push_back(Contour{{{start, bulge}, {end, 0.0}}, false});
         from = to;
         start = end;
       };
@@ -178,22 +225,7 @@ class Tracer {
       }
       add(length, s.b);
     }
-  }
-
-  // Where pieces of parts drawn edge to edge may be: a piece with an exact copy or cut by
-  // another's end, or an end where more than two ends meet.
-  bool is_seed(std::uint32_t s) {
-    const std::uint32_t k = subs_[s].parent;
-    if (!copies_[k].empty() || subs_of_[k].size() > 1) return true;
-    for (std::uint32_t e = 2 * s; e <= 2 * s + 1; ++e) {
-      std::size_t meeting = 0;
-      const Vec2 p = end_pos(e);
-      grid_.for_near(p, [&](std::uint32_t f) {
-        if (layer(f / 2) == layer(s) && norm2(end_pos(f) - p) <= snap_ * snap_) ++meeting;
-      });
-      if (meeting > 2) return true;
-    }
-    return false;
+    return any;
   }
 
   // Breadth-first over stretches joined at points (ends within snap of each other, same layer).
@@ -264,11 +296,11 @@ class Tracer {
       const std::size_t first_edge = edges.size();
       for (std::size_t x = i; x < j; ++x) {
         const std::uint32_t s = subs[x];
-        const Contour& c = subs_[s].path;
+        const Contour& c = sub_path(s);
         const Vec2 mid = point_at_length(c, length(c) / 2);
         Edge* same = nullptr;
         for (std::size_t e = first_edge; e < edges.size() && same == nullptr; ++e) {
-          const Contour& r = subs_[edges[e].rep].path;
+          const Contour& r = sub_path(edges[e].rep);
           if (norm2(point_at_length(r, length(r) / 2) - mid) <= snap_ * snap_) same = &edges[e];
         }
         if (same == nullptr) {
@@ -406,7 +438,7 @@ class Tracer {
     if (!junction) return;
 
     std::vector<std::vector<Leaving>> around(g.points.size());
-    for (std::uint32_t h = 0; h < 2 * n; ++h) around[tail(h)].push_back(leaving(subs_[edges[h / 2].rep].path, h, (h & 1) == 0));
+    for (std::uint32_t h = 0; h < 2 * n; ++h) around[tail(h)].push_back(leaving(sub_path(edges[h / 2].rep), h, (h & 1) == 0));
     std::vector<std::uint32_t> slot(2 * n);
     for (auto& list : around) {
       std::sort(list.begin(), list.end(), [](const Leaving& a, const Leaving& b) {
@@ -445,7 +477,7 @@ class Tracer {
       Contour c;
       c.closed = true;
       for (std::uint32_t h : faces[f]) {
-        const Contour& p = subs_[edges[h / 2].rep].path;
+        const Contour& p = sub_path(edges[h / 2].rep);
         append(c, (h & 1) ? reversed(p) : p, g.points[tail(h)]);
       }
       const double area = signed_area(c);
@@ -579,7 +611,7 @@ class Tracer {
       const Drawing d = drawing_of[h];
       const std::size_t from = point(edges[h / 2].rep, (h & 1) != 0);
       const bool forward = point(d.sub, false) == from;
-      Step st{forward ? subs_[d.sub].path : reversed(subs_[d.sub].path), d, forward};
+      Step st{forward ? sub_path(d.sub) : reversed(sub_path(d.sub)), d, forward};
       st.path.vertices.front().p = g.points[from];
       st.path.vertices.back().p = g.points[point(d.sub, forward)];
       steps.push_back(std::move(st));
@@ -643,7 +675,9 @@ class Tracer {
   const std::vector<std::uint32_t>& open_;
   const std::vector<std::vector<std::uint32_t>>& copies_;
   double snap_;
+  std::vector<char> suspect_;                        // per piece of `open`
   std::vector<Sub> subs_;
+  std::vector<Contour> owned_;                       // the stretches of cut pieces
   std::vector<std::vector<std::uint32_t>> subs_of_;  // per piece of `open`: its stretches in order
   EndGrid grid_;
   std::vector<std::int32_t> point_of_;      // per end of a stretch: its point in the group being collected
@@ -655,9 +689,10 @@ class Tracer {
 }  // namespace
 
 FaceChains chain_faces(const std::vector<ChainPiece>& pieces, const std::vector<std::uint32_t>& open,
-                       const std::vector<std::vector<std::uint32_t>>& copies, double snap) {
+                       const std::vector<std::vector<std::uint32_t>>& copies, const std::vector<std::uint8_t>& meeting,
+                       double snap) {
   FaceChains out;
-  Tracer(pieces, open, copies, snap).run(out);
+  Tracer(pieces, open, copies, meeting, snap).run(out);
   return out;
 }
 

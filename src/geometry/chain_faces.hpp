@@ -59,8 +59,11 @@ struct FaceChains {
 };
 
 // open: indices into pieces of the open pieces left after duplicates were removed (ascending);
-// copies[k]: the pieces dropped as duplicates of pieces[open[k]].
+// copies[k]: the pieces dropped as duplicates of pieces[open[k]]; meeting[e]: how many ends lie
+// within snap of end e of open piece e / 2, itself included. Where every end meets one other and
+// nothing has a copy there is nothing to trace, and this returns at once.
 FaceChains chain_faces(const std::vector<ChainPiece>& pieces, const std::vector<std::uint32_t>& open,
-                       const std::vector<std::vector<std::uint32_t>>& copies, double snap);
+                       const std::vector<std::vector<std::uint32_t>>& copies, const std::vector<std::uint8_t>& meeting,
+                       double snap);
 
 }  // namespace cutroute::geometry::detail

@@ -162,7 +162,7 @@ std::size_t drop_duplicates(const std::vector<ChainPiece>& pieces, std::vector<s
   return count;
 }
 
-// --- step 4: match end points, nearest pairs first (step 3 is chain_faces.cpp) ---
+// --- step 3: match end points, nearest pairs first (step 4 is chain_faces.cpp) ---
 
 using detail::cell_of;
 using detail::end_point;
@@ -171,7 +171,7 @@ using detail::end_point;
 // cell = snap answers each query from 3×3 cells; sorted cell keys make it deterministic and
 // allocation-light, where a k-d tree would add a build and still need its results re-sorted.
 // With `meeting`: per end, how many ends (itself included, capped at 255) lie within snap of it,
-// for step 3, which looks only where other than two meet.
+// for step 4, which looks only where other than two meet.
 std::vector<std::int32_t> match_ends(const std::vector<ChainPiece>& pieces, const std::vector<std::uint32_t>& open,
                                      double snap, std::vector<std::uint8_t>* meeting = nullptr) {
   const std::size_t n_ends = 2 * open.size();

@@ -29,28 +29,31 @@ inline std::int64_t cell_of(double v, double cell) {
 // bounds one part and scrap.
 //
 // Steps:
-//  1. a single line or arc is cut where another open piece of its layer ends on it away from its
-//     ends (a T: the long side of one part meets the sides of two neighbours, or neighbours' sides
-//     meet partly), at that end's position;
-//  2. connected groups of these stretches (ends within `snap`) are formed from the ones that may
-//     belong to parts drawn edge to edge: a piece with an exact copy, a piece cut in step 1, an end
-//     where more than two ends meet;
+//  1. suspects: pieces with an exact copy or with an end met by other than one other end (a corner
+//     of three or four parts, a T, a free end); none in a clean drawing, which ends here;
+//  2. from the suspects, through the points where ends meet, every piece joined to one is visited;
+//     a single line or arc is cut where a visited piece of its layer ends on it away from its ends
+//     (a T: the long side of one part meets the sides of two neighbours, or neighbours' sides meet
+//     partly), at that end's position, and is visited too. Connected groups of the visited
+//     pieces' stretches (ends within `snap`) are formed;
 //  3. in a group, stretches between the same two points along the same curve (midpoints within
 //     `snap`) are one edge, drawn once per stretch and exact copy;
 //  4. the group is traced into faces (at each point the next edge is the one turning tightest, by
 //     tangent angle then curvature), and faces are chosen so that an edge drawn twice lies between
 //     two chosen faces and an edge drawn once between a chosen face and an unchosen one, the
 //     outside never chosen;
-//  5. each drawing of an edge goes to one of its faces: a piece cut in step 1 to the side where all
+//  5. each drawing of an edge goes to one of its faces: a piece cut in step 2 to the side where all
 //     its stretches border one part, else the earlier drawing to the part whose other edges come
 //     nearer to it in the file; stretches of one piece that follow each other are merged back.
-// A group is left to the end pairing, its copies dropped and its pieces uncut, when that choice does
-// not exist or the group does not look like a planar drawing: an odd number of drawings at a point,
-// an edge drawn three times, ends crowding more than 64 to a snap cell or spread wider than the
+// Where no choice fits, a part drawn twice by mistake is looked for (parts_without_repeats(): its
+// second outline is dropped as duplicates). A group is left to the end pairing, its copies dropped and its pieces uncut, when no choice fits
+// or the group does not look like a planar drawing: an odd number of drawings at a point, an edge
+// drawn more than three times, ends crowding more than 64 to a snap cell or spread wider than the
 // snap, two edges leaving a point along the same curve, an edge whose ends meet, a face of no area,
-// more than one face turning clockwise, a part's face passing a point twice. A whole outline drawn
-// twice, or a single edge drawn twice by mistake, cannot be chosen so, and keeps the end pairing.
-// Cost: O(n log n) for n open pieces (a packed R-tree for step 1, a grid of ends for step 2).
+// more than one face turning clockwise, a part's face passing a point twice. A single edge drawn
+// twice by mistake makes an odd point, and keeps the end pairing.
+// Cost: nothing more than the end pairing's counts for a clean drawing; else O(n log n) for n open
+// pieces (a grid of ends, a packed R-tree of the pieces for the T search).
 struct FaceChains {
   std::vector<ChainedContour> contours;       // closed: the faces that are parts
   std::vector<std::uint32_t> first_piece;     // per contour: its lowest piece index (output order)

@@ -44,17 +44,17 @@ struct ChainResult {
 //  2. drop exact duplicates: the same vertices (bit-exact, -0 == +0) read forwards or backwards,
 //     in the same group; the first in input order is kept. (Closed pieces that repeat another
 //     from a different start vertex are not caught here; model::build_nest() reports them.)
-//  3. parts drawn edge to edge: where an open piece has an exact copy, ends on another piece's
-//     side (a T) or meets more than two ends at a point, its connected group of pieces is traced
-//     as the faces of a planar graph and each face that is a part becomes a contour; an edge drawn
-//     twice then bounds two parts, one drawing each, and a long side that neighbours meet in
-//     stretches stays one piece of its part; points lie at the mean of the ends that meet there
-//     (detail::chain_faces(), src/geometry/chain_faces.hpp, says when a group is left to the next
-//     steps instead, its copies dropped).
-//  4. match end points: all pairs of ends (same group) within snap_mm, found through a uniform
+//  3. match end points: all pairs of ends (same group) within snap_mm, found through a uniform
 //     grid of cell snap_mm, sorted by distance (ties by index) and matched greedily, so each end
 //     gets its nearest partner not already taken. Both ends of one piece may match each other
 //     (an open polyline or arc that closes itself), a single straight line may not.
+//  4. parts drawn edge to edge: where an open piece has an exact copy or an end met by other than
+//     one end (a corner of three or four parts, a T), its connected group of pieces is traced as
+//     the faces of a planar graph and each face that is a part becomes a contour; an edge drawn
+//     twice then bounds two parts, one drawing each, and a long side that neighbours meet in
+//     stretches stays one piece of its part; points lie at the mean of the ends that meet there
+//     (detail::chain_faces(), src/geometry/chain_faces.hpp, says when a group is left to the end
+//     pairing instead, its copies dropped). The ends of the pieces left are matched again (3).
 //  5. walk: pieces linked through matched ends form paths (open) and cycles (closed); each
 //     joint is moved to the midpoint of its two ends.
 //  6. an open chain lying wholly on closed contours of its group (within tol::kCollinearMm: a

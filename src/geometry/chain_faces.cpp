@@ -1,5 +1,6 @@
 // chain_faces(): the face tracing described in chain_faces.hpp.
 #include "chain_faces.hpp"
+#include "chain_face_parts.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -67,23 +68,11 @@ struct Sub {
   std::uint32_t parent;  // index into `open`
 };
 
-// One drawing of an edge: the stretch and the piece (the parent or one of its exact copies).
-struct Drawing {
-  std::uint32_t sub;
-  std::uint32_t piece;  // index into `pieces`
-};
-
 // A connected group of stretches: their indices and points.
 struct Group {
   std::vector<std::uint32_t> subs;
   std::vector<Vec2> points;
   bool usable = true;
-};
-
-// An edge of the planar graph: stretches joining the same two points along the same curve.
-struct Edge {
-  std::vector<Drawing> drawings;  // ascending piece index
-  std::uint32_t rep = 0;          // the stretch whose geometry and direction the edge takes
 };
 
 // A stretch of a face boundary drawn by one piece (consecutive stretches of a piece merged).
@@ -319,103 +308,6 @@ class Tracer {
                 [](const Drawing& a, const Drawing& b) { return std::tie(a.piece, a.sub) < std::tie(b.piece, b.sub); });
     }
     return edges;
-  }
-
-  // Which faces are parts: an edge drawn twice has a part on both sides, an edge drawn once on
-  // exactly one; the outside is scrap. The faces form one connected dual graph, so the outside and
-  // the twice-drawn edges fix every face. Empty when no choice fits the drawings.
-  static std::vector<std::int8_t> parts_of(const std::vector<Edge>& edges, const std::vector<std::int32_t>& face_of,
-                                           std::size_t faces, std::size_t outside) {
-    std::vector<std::int8_t> part(faces, -1);
-    part[outside] = 0;
-    std::vector<std::vector<std::size_t>> across(faces);
-    std::vector<std::size_t> queue{outside};
-    for (std::size_t i = 0; i < edges.size(); ++i) {
-      const auto a = static_cast<std::size_t>(face_of[2 * i]), b = static_cast<std::size_t>(face_of[2 * i + 1]);
-      if (a == b || edges[i].drawings.size() > 2) return {};
-      if (edges[i].drawings.size() == 2) {
-        for (std::size_t f : {a, b}) {
-          if (part[f] == 0) return {};
-          if (part[f] == -1) queue.push_back(f);
-          part[f] = 1;
-        }
-      } else {
-        across[a].push_back(b);
-        across[b].push_back(a);
-      }
-    }
-    for (std::size_t q = 0; q < queue.size(); ++q) {
-      const std::size_t f = queue[q];
-      for (std::size_t o : across[f]) {
-        if (part[o] == -1) {
-          part[o] = static_cast<std::int8_t>(1 - part[f]);
-          queue.push_back(o);
-        } else if (part[o] == part[f]) {
-          return {};
-        }
-      }
-    }
-    for (std::int8_t p : part) {
-      if (p == -1) return {};
-    }
-    return part;
-  }
-
-  // A part's outline drawn twice by mistake: its face's edges each have one drawing too many
-  // (an edge it shares with a neighbour is drawn three times). Tried when no choice of parts fits
-  // the drawings: each face whose edges are all drawn at least twice, first those with an edge
-  // drawn three times, has its edges' latest drawings taken out (they stay dropped as duplicates)
-  // until the parts fit; then all such faces with an edge drawn three times at once. Empty when
-  // nothing fits.
-  static std::vector<std::int8_t> parts_without_repeats(std::vector<Edge>& edges, const std::vector<std::int32_t>& face_of,
-                                                        const std::vector<std::vector<std::uint32_t>>& faces,
-                                                        std::size_t outside) {
-    constexpr std::size_t kMaxTries = 16;
-    auto all_doubled = [&](std::size_t f) {
-      for (std::uint32_t h : faces[f]) {
-        if (edges[h / 2].drawings.size() < 2) return false;
-      }
-      return true;
-    };
-    auto tripled = [&](std::size_t f) {
-      for (std::uint32_t h : faces[f]) {
-        if (edges[h / 2].drawings.size() > 2) return true;
-      }
-      return false;
-    };
-    std::vector<std::size_t> candidates;
-    for (int pass = 0; pass < 2; ++pass) {
-      for (std::size_t f = 0; f < faces.size(); ++f) {
-        if (all_doubled(f) && tripled(f) == (pass == 0)) candidates.push_back(f);
-      }
-    }
-    auto without = [&](const std::vector<std::size_t>& drop) {
-      std::vector<Edge> fewer = edges;
-      for (std::size_t f : drop) {
-        for (std::uint32_t h : faces[f]) {
-          auto& d = fewer[h / 2].drawings;
-          if (d.size() < 2) return std::vector<Edge>{};
-          d.erase(std::max_element(d.begin(), d.end(), [](const Drawing& x, const Drawing& y) { return x.piece < y.piece; }));
-        }
-      }
-      return fewer;
-    };
-    auto attempt = [&](const std::vector<std::size_t>& drop) {
-      std::vector<Edge> fewer = without(drop);
-      if (fewer.empty()) return std::vector<std::int8_t>{};
-      std::vector<std::int8_t> part = parts_of(fewer, face_of, faces.size(), outside);
-      if (!part.empty()) edges = std::move(fewer);
-      return part;
-    };
-    for (std::size_t i = 0; i < candidates.size() && i < kMaxTries; ++i) {
-      if (auto part = attempt({candidates[i]}); !part.empty()) return part;
-    }
-    std::vector<std::size_t> with_triples;
-    for (std::size_t f : candidates) {
-      if (tripled(f)) with_triples.push_back(f);
-    }
-    if (with_triples.size() > 1) return attempt(with_triples);
-    return {};
   }
 
   void trace(const Group& g, FaceChains& out) {

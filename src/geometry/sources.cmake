@@ -1,5 +1,6 @@
 set(CUTROUTE_GEOMETRY_SOURCES
   chain.cpp
+  chain_face_parts.cpp
   chain_faces.cpp
   contour.cpp
   intersect.cpp

@@ -418,21 +418,21 @@ class Tracer {
     }
     own_cut_pieces(edges, face_of, part, drawing_of);
 
-    std::vector<char> used(pieces_.size(), 0);
+    // The pieces drawn into contours, to count the copies used (a list: a table over all pieces
+    // per group would cost pieces x groups).
+    std::vector<std::uint32_t> used;
     for (std::size_t f = 0; f < faces.size(); ++f) {
       if (part[f] != 1) continue;
       emit(g, edges, faces[f], drawing_of, out);
-      for (std::uint32_t h : faces[f]) used[drawing_of[h].piece] = 1;
+      for (std::uint32_t h : faces[f]) used.push_back(drawing_of[h].piece);
     }
+    std::sort(used.begin(), used.end());
+    used.erase(std::unique(used.begin(), used.end()), used.end());
     for (std::uint32_t s : g.subs) {
       const std::uint32_t k = subs_[s].parent;
+      if (out.taken[k]) continue;  // a cut piece's stretches come one by one
       out.taken[k] = 1;
-      for (std::uint32_t copy : copies_[k]) {
-        if (used[copy]) {
-          ++out.copies_used;
-          used[copy] = 0;  // counted once
-        }
-      }
+      for (std::uint32_t copy : copies_[k]) out.copies_used += std::binary_search(used.begin(), used.end(), copy) ? 1 : 0;
     }
   }
 

@@ -62,6 +62,42 @@ Leaving leaving(const Contour& c, std::uint32_t half, bool forward) {
   return {std::atan2(t.y, t.x), k, half};
 }
 
+// Sorts the half-edges leaving one point counter-clockwise (cyclic order). Directions within
+// kSameDirection of each other are one direction, ordered by curvature (right turns first): a line
+// tangent to an arc at the point leaves at the same angle but for rounding (1e-16), which must not
+// decide which comes first. False when two leave along the same curve (overlapping edges: the
+// order is unknown).
+bool order_around(std::vector<Leaving>& list) {
+  constexpr double kSameDirection = 1e-9;  // [rad]
+  constexpr double kTurn = 2 * std::numbers::pi;
+  if (list.size() < 2) return true;
+  std::sort(list.begin(), list.end(), [](const Leaving& a, const Leaving& b) { return std::tie(a.angle, a.half) < std::tie(b.angle, b.half); });
+  // Start after a real gap, so that no bundle of one direction wraps around -pi / pi.
+  const std::size_t m = list.size();
+  std::size_t start = 0;
+  for (std::size_t i = 0; i < m; ++i) {
+    const double prev = i == 0 ? list[m - 1].angle - kTurn : list[i - 1].angle;
+    if (list[i].angle - prev > kSameDirection) {
+      start = i;
+      break;
+    }
+    if (i + 1 == m) return false;  // every direction the same: all overlap
+  }
+  std::rotate(list.begin(), list.begin() + static_cast<std::ptrdiff_t>(start), list.end());
+  for (std::size_t i = 0; i < m;) {
+    std::size_t j = i + 1;
+    auto unwrapped = [&](std::size_t k) { return list[k].angle + (k >= m - start ? kTurn : 0.0); };
+    while (j < m && unwrapped(j) - unwrapped(j - 1) <= kSameDirection) ++j;
+    std::sort(list.begin() + static_cast<std::ptrdiff_t>(i), list.begin() + static_cast<std::ptrdiff_t>(j),
+              [](const Leaving& a, const Leaving& b) { return std::tie(a.curvature, a.half) < std::tie(b.curvature, b.half); });
+    for (std::size_t k = i + 1; k < j; ++k) {
+      if (std::abs(list[k].curvature - list[k - 1].curvature) < 1e-9) return false;
+    }
+    i = j;
+  }
+  return true;
+}
+
 // A piece, or the stretch of a piece between two points where other pieces end on it.
 struct Sub {
   std::int32_t owned;    // its path in Tracer::owned_ (a cut piece's stretch), or -1: the piece's
@@ -333,18 +369,8 @@ class Tracer {
     for (std::uint32_t h = 0; h < 2 * n; ++h) around[tail(h)].push_back(leaving(sub_path(edges[h / 2].rep), h, (h & 1) == 0));
     std::vector<std::uint32_t> slot(2 * n);
     for (auto& list : around) {
-      std::sort(list.begin(), list.end(), [](const Leaving& a, const Leaving& b) {
-        return std::tie(a.angle, a.curvature, a.half) < std::tie(b.angle, b.curvature, b.half);
-      });
-      for (std::size_t i = 0; i < list.size(); ++i) {
-        const Leaving& a = list[i];
-        const Leaving& b = list[(i + 1) % list.size()];
-        double gap = std::abs(b.angle - a.angle);
-        gap = std::min(gap, 2 * std::numbers::pi - gap);
-        // Two edges leaving along one curve overlap: the order around the point is unknown.
-        if (list.size() > 1 && gap < 1e-9 && std::abs(b.curvature - a.curvature) < 1e-9) return;
-        slot[a.half] = static_cast<std::uint32_t>(i);
-      }
+      if (!order_around(list)) return;
+      for (std::size_t i = 0; i < list.size(); ++i) slot[list[i].half] = static_cast<std::uint32_t>(i);
     }
     // The next half-edge of a face: at its head, the one just clockwise of the way back. Faces
     // then have their inside on the left: bounded faces run counter-clockwise, the outside clockwise.
@@ -512,16 +538,18 @@ class Tracer {
       return a.d.piece == b.d.piece && subs_[a.d.sub].parent == subs_[b.d.sub].parent && a.forward == b.forward &&
              segment_count(a.path) == 1 && segment_count(b.path) == 1;
     };
-    // Start at the beginning of a run of one piece.
+    // Start at the beginning of a run of one piece. A face made of one piece's stretches only (an
+    // arc closing on itself, cut where another piece ends on it) keeps them apart.
     std::size_t begin = 0;
     while (begin < steps.size() && joins(steps[(begin + steps.size() - 1) % steps.size()], steps[begin])) ++begin;
-    if (begin == steps.size()) return;  // not reachable: a single segment cannot close
+    const bool merge = begin < steps.size();
+    if (!merge) begin = 0;
     std::rotate(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(begin), steps.end());
     std::vector<Run> runs;
     for (std::size_t i = 0; i < steps.size();) {
       std::size_t j = i + 1;
       double sweep = steps[i].path.vertices.front().bulge == 0 ? 0 : segment(steps[i].path, 0).sweep();
-      while (j < steps.size() && joins(steps[j - 1], steps[j])) {
+      while (merge && j < steps.size() && joins(steps[j - 1], steps[j])) {
         sweep += steps[j].path.vertices.front().bulge == 0 ? 0 : segment(steps[j].path, 0).sweep();
         ++j;
       }

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <vector>
 
 #include <cutroute/core/random.hpp>
@@ -286,6 +287,28 @@ TEST(ChainFaces, ArcSideMetByTheArcsOfTwoNeighbours) {
     total += std::abs(signed_area(c.contour));
   }
   EXPECT_NEAR(total, 40 * 50, 1e-6);
+}
+
+// A round part drawn as one open arc (its ends 0.001 mm apart) touched at its leftmost point by
+// the corners of two squares drawn edge to edge: the arc is cut there, and the round part's face
+// is made of that one arc's two stretches only. All three close (before this was handled, the
+// round part's face was dropped: a part lost).
+TEST(ChainFaces, RoundPartOfOneArcTouchedByACornerOfTwoParts) {
+  const double end = -0.0001;  // [rad] short of a full turn
+  const double sweep = 2 * std::numbers::pi + end;
+  std::vector<ChainPiece> pieces{piece({10, 0}, Vec2{std::cos(end), std::sin(end)} * 10, std::tan(sweep / 4), 0)};
+  const std::vector<Vec2> a{{-30, 0}, {-10, 0}, {-10, 10}, {-30, 10}}, b{{-30, -10}, {-10, -10}, {-10, 0}, {-30, 0}};
+  for (int i = 0; i < 4; ++i) {
+    pieces.push_back(piece(a[i], a[(i + 1) % 4], 0, 1 + i));
+    pieces.push_back(piece(b[i], b[(i + 1) % 4], 0, 5 + i));
+  }
+  const ChainResult r = chain_contours(pieces, 0.01);
+  EXPECT_TRUE(r.open.empty());
+  ASSERT_EQ(r.closed.size(), 3u);
+  double round = 0, squares = 0;
+  for (const ChainedContour& c : r.closed) (c.sources.front() == 0 ? round : squares) += std::abs(signed_area(c.contour));
+  EXPECT_NEAR(round, std::numbers::pi * 100, 0.05);  // its ends joined at their midpoint
+  EXPECT_NEAR(squares, 400, 1e-9);
 }
 
 TEST(ChainFaces, TouchingCornersAndStrokesEndingOnAnEdge) {

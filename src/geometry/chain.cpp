@@ -5,11 +5,14 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <tuple>
 #include <utility>
 
 #include <cutroute/core/tolerances.hpp>
+#include <cutroute/geometry/intersect.hpp>
+#include <cutroute/geometry/segment_set.hpp>
 #include <cutroute/geometry/spatial_index.hpp>
 
 #include "chain_faces.hpp"
@@ -318,16 +321,25 @@ struct Walker {
 // of a closed polyline) is a repeat, like an exact duplicate: it would only be reported as an
 // open path not cut. Tested at its vertices and at the quarter points of its segments, within
 // tol::kCollinearMm (a repeat drawn by the same program is exact).
+// A closed contour's segments are indexed (SegmentSet) the first time a point is tested against
+// it: strokes drawn inside a long outline (marks inside a spline part) each asked all of its
+// segments (5 000 strokes in a 20 000-segment outline: 1.9 s, now 0.1 s).
 void drop_repeated_strokes(ChainResult& result) {
   if (result.open.empty() || result.closed.empty()) return;
   std::vector<Box> boxes;
   boxes.reserve(result.closed.size());
   for (const ChainedContour& c : result.closed) boxes.push_back(bounding_box(c.contour).inflated(tol::kCollinearMm));
   const StaticSpatialIndex index(boxes);
+  std::vector<std::unique_ptr<SegmentSet>> sets(result.closed.size());
   auto on_closed = [&](Vec2 p, std::int32_t group) {
     bool on = false;
     index.visit(Box{p.x, p.y, p.x, p.y}, [&](std::uint32_t k) {
-      on = result.closed[k].group == group && distance(result.closed[k].contour, p) <= tol::kCollinearMm;
+      if (result.closed[k].group != group) return true;
+      if (!sets[k]) sets[k] = std::make_unique<SegmentSet>(make_segment_set(result.closed[k].contour));
+      sets[k]->index.visit(Box{p.x, p.y, p.x, p.y}.inflated(tol::kCollinearMm), [&](std::uint32_t i) {
+        on = closest_point(sets[k]->segments[i], p).distance <= tol::kCollinearMm;
+        return !on;
+      });
       return !on;
     });
     return on;

@@ -167,7 +167,6 @@ std::size_t drop_duplicates(const std::vector<ChainPiece>& pieces, std::vector<s
 
 // --- step 3: match end points, nearest pairs first (step 4 is chain_faces.cpp) ---
 
-using detail::cell_of;
 using detail::end_point;
 
 // Why a grid and not nanoflann: the search radius is fixed (the snap), so a uniform grid with
@@ -179,19 +178,9 @@ std::vector<std::int32_t> match_ends(const std::vector<ChainPiece>& pieces, cons
                                      double snap, std::vector<std::uint8_t>* meeting = nullptr) {
   const std::size_t n_ends = 2 * open.size();
   if (meeting != nullptr) meeting->assign(n_ends, 1);
-  struct Cell {
-    std::int64_t ix, iy;
-    std::uint32_t end;
-  };
-  std::vector<Cell> cells(n_ends);
   std::vector<Vec2> pos(n_ends);
-  for (std::size_t e = 0; e < n_ends; ++e) {
-    pos[e] = end_point(pieces[open[e / 2]].path, e);
-    cells[e] = {cell_of(pos[e].x, snap), cell_of(pos[e].y, snap), static_cast<std::uint32_t>(e)};
-  }
-  std::sort(cells.begin(), cells.end(), [](const Cell& a, const Cell& b) {
-    return std::tie(a.ix, a.iy, a.end) < std::tie(b.ix, b.iy, b.end);
-  });
+  for (std::size_t e = 0; e < n_ends; ++e) pos[e] = end_point(pieces[open[e / 2]].path, e);
+  const std::vector<detail::EndGrid::Cell> cells = detail::make_grid(n_ends, snap, [&](std::size_t e) { return pos[e]; }).cells;
 
   struct Candidate {
     double dist;

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <numbers>
 #include <tuple>
 
@@ -16,34 +15,6 @@ namespace cutroute::geometry::detail {
 namespace {
 
 constexpr std::int32_t kUnset = -1;
-// More ends than this in one snap cell is a crowd (a fan of lines), not a corner of parts.
-constexpr std::size_t kMaxEndsPerCell = 64;
-
-// The ends of all pieces in a grid of cell `snap`, to find the ends that meet an end.
-struct EndGrid {
-  struct Cell {
-    std::int64_t ix, iy;
-    std::uint32_t end;
-  };
-  std::vector<Cell> cells;
-  double snap = 0;
-
-  // Calls f(end) for the ends in the 3 × 3 cells around p; false when a cell is crowded.
-  template <class F>
-  bool for_near(Vec2 p, F&& f) const {
-    const std::int64_t ix = cell_of(p.x, snap), iy = cell_of(p.y, snap);
-    auto less = [](const Cell& a, const Cell& b) { return std::tie(a.ix, a.iy) < std::tie(b.ix, b.iy); };
-    for (std::int64_t dx = -1; dx <= 1; ++dx) {
-      for (std::int64_t dy = -1; dy <= 1; ++dy) {
-        const auto [lo, hi] = std::equal_range(cells.begin(), cells.end(), Cell{ix + dx, iy + dy, 0}, less);
-        if (static_cast<std::size_t>(hi - lo) > kMaxEndsPerCell) return false;
-        for (auto it = lo; it != hi; ++it) f(it->end);
-      }
-    }
-    return true;
-  }
-};
-
 // A half-edge leaving a point: its direction and signed curvature there (left turns positive).
 struct Leaving {
   double angle;
@@ -117,20 +88,6 @@ struct Run {
   std::uint32_t piece;
   bool along;  // runs in the direction the piece was drawn
 };
-
-EndGrid make_grid(std::size_t ends, double snap, const std::function<Vec2(std::size_t)>& pos) {
-  EndGrid grid;
-  grid.snap = snap;
-  grid.cells.resize(ends);
-  for (std::size_t e = 0; e < ends; ++e) {
-    const Vec2 p = pos(e);
-    grid.cells[e] = {cell_of(p.x, snap), cell_of(p.y, snap), static_cast<std::uint32_t>(e)};
-  }
-  std::sort(grid.cells.begin(), grid.cells.end(), [](const EndGrid::Cell& a, const EndGrid::Cell& b) {
-    return std::tie(a.ix, a.iy, a.end) < std::tie(b.ix, b.iy, b.end);
-  });
-  return grid;
-}
 
 class Tracer {
  public:

@@ -1,10 +1,11 @@
-// chain_faces(): contours of parts drawn edge to edge with their own entities, traced as faces of a planar graph.
+// chain_faces(): contours of parts drawn edge to edge with their own entities, traced as faces of a planar graph; the grid of end points the chaining steps share.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <tuple>
 #include <vector>
 
 #include <cutroute/geometry/chain.hpp>
@@ -19,6 +20,49 @@ inline std::int64_t cell_of(double v, double cell) {
   const double q = std::floor(v / cell);
   constexpr double kLimit = 4.0e18;
   return static_cast<std::int64_t>(std::clamp(q, -kLimit, kLimit));
+}
+
+// The ends of all pieces in a grid of cell `snap`, to find the ends that meet an end.
+struct EndGrid {
+  struct Cell {
+    std::int64_t ix, iy;
+    std::uint32_t end;
+  };
+  std::vector<Cell> cells;
+  double snap = 0;
+
+  // Calls f(end) for the ends in the 3 × 3 cells around p; false when a cell is crowded.
+  template <class F>
+  bool for_near(Vec2 p, F&& f) const {
+    // More ends than this in one snap cell is a crowd (a fan of lines), not a corner of parts.
+    constexpr std::size_t kMaxEndsPerCell = 64;
+    const std::int64_t ix = cell_of(p.x, snap), iy = cell_of(p.y, snap);
+    auto less = [](const Cell& a, const Cell& b) { return std::tie(a.ix, a.iy) < std::tie(b.ix, b.iy); };
+    for (std::int64_t dx = -1; dx <= 1; ++dx) {
+      for (std::int64_t dy = -1; dy <= 1; ++dy) {
+        const auto [lo, hi] = std::equal_range(cells.begin(), cells.end(), Cell{ix + dx, iy + dy, 0}, less);
+        if (static_cast<std::size_t>(hi - lo) > kMaxEndsPerCell) return false;
+        for (auto it = lo; it != hi; ++it) f(it->end);
+      }
+    }
+    return true;
+  }
+};
+
+// The grid of `ends` end points (pos(e) for e in [0, ends)), sorted by cell then end.
+template <class Pos>
+EndGrid make_grid(std::size_t ends, double snap, Pos&& pos) {
+  EndGrid grid;
+  grid.snap = snap;
+  grid.cells.resize(ends);
+  for (std::size_t e = 0; e < ends; ++e) {
+    const Vec2 p = pos(e);
+    grid.cells[e] = {cell_of(p.x, snap), cell_of(p.y, snap), static_cast<std::uint32_t>(e)};
+  }
+  std::sort(grid.cells.begin(), grid.cells.end(), [](const EndGrid::Cell& a, const EndGrid::Cell& b) {
+    return std::tie(a.ix, a.iy, a.end) < std::tie(b.ix, b.iy, b.end);
+  });
+  return grid;
 }
 
 // Why faces and not end pairing: where two parts drawn with separate entities share an edge, the

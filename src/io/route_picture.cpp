@@ -34,9 +34,8 @@ geometry::Box nest_box(const model::Nest& nest, const nc::Toolpath& path) {
   return b;
 }
 
-geometry::Box world_box(const model::Nest& nest, const nc::Toolpath& path) {
-  geometry::Box b = nest_box(nest, path);
-  const geometry::Box drawn = b;
+geometry::Box world_box(const geometry::Box& drawn, const nc::Toolpath& path) {
+  geometry::Box b = drawn;
   for (const geometry::Vec2 p : {path.start, path.end})
     if (!far_off(drawn, p)) b.add(p);
   if (b.empty()) b = geometry::Box{0, 0, 100, 100};
@@ -82,7 +81,8 @@ std::optional<double> gap_percent(const nlohmann::json& r) {
 }  // namespace
 
 std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, const RoutePictureOptions& options) {
-  const geometry::Box world = world_box(nest, path);
+  const geometry::Box drawn = nest_box(nest, path);
+  const geometry::Box world = world_box(drawn, path);
   const double span = std::max(world.width(), world.height());
   const double margin = span * 0.02 + 1.0;
   SvgDocument svg(world, margin, options.width_px);
@@ -204,7 +204,7 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
   add_rapid(svg, at, path.end_via, path.end);
   svg.end_group();
   // A start off the picture is marked where its rapid comes in, with its coordinates.
-  const bool start_off = far_off(nest_box(nest, path), path.start);
+  const bool start_off = far_off(drawn, path.start);
   const geometry::Vec2 first = path.segments.empty() ? path.end : path.segments.front().pierce;
   const geometry::Vec2 start_mark = start_off ? entry_point(world, path.start, first) : path.start;
   svg.add_circle(start_mark, mark_mm * 2.5, "fill=\"none\" stroke=\"#111111\" stroke-width=\"2\" " + std::string(kNs));

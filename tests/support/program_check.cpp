@@ -192,13 +192,14 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
     };
     for (std::size_t i = 0; i < moves.size(); ++i) {
       const auto& on = run_on[r][i];
-      int k = -1;
+      int k = on.empty() ? -1 : on.front();
       double longest = -1;
-      for (const int c : on) {
-        const double len = around(i, c);
-        if (len > longest + 1e-9 || (std::abs(len - longest) <= 1e-9 && c == main_contour)) {
+      // A single candidate needs no scan (a long run's streak would cost its length per move).
+      for (std::size_t x = 0; on.size() > 1 && x < on.size(); ++x) {
+        const double len = around(i, on[x]);
+        if (len > longest + 1e-9 || (std::abs(len - longest) <= 1e-9 && on[x] == main_contour)) {
           longest = len;
-          k = c;
+          k = on[x];
         }
       }
       assign(r, i, k);

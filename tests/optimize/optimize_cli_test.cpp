@@ -198,6 +198,70 @@ TEST(OptimizeCli, LeadsGrowWithAPlasmaKerfSoTheControllerAcceptsTheProgram) {
   fs::remove_all(dir);
 }
 
+// Lead types are compared whole, but an entry the type does not fit keeps the previous type's
+// lead: 5-mm holes take no arc lead-in of the default job, so the arc program enters them with a
+// line (one block) rather than the default line-arc lead (two). Without that, the arc program had
+// three blocks more and the line program was written instead.
+TEST(OptimizeCli, ArcLeadsFallBackToLinesWhereNoArcFits) {
+  const auto dir = temp_dir("lead_fallback");
+  DxfBuilder b;
+  std::vector<std::pair<geometry::Vec2, double>> holes;
+  for (int i = 0; i < 3; ++i) {
+    const double x = 10.0 + 50 * i;
+    b.line({x, 10}, {x + 40, 10}).line({x + 40, 10}, {x + 40, 50}).line({x + 40, 50}, {x, 50}).line({x, 50}, {x, 10});
+    holes.push_back({{x + 12, 30}, 6.0});
+    holes.push_back({{x + 30, 30}, 2.5});
+  }
+  for (const auto& [c, r] : holes) b.circle(c, r);
+  const auto dxf = (dir / "holes.dxf").string();
+  std::ofstream(dxf) << b.str();
+  const OptRun run = optimize(dxf, dir, "--technique standard");
+  ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
+  expect_admissible(dxf, run);
+  EXPECT_EQ(run.report["lead_in"], "arc");
+  // Each hole's first two moves after G41: the lead-in, then the hole's own circle (or the lead's
+  // second block).
+  struct Move {
+    int g = -1;
+    double radius = 0;
+  };
+  auto word = [](const std::string& line, char w) {
+    const auto at = line.find(w);
+    return at == std::string::npos ? 0.0 : std::stod(line.substr(at + 1));
+  };
+  std::istringstream in(run.program);
+  std::string line;
+  geometry::Vec2 pierce{};
+  std::vector<Move> moves;
+  bool on = false;
+  int small = 0, large = 0;
+  auto finish = [&] {
+    for (const auto& [c, r] : holes) {
+      if (geometry::distance(pierce, c) >= r) continue;  // pierced inside this hole
+      ASSERT_GE(moves.size(), 2u);
+      if (r < 3) {
+        ++small;
+        EXPECT_EQ(moves[0].g, 1) << "hole at " << c.x << ": a line lead-in";
+        EXPECT_NEAR(moves[1].radius, r, 1e-3) << "hole at " << c.x << ": one block, then the hole";
+      } else {
+        ++large;
+        EXPECT_TRUE(moves[0].g == 2 || moves[0].g == 3) << "hole at " << c.x << ": an arc lead-in";
+        EXPECT_GT(std::abs(moves[0].radius - r), 1e-3) << "hole at " << c.x;
+      }
+    }
+  };
+  while (std::getline(in, line)) {
+    if (line.rfind("G0 ", 0) == 0) pierce = {word(line, 'X'), word(line, 'Y')};
+    if (line == "G41") on = true, moves.clear();
+    if (line == "G40") on = false, finish();
+    if (on && line.size() > 2 && line[0] == 'G' && line[1] >= '1' && line[1] <= '3' && line[2] == ' ')
+      moves.push_back({line[1] - '0', std::hypot(word(line, 'I'), word(line, 'J'))});
+  }
+  EXPECT_EQ(small, 3);
+  EXPECT_EQ(large, 3);
+  fs::remove_all(dir);
+}
+
 TEST(OptimizeCli, SameSeedSameBytes) {
   const auto dir = temp_dir("det");
   const auto dxf = (dir / "demo.dxf").string();

@@ -378,6 +378,7 @@ struct Alternative {
   solve::Solution solution;
   std::vector<model::EntryCandidate> sequence;
   int moved = 0;
+  bool refine_stopped = false;  // the entry refinement ended at the time limit (or a stop request)
   Evaluated best;
   std::string lead_name;
   nlohmann::json leads_json;
@@ -463,7 +464,9 @@ Result<Alternative> solve_alternative(const model::Nest& nest, model::CutJob& jo
   if (o.refine_entries) {
     if (progress) progress({"refine", -1, {}});
     const auto penalty = rules::tip_up_entry_penalty(nest, seq, o.rules);
-    alt.moved = refine_entries(planner, s.prices, s.start, s.start, seq, 2, refine_stop, penalty);
+    const Refined refined = refine_entries(planner, s.prices, s.start, s.start, seq, 2, refine_stop, penalty);
+    alt.moved = refined.moved;
+    alt.refine_stopped = refined.stopped;
   }
   alt.rigid_corners = rules::place_rigid_entries(nest, job, seq, o.rules);  // shop rules: part rigidity
   lap("refine");
@@ -690,6 +693,14 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   auto& leads_json = win.leads_json;
   Evaluated& best_ev = win.best;
 
+  // Huge nests under a short limit: the program is admissible, but its entries could be placed for
+  // shorter rapids with more time.
+  if (win.refine_stopped && !stop.cancelled()) {
+    Diagnostic w = make_warning("the entry refinement stopped at the time limit after moving " + std::to_string(moved) +
+                                " entries (a longer --time-limit lets it finish: shorter rapids)");
+    w.code = "refine.time_limit";
+    result.diagnostics.push_back(std::move(w));
+  }
   if (best_ev.detours_left > 0) {  // shop rules: tip-up detours stopped (report: rules.tip_up_program)
     Diagnostic w = make_warning(
         "tip-up: " + std::to_string(best_ev.detours_left) + " of " +
@@ -759,6 +770,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   r["lead_in"] = lead_name;
   r["lead_alternatives"] = leads_json;
   r["entries_refined"] = moved;
+  if (win.refine_stopped) r["entries_refinement_stopped"] = true;
   r["technique"] = to_string(o.technique);
   r["alternatives"] = alternatives;
   r["chosen"] = to_string(built[chosen]);

@@ -20,7 +20,7 @@ double local_price(const cost::RoutePrices& prices, geometry::Vec2 prev, const s
 
 }  // namespace
 
-int refine_entries(const model::EntryPlanner& planner, const cost::RoutePrices& prices, geometry::Vec2 start,
+Refined refine_entries(const model::EntryPlanner& planner, const cost::RoutePrices& prices, geometry::Vec2 start,
                    std::optional<geometry::Vec2> park, std::vector<model::EntryCandidate>& seq, int passes,
                    const StopToken& stop, const EntryPenalty& penalty) {
   int moved = 0;
@@ -32,7 +32,7 @@ int refine_entries(const model::EntryPlanner& planner, const cost::RoutePrices& 
   for (int pass = 0; pass < passes; ++pass) {
     bool improved = false;
     for (std::size_t k = 0; k < seq.size(); ++k) {
-      if (stop.stop_requested()) return moved;
+      if (stop.stop_requested()) return {moved, true};
       auto& cur = seq[k];
       // Fallbacks stay where they were put; chains and common-line segments are tied to where their
       // bridges and shared edges are (their candidates were placed there on purpose).
@@ -99,7 +99,7 @@ int refine_entries(const model::EntryPlanner& planner, const cost::RoutePrices& 
     }
     if (!improved) break;
   }
-  return moved;
+  return {moved, false};
 }
 
 }  // namespace cutroute::pipeline

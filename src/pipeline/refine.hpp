@@ -17,14 +17,18 @@ namespace cutroute::pipeline {
 // sought by sampling 24 points along the contour and a golden-section search around the best;
 // only admissible entries (EntryPlanner::entry_at) are taken and only improvements are kept.
 // Multi-piece candidates (chains, common lines) and fallbacks are left as they are.
-// Cost: passes × contours × ~40 entry evaluations. Returns the number of entries moved.
+// Cost: passes × contours × ~40 entry evaluations.
 // `penalty`, when set, adds a price (objective units) to the entry of sequence[k] with the given
 // pierce and tool-off points, between the previous tool-off point and the next pierce point (the
 // park position after the last): shop rules whose price depends on where the rapids run, which
 // the refinement must not undo (tip-up: rules::tip_up_entry_penalty()).
 using EntryPenalty = std::function<double(std::size_t k, geometry::Vec2 prev_off, geometry::Vec2 pierce, geometry::Vec2 off,
                                           const std::optional<geometry::Vec2>& next)>;
-int refine_entries(const model::EntryPlanner& planner, const cost::RoutePrices& prices, geometry::Vec2 start,
+struct Refined {
+  int moved = 0;         // entries moved
+  bool stopped = false;  // `stop` ended it before its passes were done
+};
+Refined refine_entries(const model::EntryPlanner& planner, const cost::RoutePrices& prices, geometry::Vec2 start,
                    std::optional<geometry::Vec2> park, std::vector<model::EntryCandidate>& sequence, int passes,
                    const StopToken& stop, const EntryPenalty& penalty = {});
 

@@ -90,12 +90,13 @@ EndGrid make_grid(std::size_t ends, double snap, Pos&& pos) {
 //     its stretches border one part, else the earlier drawing to the part whose other edges come
 //     nearer to it in the file; stretches of one piece that follow each other are merged back.
 // Where no choice fits, a part drawn twice by mistake is looked for (parts_without_repeats(): its
-// second outline is dropped as duplicates). A group is left to the end pairing, its copies dropped and its pieces uncut, when no choice fits
-// or the group does not look like a planar drawing: an odd number of drawings at a point, an edge
-// drawn more than three times, ends crowding more than 64 to a snap cell or spread wider than the
-// snap, two edges leaving a point along the same curve, an edge whose ends meet, a face of no area,
-// more than one face turning clockwise, a part's face passing a point twice. A single edge drawn
-// twice by mistake makes an odd point, and keeps the end pairing.
+// second outline is dropped as duplicates). A group is left to the end pairing, its copies dropped
+// and its pieces uncut, when no choice fits or the group does not look like a planar drawing: an
+// odd number of drawings at a point, an edge drawn more than three times, ends crowding more than
+// 64 to a snap cell or spread wider than the snap, two edges leaving a point along the same curve,
+// an edge whose ends meet, a face of no area, more than one face turning clockwise, a part's face
+// passing a point twice. A single edge drawn twice by mistake makes an odd point, and keeps the end
+// pairing.
 // Cost: nothing more than the end pairing's counts for a clean drawing; else O(n log n) for n open
 // pieces (a grid of ends, a packed R-tree of the pieces for the T search).
 struct FaceChains {

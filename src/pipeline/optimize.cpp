@@ -425,8 +425,9 @@ std::vector<model::EntryCandidate> with_lead(const model::EntryPlanner& other, c
 // refinement), and judging the types before the refinement picked line leads where arcs ended
 // 0.1-0.2 % faster.
 Result<Alternative> solve_alternative(const model::Nest& nest, model::CutJob& job, const model::EntryPlanner& planner,
-                                      const Setup& s, const OptimizeOptions& o, double time_limit_s, const RunLimit& run, double reserve_s,
-                                      const StopToken& stop, const ProgressFn& progress, nlohmann::json& timing) {
+                                      const Setup& s, const OptimizeOptions& o, double time_limit_s, const RunLimit& run,
+                                      double reserve_s, const StopToken& stop, const ProgressFn& progress,
+                                      nlohmann::json& timing) {
   Laps lap(timing);
   // 3. Sequencing. The routing problem is dropped once the route is known (on a plate of 72 000
   // holes it held about as much memory as a lead type's entries).

@@ -9,6 +9,7 @@
 #include <nanoflann.hpp>
 
 #include <cutroute/core/parallel.hpp>
+#include <cutroute/solve/heuristic.hpp>
 
 namespace cutroute::solve::detail {
 
@@ -28,7 +29,8 @@ constexpr std::size_t kQueries = 8;  // per cluster
 
 using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>, Cloud, 2, std::uint32_t>;
 
-// nanoflann result set keeping the kn nearest distinct clusters other than `self` seen by one query:
+// nanoflann result set keeping the kn nearest distinct clusters other than `self` seen by the queries
+// since reset():
 // a plain k-nearest query would return mostly the entries of the query's own contour and of one
 // neighbour, and would need a k of hundreds (nanoflann's sorted result set costs O(k) per point).
 class ClusterResults {
@@ -77,6 +79,10 @@ class ClusterResults {
 
 // Rows of kn clusters for every cluster a: the clusters owning the points of `targets` nearest to
 // the points of `sources` that belong to a's nodes (each cluster by its nearest point), a excluded.
+// a's queries share one result set: the row is the kn clusters nearest to any of them, and each
+// query after the first starts from the distance the row already holds, so the tree cuts off what
+// lies farther (a result set per query, merged afterwards, read a third more points: on 24 000
+// parts with 2 holes each, 816 000 candidates, the two lists took 1.8 s instead of 1.2 s).
 void lists(const Problem& p, std::size_t kn, const std::vector<PlanarPoint>& sources, const std::vector<PlanarPoint>& targets,
            std::vector<ClusterId>& out) {
   const int m = p.cluster_count();
@@ -84,30 +90,24 @@ void lists(const Problem& p, std::size_t kn, const std::vector<PlanarPoint>& sou
   const Cloud cloud{targets};
   const Tree tree(2, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
   ClusterResults res(p, kn);
-  std::vector<std::pair<double, int>> found;
+  std::vector<std::pair<double, int>> row;
   for (int a = 0; a < m; ++a) {
-    found.clear();
     // Up to kQueries of a's nodes, evenly spread (entries along one contour: the neighbours seen
     // from a few of them are those seen from all, and each query visits ~kn clusters' points).
     const auto nodes = p.nodes_of(ClusterId(a));
     const std::size_t step = std::max<std::size_t>(1, (nodes.size() + kQueries - 1) / kQueries);
+    res.reset(a);
     for (std::size_t r = 0; r < nodes.size(); r += step) {
       const PlanarPoint q = sources[nodes[r].index()];
       const double qp[2] = {q.x, q.y};
-      res.reset(a);
       tree.findNeighbors(res, qp, nanoflann::SearchParams());
-      found.insert(found.end(), res.items().begin(), res.items().end());
     }
-    // One entry per cluster (its nearest point), then by distance, ties by cluster id.
-    std::sort(found.begin(), found.end(), [](const auto& x, const auto& y) {
-      return x.second != y.second ? x.second < y.second : x.first < y.first;
-    });
-    found.erase(std::unique(found.begin(), found.end(), [](const auto& x, const auto& y) { return x.second == y.second; }),
-                found.end());
-    std::sort(found.begin(), found.end());
-    // Each query sees kn clusters when there are (kn < m), so the row is full.
+    // By distance, ties by cluster id.
+    row.assign(res.items().begin(), res.items().end());
+    std::sort(row.begin(), row.end());
+    // The first query sees kn clusters when there are (kn < m), so the row is full.
     for (std::size_t r = 0; r < kn; ++r)
-      out[static_cast<std::size_t>(a) * kn + r] = ClusterId(found[std::min(r, found.size() - 1)].second);
+      out[static_cast<std::size_t>(a) * kn + r] = ClusterId(row[std::min(r, row.size() - 1)].second);
   }
 }
 
@@ -144,3 +144,13 @@ void planar_neighbours(const Problem& p, std::size_t kn, std::vector<ClusterId>&
 }
 
 }  // namespace cutroute::solve::detail
+
+namespace cutroute::solve {
+
+CandidateLists planar_candidate_lists(const Problem& p, std::size_t kn) {
+  CandidateLists l;
+  detail::planar_neighbours(p, kn, l.pred, l.succ);
+  return l;
+}
+
+}  // namespace cutroute::solve

@@ -11,7 +11,8 @@ namespace cutroute::solve::detail {
 // For every cluster a, the kn clusters b != a with the cheapest arc b -> a (pred) and a -> b (succ),
 // exact over all nodes: a planar arc's cost grows with its length, so the nearest points are the
 // cheapest arcs (forbidden arcs are not looked at). Rows of kn ids, row a at [a * kn, a * kn + kn);
-// ties go to the lower cluster id. Needs p.planar() and kn < cluster_count(). With `two_threads` the
+// ties within a row go to the lower cluster id, a tie for its last place to the cluster the tree
+// search met first. Needs p.planar() and kn < cluster_count(). With `two_threads` the
 // two lists are built at once (the same lists).
 void planar_neighbours(const Problem& p, std::size_t kn, std::vector<ClusterId>& pred, std::vector<ClusterId>& succ,
                        bool two_threads = false);

@@ -71,6 +71,42 @@ Problem build(const Planar& p, bool as_matrix, RouteKind kind = RouteKind::close
   return std::move(r).value();
 }
 
+// The candidate lists from the k-d trees against every pair of points: for each cluster, the 12
+// clusters nearest to its sampled nodes (leaving at their out points for succ, entering at their in
+// points for pred), in the same order. Random points: no two distances tie.
+TEST(PlanarCosts, CandidateListsAreTheNearestClustersByBruteForce) {
+  Rng rng(31);
+  const Planar p = random_planar(300, 20, rng);
+  const Problem planar = build(p, false);
+  constexpr std::size_t kn = 12;
+  const CandidateLists lists = planar_candidate_lists(planar, kn);
+  const int m = planar.cluster_count();
+  ASSERT_EQ(lists.succ.size(), static_cast<std::size_t>(m) * kn);
+  ASSERT_EQ(lists.pred.size(), static_cast<std::size_t>(m) * kn);
+  auto d2 = [](PlanarPoint a, PlanarPoint b) { return (a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y); };
+  for (int dir = 0; dir < 2; ++dir) {  // 0: succ (a's out -> b's in), 1: pred (b's out -> a's in)
+    const auto& from = dir == 0 ? p.costs.out : p.costs.in;
+    const auto& to = dir == 0 ? p.costs.in : p.costs.out;
+    for (int a = 0; a < m; ++a) {
+      const auto& own = p.clusters[static_cast<std::size_t>(a)];
+      const std::size_t s = (own.size() + 7) / 8;
+      std::vector<std::pair<double, int>> all;
+      for (int b = 0; b < m; ++b) {
+        if (b == a) continue;
+        double best = std::numeric_limits<double>::infinity();
+        for (std::size_t r = 0; r < own.size(); r += s)
+          for (NodeId v : p.clusters[static_cast<std::size_t>(b)])
+            best = std::min(best, d2(from[own[r].index()], to[v.index()]));
+        all.emplace_back(best, b);
+      }
+      std::sort(all.begin(), all.end());
+      const auto& got = dir == 0 ? lists.succ : lists.pred;
+      for (std::size_t r = 0; r < kn; ++r)
+        ASSERT_EQ(got[static_cast<std::size_t>(a) * kn + r].value(), all[r].second) << "cluster " << a << " rank " << r << " dir " << dir;
+    }
+  }
+}
+
 TEST(PlanarCosts, EveryArcIsTheRoundedAffinePriceOfItsLength) {
   Rng rng(7);
   const Planar p = random_planar(40, 5, rng);

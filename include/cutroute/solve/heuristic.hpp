@@ -95,6 +95,15 @@ enum class PriceLevel { baseline, x86_64_v3, x86_64_v4 };
 bool price_level_supported(PriceLevel level);
 std::vector<Cost> planar_prices(const Problem& p, PriceLevel level, NodeId from, std::span<const NodeId> to);
 
+// The candidate lists of a problem with planar costs (k-d trees over its points), for tests: row a
+// of `succ` holds the kn clusters b != a nearest to a through an arc a -> b, of `pred` through
+// b -> a, each measured from up to 8 of a's nodes (its nodes 0, s, 2s, ... with s = ceil(size / 8))
+// and to every node of b, nearest first (ties by cluster id). Needs p.planar() and kn < cluster_count(). O(n log n).
+struct CandidateLists {
+  std::vector<ClusterId> pred, succ;  // row a at [a * kn, a * kn + kn)
+};
+CandidateLists planar_candidate_lists(const Problem& p, std::size_t kn);
+
 // The node-set search on its own (docs/SOLVER.md "Node sets"), for closed tours on asymmetric
 // matrices without precedence or inner costs: from `route`'s nodes, an iterated descent over the
 // choice of one node per cluster that lowers the assignment bound of the chosen nodes, until

@@ -10,7 +10,7 @@
 
 namespace cutroute::geometry {
 
-SegmentSet make_segment_set(const Contour& c) {
+SegmentSet make_path_set(const Contour& c) {
   SegmentSet s;
   s.closed = c.closed;
   const std::size_t n = segment_count(c);
@@ -21,6 +21,11 @@ SegmentSet make_segment_set(const Contour& c) {
     s.boxes.push_back(s.segments.back().bounding_box());
     s.box.add(s.boxes.back());
   }
+  return s;
+}
+
+SegmentSet make_segment_set(const Contour& c) {
+  SegmentSet s = make_path_set(c);
   s.index = StaticSpatialIndex(s.boxes);
   return s;
 }
@@ -54,12 +59,24 @@ std::size_t count_close_segment_pairs(const SegmentSet& a, const SegmentSet& b, 
   if (limit == 0) return 0;
   if (!(tol_mm >= 0.0)) tol_mm = 0.0;
   if (!a.box.inflated(tol_mm).intersects(b.box)) return 0;
-  // Walk the smaller set, query the larger one's index.
-  const bool a_small = a.segments.size() <= b.segments.size();
+  // Walk the smaller set, query the larger one's index; a set without an index (make_path_set) is
+  // walked. The count is the same either way: a pair is close when either box, inflated by tol_mm,
+  // meets the other.
+  const bool a_indexed = a.index.size() == a.segments.size(), b_indexed = b.index.size() == b.segments.size();
+  std::size_t found = 0;
+  if (!a_indexed && !b_indexed) {
+    for (std::size_t i = 0; i < a.segments.size() && found < limit; ++i) {
+      const Box near = a.boxes[i].inflated(tol_mm);
+      for (std::size_t j = 0; j < b.segments.size() && found < limit; ++j)
+        if (near.intersects(b.boxes[j]) && intersect(a.segments[i], b.segments[j], tol_mm).kind != SegmentIntersection::Kind::none)
+          ++found;
+    }
+    return found;
+  }
+  const bool a_small = !a_indexed || (b_indexed && a.segments.size() <= b.segments.size());
   const SegmentSet& small = a_small ? a : b;
   const SegmentSet& large = a_small ? b : a;
   const Box large_box = large.box.inflated(tol_mm);
-  std::size_t found = 0;
   for (std::size_t i = 0; i < small.segments.size(); ++i) {
     if (!small.boxes[i].intersects(large_box)) continue;
     large.index.visit(small.boxes[i].inflated(tol_mm), [&](std::uint32_t j) {

@@ -162,7 +162,7 @@ class TrailLeads {
     const double len = geometry::length(lead);
     const double trim = std::min(0.05 * len, 0.1);
     const Contour away = detail::sub_path(lead, at_end ? 0.0 : trim, len - trim);
-    const auto lead_set = geometry::make_segment_set(lead), away_set = geometry::make_segment_set(away);
+    const auto lead_set = geometry::make_path_set(lead), away_set = geometry::make_path_set(away);
     index_.query(geometry::bounding_box(lead).inflated(clearance_), scratch_);
     const std::vector<std::uint32_t> near = scratch_;
     for (const auto i : near) {

@@ -313,7 +313,7 @@ struct EntryPlanner::Impl {
   // at its last point (lead-in) or first point (lead-out)?
   bool path_clear(const Contour& path, ContourId own, bool touches_at_end) const {
     if (path.vertices.size() < 2) return true;
-    const geometry::SegmentSet lead = geometry::make_segment_set(path);
+    const geometry::SegmentSet lead = geometry::make_path_set(path);
     const Box box = lead.box.inflated(clearance);
     index.query(box, scratch());
     for (auto i : scratch()) {
@@ -325,7 +325,7 @@ struct EntryPlanner::Impl {
     const double len = geometry::length(path);
     const double trim = std::min(0.05 * len, 0.1);
     const Contour own_part = touches_at_end ? detail::sub_path(path, 0, len - trim) : detail::sub_path(path, trim, len - trim);
-    return geometry::count_close_segment_pairs(geometry::make_segment_set(own_part), sets[own.index()],
+    return geometry::count_close_segment_pairs(geometry::make_path_set(own_part), sets[own.index()],
                                                tol::kSamePointMm, 1) == 0;
   }
 
@@ -633,7 +633,7 @@ bool EntryPlanner::bridge_clear(const geometry::Contour& path, ContourId from, C
   // Its two ends are on `from` and `to`; a little in from them, nothing may be touched at all.
   const double trim = std::min(0.05 * len, 0.1);
   const Contour inner = detail::sub_path(path, trim, len - 2 * trim);
-  const geometry::SegmentSet set = geometry::make_segment_set(inner);
+  const geometry::SegmentSet set = geometry::make_path_set(inner);
   I.index.query(set.box.inflated(I.clearance), I.scratch());
   const std::vector<std::uint32_t> near = I.scratch();
   for (auto i : near) {
@@ -648,7 +648,7 @@ bool EntryPlanner::bridge_clear(const geometry::Contour& path, ContourId from, C
 bool EntryPlanner::near_other(ContourId own, const geometry::Contour& path, double distance) const {
   const auto& I = *impl_;
   if (path.vertices.empty()) return false;
-  const geometry::SegmentSet set = geometry::make_segment_set(path);
+  const geometry::SegmentSet set = geometry::make_path_set(path);
   I.index.query(set.box.inflated(distance), I.scratch());
   // Contours inside `own` (its holes, parts in them) are on the other side of its cut.
   const auto inside_own = [&](ContourId c) {

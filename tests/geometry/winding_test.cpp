@@ -143,6 +143,43 @@ TEST(Winding, SegmentSetAgreesWithContourVersions) {
   }
 }
 
+// A path set (no index) counts close pairs as an indexed set and as the contour version do, on
+// either side and against another path set, with and without a limit: random open paths of 1-4
+// lines and arcs thrown over a 500-segment gear, a circle and a rectangle with an arc.
+TEST(Winding, PathSetsCountCloseSegmentPairsLikeIndexedSets) {
+  Rng rng(23);
+  std::vector<Vec2> pts;
+  for (int i = 0; i < 500; ++i) {
+    const double a = 2 * kPi * i / 500, r = 8 + 2 * rng.uniform01();
+    pts.push_back({r * std::cos(a), r * std::sin(a)});
+  }
+  const Contour shapes[] = {polygon(pts), circle({1, 2}, 3), Contour{{{{0, 0}, 0}, {{4, 0}, 0}, {{4, 4}, -1}, {{0, 4}, 0}}, true}};
+  int touching = 0;
+  for (const Contour& c : shapes) {
+    const SegmentSet indexed = make_segment_set(c), unindexed = make_path_set(c);
+    for (int trial = 0; trial < 400; ++trial) {
+      Contour path;
+      Vec2 at{-11 + 22 * rng.uniform01(), -11 + 22 * rng.uniform01()};
+      const int n = 1 + static_cast<int>(rng.below(4));
+      for (int k = 0; k <= n; ++k) {
+        path.vertices.push_back({at, rng.chance(0.4) ? 2 * rng.uniform01() - 1 : 0.0});
+        at = at + Vec2{-3 + 6 * rng.uniform01(), -3 + 6 * rng.uniform01()};
+      }
+      const SegmentSet path_set = make_path_set(path), path_indexed = make_segment_set(path);
+      for (const std::size_t limit : {std::size_t{1}, std::size_t{1000}}) {
+        const std::size_t truth = count_close_segment_pairs(path, c, 0.05, limit);
+        touching += truth > 0 && limit == 1;
+        ASSERT_EQ(count_close_segment_pairs(path_set, indexed, 0.05, limit), truth) << trial;
+        ASSERT_EQ(count_close_segment_pairs(indexed, path_set, 0.05, limit), truth) << trial;
+        ASSERT_EQ(count_close_segment_pairs(path_set, unindexed, 0.05, limit), truth) << trial;
+        ASSERT_EQ(count_close_segment_pairs(path_indexed, indexed, 0.05, limit), truth) << trial;
+      }
+    }
+  }
+  EXPECT_GT(touching, 100);  // both outcomes are exercised (254 of 1 200)
+  EXPECT_LT(touching, 1100);
+}
+
 TEST(Winding, TransformsMovePointsWithTheContour) {
   const Contour c{{{{0, 0}, 0.4}, {{10, 0}, -0.3}, {{10, 8}, 1.8}, {{4, 6}, 0}, {{0, 8}, -0.7}}, true};
   const Contour before = c;

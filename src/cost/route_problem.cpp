@@ -26,6 +26,11 @@ solve::Cost to_ticks(double v) {
 
 }  // namespace
 
+double inner_price(const model::EntryCandidate& e, const RoutePrices& prices) {
+  const double cut_mm = geometry::length(e.lead_in) + model::pieces_length(e) + geometry::length(e.lead_out);
+  return prices.cut_price(cut_mm) + prices.pierce_price();
+}
+
 Result<RouteProblem> build_route_problem(const model::CutJob& job, const RoutePrices& prices,
                                          const RouteProblemOptions& options) {
   if (prices.objective == Objective::time && (!(prices.v_on_mm_s > 0) || !(prices.v_off_mm_s > 0)))
@@ -47,8 +52,7 @@ Result<RouteProblem> build_route_problem(const model::CutJob& job, const RoutePr
       rp.nodes.push_back({static_cast<std::int32_t>(c), static_cast<std::int32_t>(k)});
       rp.pierce.push_back(e.pierce);
       rp.tool_off.push_back(model::tool_off_point(e));
-      const double cut_mm = geometry::length(e.lead_in) + model::pieces_length(e) + geometry::length(e.lead_out);
-      inner.push_back(to_ticks(prices.cut_price(cut_mm) + prices.pierce_price()));
+      inner.push_back(to_ticks(inner_price(e, prices)));
     }
     clusters.push_back(std::move(members));
   }

@@ -325,6 +325,41 @@ TEST(OptimizeCli, RefinementStoppedByTheTimeLimitIsReported) {
   fs::remove_all(dir);
 }
 
+// A time limit spent on the cut jobs alone: only the alternative with the lowest floor under its
+// route price is solved (on the demo sheet the chain one, three pierces fewer), the others are
+// reported as not solved, with a warning, and the program is still admissible and complete.
+TEST(OptimizeCli, SpentTimeLimitSolvesTheMostPromisingAlternativeOnly) {
+  const auto dir = temp_dir("spent");
+  const auto dxf = (dir / "demo.dxf").string();
+  ASSERT_EQ(run_command(cli_path() + " demo " + dxf).exit_code, 0);
+  auto loaded = io::load_nest(dxf, io::NestLoadOptions{});
+  ASSERT_TRUE(loaded.ok());
+  const OptRun cut = optimize(dxf, dir, "", "0.0001");
+  ASSERT_EQ(cut.cmd.exit_code, 0) << cut.cmd.err;
+  const auto& alts = cut.report["alternatives"];
+  ASSERT_EQ(alts.size(), 3u);
+  EXPECT_EQ(alts[0]["name"], "standard");
+  EXPECT_FALSE(alts[0]["available"].get<bool>());
+  EXPECT_EQ(alts[0]["reason"], "not solved: the time limit was spent");
+  EXPECT_TRUE(alts[1]["available"].get<bool>());
+  EXPECT_EQ(cut.report["chosen"], "chain");
+  EXPECT_NE(cut.cmd.err.find("the time limit was spent before the standard alternative could be solved"), std::string::npos)
+      << cut.cmd.err;
+  ProgramCheckOptions opt;
+  opt.clearance_mm = 1.0;
+  const auto check = check_program(loaded->nest, cut.program, opt);
+  for (const auto& f : check.failures) ADD_FAILURE() << f;
+  EXPECT_EQ(check.contours_cut, 21);
+  EXPECT_EQ(check.runs, 18);
+  // A limit the jobs do not spend compares both.
+  const OptRun full = optimize(dxf, dir, "");
+  ASSERT_EQ(full.cmd.exit_code, 0) << full.cmd.err;
+  EXPECT_TRUE(full.report["alternatives"][0]["available"].get<bool>());
+  EXPECT_TRUE(full.report["alternatives"][1]["available"].get<bool>());
+  EXPECT_EQ(full.cmd.err.find("could be solved"), std::string::npos);
+  fs::remove_all(dir);
+}
+
 // 30 plates with a hole each (60 contours, holes before plates): beyond the exact DP, so the route
 // comes from the heuristic, and `auto` reports the cluster-graph bound with it. The bound is a bound
 // on that objective: positive, at most the route's, equal to it only when the run says optimal.

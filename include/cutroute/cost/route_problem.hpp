@@ -51,6 +51,10 @@ struct RouteProblemOptions {
   int matrix_max_nodes = 3000;          // above: costs on demand (a matrix would be too big)
 };
 
+// The price of cutting one candidate, as the route's inner cost of its node: its pierce, lead-in,
+// every piece (contours with overcut, bridges, common edges) and lead-out [s or cost unit].
+double inner_price(const model::EntryCandidate& e, const RoutePrices& prices);
+
 // Arc cost a -> b: the rapid from a's tool-off point to b's pierce point. Inner cost of b: its
 // pierce, lead-in, every piece (contours with overcut, bridges, common edges) and lead-out. Precedence (a before b) maps to clusters.
 Result<RouteProblem> build_route_problem(const model::CutJob& job, const RoutePrices& prices,

@@ -89,7 +89,9 @@ struct OptimizeResult {
 //     solved again, and one that cannot be built is reported as not available;
 //  then for each job (the solver gets what is left of time_limit_s after the work measured or
 //  estimated for the steps that follow it and the shares of the shop rules' steps after it,
-//  split evenly over the jobs left; at least a tenth of an even share):
+//  split evenly over the jobs left; at least a tenth of an even share; when building the jobs
+//  spent the whole limit, only the job with the lowest floor under its route price is solved, the
+//  others reported as not solved, with warning "technique.time_limit"):
 //  3. the routing problem in integer time or cost (cost::build_route_problem) and solve::solve();
 //  4. continuous refinement of each one-contour entry along its contour for the fixed order;
 //  5. toolpath -> G-code in the dialect; frames n counted on the written program;

@@ -1,6 +1,7 @@
 #include <cutroute/pipeline/optimize.hpp>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -8,6 +9,7 @@
 #include <mutex>
 #include <numeric>
 #include <optional>
+#include <span>
 #include <thread>
 
 #include <cutroute/core/number_format.hpp>
@@ -655,12 +657,16 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   // parts with two holes each at --time-limit 2: the jobs took 2.3 s, and each alternative about
   // 2 s more for its route problem, candidate lists, first route and programs; with both solved the
   // run ended at 7.6 s). Otherwise every alternative is solved, in their order.
-  std::vector<std::size_t> order(jobs.size());
+  // Fixed buffers (at most four techniques), not vectors: a few bytes allocated here, between the
+  // jobs' large blocks and the solver's, raised the peak memory of a plate of 72 000 holes from
+  // 416 to 449 MB (measured; the heap could not reuse the space around them).
+  std::array<std::size_t, 8> order_buf{};
+  std::span<std::size_t> order(order_buf.data(), std::min(jobs.size(), order_buf.size()));
   std::iota(order.begin(), order.end(), std::size_t{0});
   const bool spent = o.time_limit_s > 0 && jobs.size() > 1 && Clock::now() >= deadline;
   if (spent) {
-    std::vector<double> floor(jobs.size());
-    for (std::size_t k = 0; k < jobs.size(); ++k) floor[k] = route_price_floor(jobs[k], s.prices);
+    std::array<double, 8> floor{};
+    for (std::size_t k : order) floor[k] = route_price_floor(jobs[k], s.prices);
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return floor[a] < floor[b]; });
     for (std::size_t at = 1; at < order.size(); ++at)  // their candidates are not needed
       for (auto& segment : jobs[order[at]].segments) std::vector<model::EntryCandidate>().swap(segment.candidates);

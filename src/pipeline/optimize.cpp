@@ -725,9 +725,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     if (o.rules.orders()) j["rules_penalty"] = alt->rules_penalty;
     if (alt->best.detours_left > 0) j["tip_up_left_at_time_limit"] = alt->best.detours_left;  // why it lost (better())
     alternatives[slot[k]] = std::move(j);
-    // Ties go to the alternative asked for first (standard, chain, common, multi), in any order of solving.
-    if (!best || better(alt->best, best->best, alt->rules_penalty, best->rules_penalty) ||
-        (slot[k] < slot[chosen] && !better(best->best, alt->best, best->rules_penalty, alt->rules_penalty))) {
+    if (!best || better(alt->best, best->best, alt->rules_penalty, best->rules_penalty)) {
       best = std::move(alt).value();
       chosen = k;
     }

@@ -98,7 +98,8 @@ std::vector<Cost> planar_prices(const Problem& p, PriceLevel level, NodeId from,
 // The candidate lists of a problem with planar costs (k-d trees over its points), for tests: row a
 // of `succ` holds the kn clusters b != a nearest to a through an arc a -> b, of `pred` through
 // b -> a, each measured from up to 8 of a's nodes (its nodes 0, s, 2s, ... with s = ceil(size / 8))
-// and to every node of b, nearest first (ties by cluster id). Needs p.planar() and kn < cluster_count(). O(n log n).
+// and to every node of b, nearest first (ties by cluster id; a tie for the last place goes to the
+// cluster the tree search met first). Needs p.planar() and kn < cluster_count(). O(n log n).
 struct CandidateLists {
   std::vector<ClusterId> pred, succ;  // row a at [a * kn, a * kn + kn)
 };

@@ -68,7 +68,8 @@ std::size_t count_close_segment_pairs(const SegmentSet& a, const SegmentSet& b, 
     for (std::size_t i = 0; i < a.segments.size() && found < limit; ++i) {
       const Box near = a.boxes[i].inflated(tol_mm);
       for (std::size_t j = 0; j < b.segments.size() && found < limit; ++j)
-        if (near.intersects(b.boxes[j]) && intersect(a.segments[i], b.segments[j], tol_mm).kind != SegmentIntersection::Kind::none)
+        if (near.intersects(b.boxes[j]) &&
+            intersect(a.segments[i], b.segments[j], tol_mm).kind != SegmentIntersection::Kind::none)
           ++found;
     }
     return found;

@@ -734,7 +734,8 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   if (!unsolved.empty()) {
     std::string names;
     for (const auto& n : unsolved) names += (names.empty() ? "" : ", ") + n;
-    Diagnostic w = make_warning("the time limit was spent before the " + names + " alternative" + (unsolved.size() > 1 ? "s" : "") +
+    Diagnostic w = make_warning("the time limit was spent before the " + names + " alternative" +
+                                (unsolved.size() > 1 ? "s" : "") +
                                 " could be solved (a longer --time-limit compares every technique)");
     w.code = "technique.time_limit";
     result.diagnostics.push_back(std::move(w));

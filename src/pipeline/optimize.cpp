@@ -418,6 +418,12 @@ std::vector<model::EntryCandidate> with_lead(const model::EntryPlanner& other, c
   return out;
 }
 
+// Frees the memory of a job's entry candidates (its segments stay): on huge nests they are most
+// of the memory.
+void release_candidates(model::CutJob& job) {
+  for (auto& segment : job.segments) std::vector<model::EntryCandidate>().swap(segment.candidates);
+}
+
 // A floor under an alternative's route price (s.prices' unit): each basic segment is entered by one
 // rapid (its fixed part, the head time) and cut by its cheapest candidate. Picks the alternative
 // solved when the time limit is spent (24 000 parts with two holes each: chain, whose program is
@@ -474,8 +480,7 @@ Result<Alternative> solve_alternative(const model::Nest& nest, model::CutJob& jo
   }
   // The other candidates are not needed any more (but by part rigidity's corners): on a plate of
   // 72 000 holes they were most of the memory, held through the refinement and the programs.
-  if (!o.rules.part_rigidity)
-    for (auto& segment : job.segments) std::vector<model::EntryCandidate>().swap(segment.candidates);
+  if (!o.rules.part_rigidity) release_candidates(job);
   lap("sequence");
 
   // 4. Continuous refinement of the entries for the fixed order.
@@ -668,8 +673,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     std::array<double, 8> floor{};
     for (std::size_t k : order) floor[k] = route_price_floor(jobs[k], s.prices);
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return floor[a] < floor[b]; });
-    for (std::size_t at = 1; at < order.size(); ++at)  // their candidates are not needed
-      for (auto& segment : jobs[order[at]].segments) std::vector<model::EntryCandidate>().swap(segment.candidates);
+    for (std::size_t at = 1; at < order.size(); ++at) release_candidates(jobs[order[at]]);  // not solved
   }
   std::vector<std::string> unsolved;  // left out at the time limit
   for (std::size_t at = 0; at < order.size(); ++at) {

@@ -21,8 +21,8 @@ double local_price(const cost::RoutePrices& prices, geometry::Vec2 prev, const s
 }  // namespace
 
 Refined refine_entries(const model::EntryPlanner& planner, const cost::RoutePrices& prices, geometry::Vec2 start,
-                   std::optional<geometry::Vec2> park, std::vector<model::EntryCandidate>& seq, int passes,
-                   const StopToken& stop, const EntryPenalty& penalty) {
+                       std::optional<geometry::Vec2> park, std::vector<model::EntryCandidate>& seq, int passes,
+                       const StopToken& stop, const EntryPenalty& penalty) {
   int moved = 0;
   constexpr int kSamples = 24;
   constexpr int kGoldenSteps = 14;

@@ -29,7 +29,7 @@ struct Refined {
   bool stopped = false;  // `stop` ended it before its passes were done
 };
 Refined refine_entries(const model::EntryPlanner& planner, const cost::RoutePrices& prices, geometry::Vec2 start,
-                   std::optional<geometry::Vec2> park, std::vector<model::EntryCandidate>& sequence, int passes,
-                   const StopToken& stop, const EntryPenalty& penalty = {});
+                       std::optional<geometry::Vec2> park, std::vector<model::EntryCandidate>& sequence, int passes,
+                       const StopToken& stop, const EntryPenalty& penalty = {});
 
 }  // namespace cutroute::pipeline

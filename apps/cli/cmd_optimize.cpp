@@ -169,18 +169,36 @@ std::string printed_warnings(const std::string& nest, const std::vector<Diagnost
     out += "cutroute: " + format(d) + "\n";
   }
   // Open contours are not cut, and a part drawn with a gap would be missing from the program:
-  // one line for them all (drawings with text or hatching have many), naming the first few.
-  constexpr int kNamed = 5;
+  // one line for them all (drawings with text or hatching have many), naming the first few places
+  // with their layer. A block of text inserted once yields dozens from one INSERT line: each place
+  // is named once, with its count (d2g_Frontplatte: "39 at line 6779, layer Schraffuren").
+  constexpr std::size_t kNamed = 5;
+  struct Place {
+    std::string where;
+    int count = 0;
+  };
+  std::vector<Place> places;
   int open = 0;
-  std::string where;
-  for (const Diagnostic& d : loading)
-    if (d.code == "chain.open" && open++ < kNamed)
-      where += (where.empty() ? "" : ", ") + (d.line ? "line " + std::to_string(*d.line) : "entity " + d.handle);
-  if (open > 0)
+  bool more = false;
+  for (const Diagnostic& d : loading) {
+    if (d.code != "chain.open") continue;
+    ++open;
+    std::string where = d.line ? "line " + std::to_string(*d.line) : "entity " + d.handle;
+    if (!d.layer.empty()) where += ", layer " + d.layer;
+    const auto it = std::find_if(places.begin(), places.end(), [&](const Place& p) { return p.where == where; });
+    if (it != places.end()) ++it->count;
+    else if (places.size() < kNamed) places.push_back({std::move(where), 1});
+    else more = true;
+  }
+  if (open > 0) {
+    std::string named;
+    for (const Place& p : places)
+      named += (named.empty() ? "" : "; ") + (p.count > 1 ? std::to_string(p.count) + " at " : std::string()) + p.where;
     out += "cutroute: " + format(make_warning(std::to_string(open) + " open contour(s) not cut, their ends not meeting within " +
-                                                  "--snap (" + where + (open > kNamed ? ", ..." : "") +
+                                                  "--snap (" + named + (more ? "; ..." : "") +
                                                   "): a part drawn with a gap among them is missing from the program",
                                               nest)) + "\n";
+  }
   return out;
 }
 

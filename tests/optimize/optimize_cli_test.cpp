@@ -598,6 +598,33 @@ TEST(OptimizeCli, BatchSummaryListsEverySheetAndTheirTotals) {
   fs::remove_all(dir);
 }
 
+TEST(OptimizeCli, OpenContoursAreNamedOncePerPlaceWithTheirCount) {
+  const auto dir = temp_dir("open-places");
+  const auto a = (dir / "a.dxf").string(), b = (dir / "b.dxf").string();
+  ASSERT_EQ(run_command(cli_path() + " demo " + a).exit_code, 0);
+  // A block of three open strokes (text, say) inserted once, and one stray open line of its own.
+  std::string text = read_text(a);
+  const std::string block = "0\nSECTION\n2\nBLOCKS\n0\nBLOCK\n8\n0\n2\nTXT\n70\n0\n10\n0\n20\n0\n30\n0\n3\nTXT\n"
+                            "0\nLINE\n8\nTEXT\n10\n0\n20\n0\n11\n3\n21\n0\n0\nLINE\n8\nTEXT\n10\n0\n20\n2\n11\n3\n21\n4\n"
+                            "0\nLINE\n8\nTEXT\n10\n5\n20\n0\n11\n5\n21\n4\n0\nENDBLK\n8\n0\n0\nENDSEC\n";
+  const auto entities = text.find("0\nSECTION\n2\nENTITIES");
+  ASSERT_NE(entities, std::string::npos);
+  text.insert(entities, block);
+  const auto end = text.rfind("0\nENDSEC");
+  text.insert(end, "0\nLINE\n8\nCUT\n10\n5\n20\n5\n11\n6\n21\n5\n");
+  text.insert(end, "0\nINSERT\n8\nMARKS\n2\nTXT\n10\n1900\n20\n20\n30\n0\n");
+  auto line_of = [&](std::size_t at) { return std::to_string(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n') + 1); };
+  const std::string insert_line = line_of(end), stray_line = line_of(text.find("0\nLINE\n8\nCUT"));
+  std::ofstream(b) << text;
+  const auto r = run_command(cli_path() + " optimize " + b + " -o " + (dir / "b.ngc").string() + " --time-limit 1");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: 4 open contour(s) not cut, their ends not meeting within --snap (3 at line " + insert_line +
+                       ", layer TEXT; line " + stray_line + ", layer CUT): "),
+            std::string::npos)
+      << r.err;
+  fs::remove_all(dir);
+}
+
 // Every drawing of the shared corpus: the program cuts every closed contour exactly once, holes
 // and inner parts first, leads clear of other contours.
 class CorpusOptimize : public ::testing::TestWithParam<std::string> {};

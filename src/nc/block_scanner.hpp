@@ -66,6 +66,8 @@ ScanResult scan_block(std::string_view line, OnWord&& on_word) {
     return r;
   }
   if (p < end && *p == '/') ++p;  // block delete: the block is still part of the program
+  while (p < end && is_blank(*p)) ++p;
+  const char* const first = p;
   while (p < end) {
     const char c = *p;
     if (is_blank(c)) {
@@ -90,14 +92,14 @@ ScanResult scan_block(std::string_view line, OnWord&& on_word) {
       p = q + 1;
       continue;
     }
-    if (!is_alpha(c)) {
+    if (!is_alpha(c) && !(c == ':' && p == first)) {
       r.error = ScanError::unsupported_character;
       r.column = static_cast<std::size_t>(p - begin) + 1;
       r.character = c;
       return r;
     }
     Word w;
-    w.letter = upper(c);
+    w.letter = c == ':' ? 'O' : upper(c);  // ":1000" is a Fanuc program number, as O1000
     w.column = static_cast<std::size_t>(p - begin) + 1;
     ++p;
     while (p < end && is_blank(*p)) ++p;
@@ -108,14 +110,29 @@ ScanResult scan_block(std::string_view line, OnWord&& on_word) {
       sign = true;
       ++p;
     }
+    // RS274/NGC ignores blanks anywhere outside comments, inside a number too ("X 2 0.5" is X20.5):
+    // a blank run followed by a digit or a point continues the number.
     const char* num = p;
+    std::string joined;  // the number's characters without its blanks, when it has any
+    bool gapped = false;
     int digits = 0;
     int dots = 0;
-    while (p < end && (is_digit(*p) || *p == '.')) {
+    while (p < end) {
+      if (is_blank(*p)) {
+        const char* q = p;
+        while (q < end && is_blank(*q)) ++q;
+        if (digits + dots == 0 || q == end || !(is_digit(*q) || *q == '.')) break;
+        if (!gapped) joined.assign(num, p);
+        gapped = true;
+        p = q;
+        continue;
+      }
+      if (!is_digit(*p) && *p != '.') break;
       if (*p == '.')
         ++dots;
       else
         ++digits;
+      if (gapped) joined += *p;
       ++p;
     }
     if (digits == 0) {
@@ -138,8 +155,10 @@ ScanResult scan_block(std::string_view line, OnWord&& on_word) {
       return r;
     }
     double v = 0.0;
-    const auto fc = std::from_chars(num, p, v, std::chars_format::fixed);
-    if (fc.ec != std::errc{} || fc.ptr != p) {
+    const char* const nb = gapped ? joined.data() : num;
+    const char* const ne = gapped ? joined.data() + joined.size() : p;
+    const auto fc = std::from_chars(nb, ne, v, std::chars_format::fixed);
+    if (fc.ec != std::errc{} || fc.ptr != ne) {
       r.error = ScanError::malformed_number;
       r.column = w.column;
       r.letter = w.letter;

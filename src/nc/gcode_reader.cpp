@@ -1,6 +1,7 @@
 #include <cutroute/nc/gcode_reader.hpp>
 
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -131,6 +132,7 @@ class Reader {
                         static_cast<long>(line_no_ == 0 ? 1 : line_no_));
     }
     st_.lines = end_line_;
+    if (st_.pierces == 0 && st_.feed_off_length_mm > 0.0) warn(first_feed_line_, never_on_message());
     if (frames_after_end_ > 0) {
       warn(end_line_, std::to_string(frames_after_end_) +
                           " block(s) after the program end (M2/M30) are ignored and not counted as frames");
@@ -153,6 +155,8 @@ class Reader {
 
   // Returns an empty diagnostic when the line is fine.
   Diagnostic read_line(std::string_view line) {
+    if (auto ow = o_word_keyword(line); !ow.empty())
+      return error("o-word " + ow + ": LinuxCNC subroutines and control flow are not read; expand them into the program");
     Block b;
     Diagnostic dup;
     const auto scan = detail::scan_block(line, [&](const detail::Word& w) {
@@ -200,6 +204,16 @@ class Reader {
     });
     if (scan.error != detail::ScanError::none) return scan_error(scan);
     if (!dup.message.empty()) return dup;
+    // A program between two '%' lines ends at the second (LinuxCNC needs no M2/M30 then).
+    if (scan.tape_mark) {
+      if (percent_open_ && !ended_) {
+        ended_ = true;
+        end_line_ = line_no_;
+        beam_on_ = false;
+      }
+      if (!any_block_) percent_open_ = true;
+    }
+    if (!line_is_blank(line)) any_block_ = true;
     if (scan.tape_mark || !b.frame) {
       skip_motion_ = false;
       return {};
@@ -258,7 +272,13 @@ class Reader {
           arc_absolute_ = false;
           break;
         default:
-          if (!inert_g(g)) {
+          if (g == 280 || g == 300) {
+            warn(line_no_, g_name(g) + " (return to a home position) is not followed: its travel is not counted");
+            skip_motion_ = true;
+          } else if (g == 530) {
+            warn(line_no_, "G53 (a move in machine coordinates) is not followed: its travel is not counted");
+            skip_motion_ = true;
+          } else if (!inert_g(g)) {
             warn(line_no_, "unknown word " + g_name(g) + " ignored; the block's axis words are not executed");
             skip_motion_ = true;
           }
@@ -294,16 +314,38 @@ class Reader {
         repierce_ = false;
       } else if (m == 2 || m == 30) {
         end = true;
+      } else if (m == 98 || m == 99) {
+        // A quote without what the subprogram cuts would be wrong, not just rough.
+        return error(std::string(m == 98 ? "M98 subprogram call" : "M99 subprogram return") +
+                     ": subprograms are not followed, so their cutting and travel would be missing from the "
+                     "estimate; expand them into the main program");
       } else if (!(m == 0 || m == 1 || m == 3 || m == 4 || m == 5 || m == 6 || m == 7 || m == 8 || m == 9) &&
                  !opt_.dialect.is_inert(m)) {
         warn(line_no_, "unknown word M" + std::to_string(m) + " ignored");
       }
+      if ((m == 3 || m == 4 || m == 7 || m == 8) && !opt_.dialect.switches_on(m) && foreign_on_ < 0) {
+        foreign_on_ = m;
+        foreign_on_line_ = line_no_;
+      }
     }
+    // Fanuc-style controls also dwell X seconds; LinuxCNC reads X there as an axis word.
+    const bool fanuc = opt_.dialect.dwell_p_unit == DwellUnit::milliseconds;
+    const bool dwell_x = dwell && fanuc && !b.has_word('P') && b.has_word('X');
     if (dwell) {
-      if (!b.has_word('P')) return error("G4 dwell without P");
-      const double p = b.word('P');
-      if (p < 0.0) return error("negative dwell G4 P" + num(p));
-      const double t = opt_.dialect.dwell_p_unit == DwellUnit::milliseconds ? p / 1000.0 : p;
+      if (!b.has_word('P') && !dwell_x)
+        return error(fanuc ? "G4 dwell without P (milliseconds) or X (seconds)"
+                           : "G4 dwell without P (" + opt_.dialect.name +
+                                 " reads G4 P in seconds; a Fanuc-style G4 X dwell is read with --dialect fanuc-ms)");
+      const double p = dwell_x ? b.word('X') : b.word('P');
+      if (p < 0.0) return error(std::string("negative dwell G4 ") + (dwell_x ? "X" : "P") + num(p));
+      const double t = dwell_x ? p : fanuc ? p / 1000.0 : p;
+      // Seconds as a Fanuc program's milliseconds: one dwell of minutes in a cutting program.
+      if (!fanuc && p >= 100.0 && p == std::floor(p) && !warned_long_dwell_) {
+        warn(line_no_, "G4 P" + num(p) + " dwells " + num(p) + " s (" + opt_.dialect.name +
+                           " reads P in seconds); if the program was written for a Fanuc-style control, which reads "
+                           "P in milliseconds, use --dialect fanuc-ms");
+        warned_long_dwell_ = true;
+      }
       st_.dwell_s += t;
       ++st_.dwells;
       if (beam_on_ && new_cut_) {
@@ -314,8 +356,8 @@ class Reader {
     }
     const bool axes = b.has_word('X') || b.has_word('Y') || b.has_word('Z');
     const bool centre = b.has_word('I') || b.has_word('J') || b.has_word('R');
-    if (dwell && axes) {
-      warn(line_no_, "axis words in a G4 dwell block are not executed");
+    if (dwell_x || (dwell && fanuc && axes)) {
+      if (!dwell_x) warn(line_no_, "axis words in a G4 dwell block are not executed");
     } else if (!skip_motion_ && (axes || (centre && (motion_ == Motion::cw || motion_ == Motion::ccw)))) {
       if (auto d = move(b); !d.message.empty()) return d;
     }
@@ -362,12 +404,13 @@ class Reader {
       ++st_.arc_moves;
     }
     const std::size_t pierces_before = st_.pierces;
-    if (motion_ != Motion::rapid && length > 0.0 && !(feed_mm_min_ > 0.0) && !warned_zero_feed_) {
+    bool& warned_feed = have_feed_word_ ? warned_zero_feed_ : warned_no_feed_;
+    if (motion_ != Motion::rapid && length > 0.0 && !(feed_mm_min_ > 0.0) && !warned_feed) {
       // The estimate stands (it prices cuts at V_on*(n)), but the program would not run as written.
       warn(line_no_, std::string(have_feed_word_ ? "feed move at F0" : "feed move before any F word") +
                          ": a controller without a default feed refuses it (LinuxCNC: zero feed rate); its time at the "
                          "programmed feed is not counted");
-      warned_zero_feed_ = true;
+      warned_feed = true;
     }
     if (motion_ == Motion::rapid) {
       if (length > 0.0) {
@@ -395,6 +438,7 @@ class Reader {
           st_.cut_length_no_feed_mm += length;
       }
     } else {
+      if (length > 0.0 && first_feed_line_ == 0) first_feed_line_ = line_no_;
       st_.feed_off_length_mm += length;
       if (feed_mm_min_ > 0.0)
         st_.feed_off_time_s += length / units::mm_per_min_to_m_per_s(feed_mm_min_) / units::kMmPerM;
@@ -441,6 +485,60 @@ class Reader {
     return scale_ == 1.0 ? opt_.arc_radius_tol_mm : opt_.arc_radius_tol_inch * units::kMmPerInch;
   }
 
+  // The full turns a G2/G3 makes before its end point beyond the first: P - 1 (LinuxCNC's turn
+  // count, P1 when absent).
+  Result<double> extra_turns(const Block& b) const {
+    if (!b.has_word('P')) return 0.0;
+    const double p = b.word('P');
+    if (p < 1.0 || p != std::floor(p) || p > 1.0e6)
+      return error("arc turn count P" + num(p) + " is not a whole number >= 1");
+    return p - 1.0;
+  }
+
+  std::string never_on_message() const {
+    std::string on;
+    for (const int m : opt_.dialect.beam_on) on += (on.empty() ? "M" : ", M") + std::to_string(m);
+    std::string msg = "no cutting: the beam is never switched on (dialect " + opt_.dialect.name + " switches it on with " +
+                      on + "), yet the program makes " + num(st_.feed_off_length_mm) +
+                      " mm of feed moves, read as beam-off travel";
+    if (foreign_on_ >= 0) {
+      msg += "; it uses M" + std::to_string(foreign_on_) + " (line " + std::to_string(foreign_on_line_) + ")";
+      for (const auto& name : builtin_dialect_names())
+        if (auto d = builtin_dialect(name); d.ok() && d->switches_on(foreign_on_)) {
+          msg += ", which --dialect " + name + " reads as beam on";
+          break;
+        }
+    }
+    return msg + ": check --dialect or the machine profile's dialect";
+  }
+
+  // "sub" in "o100 sub": the keyword of a LinuxCNC o-word, empty when the line has none.
+  static std::string o_word_keyword(std::string_view line) {
+    std::size_t i = 0;
+    while (i < line.size() && detail::is_blank(line[i])) ++i;
+    if (i < line.size() && line[i] == '/') ++i;
+    while (i < line.size() && detail::is_blank(line[i])) ++i;
+    if (i >= line.size() || detail::upper(line[i]) != 'O') return {};
+    std::size_t j = i + 1;
+    if (j < line.size() && line[j] == '<') return "o<...>";  // named o-word
+    while (j < line.size() && detail::is_digit(line[j])) ++j;
+    if (j == i + 1) return {};
+    while (j < line.size() && detail::is_blank(line[j])) ++j;
+    std::string word;
+    while (j < line.size() && detail::is_alpha(line[j])) word += static_cast<char>(std::tolower(static_cast<unsigned char>(line[j++])));
+    static constexpr std::string_view kKeywords[] = {"sub", "endsub", "call", "return", "if", "elseif", "else", "endif",
+                                                    "while", "endwhile", "do", "repeat", "endrepeat", "break", "continue"};
+    for (const auto k : kKeywords)
+      if (word == k) return std::string(line.substr(i, j - i));
+    return {};
+  }
+
+  static bool line_is_blank(std::string_view line) {
+    for (const char c : line)
+      if (!detail::is_blank(c)) return false;
+    return true;
+  }
+
   // Exact XY length of a G2/G3 move from (x_, y_) to (nx, ny).
   Result<ArcGeometry> arc_length(const Block& b, double nx, double ny) const {
     const bool cw = motion_ == Motion::cw;
@@ -458,7 +556,9 @@ class Reader {
                      num(chord / 2.0) + " mm)");
       }
       const double half = std::asin(std::min(1.0, chord / (2.0 * ar)));
-      const double sweep = r >= 0.0 ? 2.0 * half : kTwoPi - 2.0 * half;
+      const auto extra = extra_turns(b);
+      if (!extra.ok()) return extra.error();
+      const double sweep = (r >= 0.0 ? 2.0 * half : kTwoPi - 2.0 * half) + *extra * kTwoPi;
       const double radius = std::max(ar, chord / 2.0);
       // Centre: left of the chord for a counter-clockwise arc shorter than 180°, mirrored for
       // clockwise, and again for R < 0.
@@ -499,6 +599,9 @@ class Reader {
       sweep = std::fmod(sweep, kTwoPi);
       if (sweep < 0.0) sweep += kTwoPi;
     }
+    const auto extra = extra_turns(b);
+    if (!extra.ok()) return extra.error();
+    sweep += *extra * kTwoPi;
     return ArcGeometry{0.5 * (r0 + r1) * sweep, 0.5 * (r0 + r1), cx, cy};
   }
 
@@ -516,7 +619,12 @@ class Reader {
   bool arc_absolute_ = false;  // G90.1
   bool beam_on_ = false;
   bool repierce_ = false;     // a rapid was made with the beam on: the next cut pierces again
-  bool have_feed_word_ = false, warned_zero_feed_ = false;
+  bool have_feed_word_ = false, warned_zero_feed_ = false, warned_no_feed_ = false, warned_long_dwell_ = false;
+  bool percent_open_ = false;    // the program opened with a '%' line: the next one ends it
+  bool any_block_ = false;       // a non-blank line was read
+  std::size_t first_feed_line_ = 0;  // the first feed move made with the beam off
+  int foreign_on_ = -1;          // the first of M3/M4/M7/M8 that this dialect does not read as beam on
+  std::size_t foreign_on_line_ = 0;
   bool skip_motion_ = false;  // the current block holds an unknown G code
   bool pierce_dwelled_ = false;  // a dwell was counted for the current pierce
   bool new_cut_ = false;      // a beam-on code was executed: the next recorded cut starts from a pierce

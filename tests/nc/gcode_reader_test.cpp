@@ -235,6 +235,114 @@ TEST(GcodeReader, WarningsAreCapped) {
   EXPECT_EQ(r->suppressed_warnings, 70u);
 }
 
+// Programs from other CAM systems: what changes the quote is read, or refused, or warned of; never
+// silently left out. Expected values by hand.
+bool warned(const ProgramStats& s, const std::string& text, long line) {
+  for (const auto& w : s.warnings)
+    if (w.message.find(text) != std::string::npos && w.line == line) return true;
+  return false;
+}
+
+TEST(GcodeReaderForeign, ABeamNeverSwitchedOnIsWarnedWithTheDialectThatReadsIt) {
+  const std::string m7 = "G21 G90\nG0 X10 Y0\nM07\nG1 X20 F1000\nY10\nM09\nG0 X0 Y0\nM30\n";
+  auto r = read_gcode(m7, "m7.nc", ReadOptions{});
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r->pierces, 0u);
+  EXPECT_NEAR(r->feed_off_length_mm, 20.0, kLenTol);
+  EXPECT_TRUE(warned(*r, "no cutting: the beam is never switched on", 4)) << (r->warnings.empty() ? "" : r->warnings[0].message);
+  EXPECT_TRUE(warned(*r, "it uses M7 (line 3), which --dialect rs274-m7m9 reads as beam on", 4));
+  ReadOptions opt;
+  opt.dialect = *builtin_dialect("rs274-m7m9");
+  r = read_gcode(m7, "m7.nc", opt);
+  ASSERT_TRUE(r.ok());
+  EXPECT_NEAR(r->cut_length_mm, 20.0, kLenTol);
+  EXPECT_TRUE(r->warnings.empty());
+  // No beam code at all: the warning, without a dialect to suggest.
+  r = read_gcode("G0 X1\nG1 X5 F100\nM30\n", "none.nc", ReadOptions{});
+  ASSERT_TRUE(r.ok());
+  ASSERT_EQ(r->warnings.size(), 1u);
+  EXPECT_EQ(r->warnings[0].message.find("it uses"), std::string::npos);
+}
+
+TEST(GcodeReaderForeign, SubprogramsAndOWordsAreRefusedAtTheirLine) {
+  auto r = read_gcode("O0001\nG0 X10\nM98 P1000\nM30\nO1000\nM3\nG1 X20 F100\nM5\nM99\n", "sub.nc", ReadOptions{});
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(*r.error().line, 3);
+  EXPECT_NE(r.error().message.find("M98 subprogram call"), std::string::npos) << r.error().message;
+  r = read_gcode("G0 X0\nM99\n", "ret.nc", ReadOptions{});
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("M99"), std::string::npos);
+  r = read_gcode("G21\no100 sub\nG1 X10 F100\no100 endsub\nM30\n", "o.nc", ReadOptions{});
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(*r.error().line, 2);
+  EXPECT_NE(r.error().message.find("o-word o100 sub"), std::string::npos) << r.error().message;
+}
+
+TEST(GcodeReaderForeign, ArcTurnCountsAddFullCircles) {
+  // LinuxCNC: P is the number of turns. A full circle of radius 10 three times, then a quarter
+  // circle plus one more turn.
+  auto r = read_gcode("G0 X10 Y0\nM3\nG2 X10 Y0 I-10 J0 P3 F1000\nG3 X0 Y10 I-10 P2\nM5\nM30\n", "p.nc", ReadOptions{});
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_NEAR(r->cut_length_mm, 3 * 20 * kPi + (0.25 + 1) * 20 * kPi, 1e-9);
+  EXPECT_EQ(r->arc_moves, 2u);
+  for (const char* p : {"P0", "P1.5", "P-2"}) {
+    auto bad = read_gcode(std::string("G0 X10\nM3\nG2 X10 Y0 I-10 ") + p + " F100\nM30\n", "bad.nc", ReadOptions{});
+    ASSERT_FALSE(bad.ok()) << p;
+    EXPECT_EQ(*bad.error().line, 3) << p;
+    EXPECT_NE(bad.error().message.find("arc turn count"), std::string::npos) << bad.error().message;
+  }
+}
+
+TEST(GcodeReaderForeign, DwellsInEitherUnitAndAxisWordsInTheDwellBlock) {
+  // Seconds read as a Fanuc program's milliseconds: counted as written, and warned of once.
+  auto r = read_gcode("G0 X1\nM3\nG4 P500\nG1 X5 F100\nG4 P300\nM5\nM30\n", "f.nc", ReadOptions{});
+  ASSERT_TRUE(r.ok());
+  EXPECT_NEAR(r->dwell_s, 800.0, 1e-12);
+  EXPECT_TRUE(warned(*r, "--dialect fanuc-ms", 3));
+  EXPECT_EQ(r->warnings.size(), 1u);
+  // Fanuc: G4 X is seconds, P milliseconds; no motion in the dwell block.
+  ReadOptions fanuc;
+  fanuc.dialect = *builtin_dialect("fanuc-ms");
+  r = read_gcode("G0 X10\nM3\nG4 P500\nG1 X20 F1000\nG4 X1.5\nG4 X0.25\nM5\nM30\n", "x.nc", fanuc);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_NEAR(r->dwell_s, 2.25, 1e-12);
+  EXPECT_NEAR(r->cut_length_mm, 10.0, kLenTol);
+  EXPECT_TRUE(r->warnings.empty());
+  r = read_gcode("G0 X10\nG4 X1.5\nM30\n", "x.nc", ReadOptions{});
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("--dialect fanuc-ms"), std::string::npos) << r.error().message;
+  // RS274/NGC: the dwell, then the block's motion in the modal (or the block's own) motion mode.
+  r = read_gcode("G21 G90\nG0 X10 Y0\nM3\nG1 X20 F1000\nG4 P1 G1 X30\nG4 P1 X40\nM5\nG0 X0 Y0\nM30\n", "g4.nc", ReadOptions{});
+  ASSERT_TRUE(r.ok());
+  EXPECT_NEAR(r->cut_length_mm, 30.0, kLenTol);
+  EXPECT_NEAR(r->rapid_length_mm, 50.0, kLenTol);
+  EXPECT_NEAR(r->dwell_s, 2.0, 1e-12);
+  EXPECT_TRUE(r->warnings.empty());
+}
+
+TEST(GcodeReaderForeign, PercentEndsBlanksInNumbersAndFanucProgramNumbers) {
+  // Between two '%' lines no M2/M30 is needed (LinuxCNC); blanks inside a number are ignored
+  // (RS274/NGC); ":1000" is a Fanuc program number.
+  auto r = read_gcode("%\n:1000\nG21 G90\nG0 X 1 0\nM3\nG1 X 2 0.5 F1000\nM5\n%\nG1 X500\n", "pct.nc", ReadOptions{});
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_NEAR(r->cut_length_mm, 10.5, kLenTol);
+  EXPECT_NEAR(r->rapid_length_mm, 10.0, kLenTol);
+  EXPECT_EQ(r->lines, 8u);
+  EXPECT_EQ(r->frames, 5u);  // the ':' line is a program number like an O line: no frame
+  // Without the opening '%' a closing one ends nothing.
+  EXPECT_FALSE(read_gcode("G0 X1\nM3\nG1 X2 F100\n%\n", "open.nc", ReadOptions{}).ok());
+}
+
+TEST(GcodeReaderForeign, HomeMovesAndEachMissingFeedAreWarned) {
+  auto r = read_gcode("G0 X10\nG28\nG53 G0 X0\nM3\nG1 X20\nG1 X30 F0\nM5\nM30\n", "h.nc", ReadOptions{});
+  ASSERT_TRUE(r.ok());
+  EXPECT_TRUE(warned(*r, "G28 (return to a home position) is not followed: its travel is not counted", 2));
+  EXPECT_TRUE(warned(*r, "G53 (a move in machine coordinates) is not followed", 3));
+  EXPECT_TRUE(warned(*r, "feed move before any F word", 5));
+  EXPECT_TRUE(warned(*r, "feed move at F0", 6));
+  EXPECT_NEAR(r->rapid_length_mm, 10.0, kLenTol);
+}
+
 }  // namespace
 }  // namespace cutroute::nc
 

@@ -15,14 +15,21 @@ namespace cutroute::nc {
 
 // What the reader accepts, in brief (docs/FRAMES.md has the frame rule):
 //   G0 G1 G2 G3 (modal), I/J incremental (default, G91.1) or absolute (G90.1), R with sign
-//   (R < 0: the arc longer than 180°), I/J full circles; G4 P dwell; G17 only (G18/G19 are an
-//   error); G20/G21; G90/G91; G40/G41/G42 (noted: lengths are of the programmed path, no
-//   compensation); G49, G54..G59, G61, G61.1, G64, G80, G94 accepted without effect; F S T N
-//   words; M3/M4/M5/M7/M8/M9 with the beam codes taken from the dialect; M0 M1 M6; M2/M30 end
-//   the program; the dialect's inert M codes (Dialect::inert) without effect; comments ( ) and
-//   ;; '%' lines; block delete '/'; any letter case; LF, CRLF, CR.
+//   (R < 0: the arc longer than 180°), I/J full circles, P turns on G2/G3 (LinuxCNC); G4 P dwell
+//   (in the dialect's unit; Fanuc-style dialects also G4 X seconds), the block's axis words then
+//   moved in the motion mode (RS274/NGC); G17 only (G18/G19 are an error); G20/G21; G90/G91;
+//   G40/G41/G42 (noted: lengths are of the programmed path, no compensation); G49, G54..G59, G61,
+//   G61.1, G64, G80, G94 accepted without effect; F S T N words, O or ':' program numbers;
+//   M3/M4/M5/M7/M8/M9 with the beam codes taken from the dialect; M0 M1 M6; M2/M30 end the
+//   program, as does a '%' line closing a program opened by one; the dialect's inert M codes
+//   (Dialect::inert) without effect; comments ( ) and ;; block delete '/'; blanks anywhere
+//   outside comments, inside numbers too; any letter case; LF, CRLF, CR.
 // Unknown words or codes: a warning with the line number (a block with an unknown G code is not
-// moved). Malformed numbers, arcs whose end is not on the circle, missing program end: an error.
+// moved; G28/G30/G53 are named as travel not counted). Also warned: a program whose feed moves
+// are never cut (the beam never switched on by the dialect's codes, naming a built-in dialect
+// that reads the codes it uses), a G4 P of 100 or more in a seconds dialect (a Fanuc program's
+// milliseconds?). Malformed numbers, arcs whose end is not on the circle, missing program end,
+// subprograms (M98/M99) and LinuxCNC o-words, whose cutting would be left out: an error.
 // One executed XY move, recorded when ReadOptions::moves is set (for motion models and tests).
 struct Move {
   enum class Kind { rapid, line, arc_cw, arc_ccw };

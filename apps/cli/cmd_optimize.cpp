@@ -37,7 +37,7 @@ struct Opts {
   std::string start;
   double kerf = -1;
   std::string kerf_mode = "controller";
-  std::string dialect = "generic";
+  std::string dialect;  // empty: the machine profile's
   double entry_step = 0;
   bool quiet = false;
   bool allow_crossing = false;
@@ -379,7 +379,9 @@ void add_optimize(CLI::App& root, Commands& out) {
                   "controller: G41/G42, the machine offsets the drawn contours; cam: the program offsets the "
                   "toolpath by kerf/2 to the scrap side (arcs stay G2/G3, no G41/G42); none: the drawn contours")
       ->check(CLI::IsMember({"controller", "cam", "none"}));
-  app->add_option("--dialect", o->dialect, "Post-processor: generic, plasma-thc, or a dialect JSON file");
+  app->add_option("--dialect", o->dialect,
+                  "Post-processor: generic, plasma-thc, or a dialect JSON file (default: the machine profile's dialect; "
+                  "generic for the built-in profile)");
   app->add_option("--entry-step", o->entry_step, "Spacing of entry candidates along edges [mm] (0: adaptive)")
       ->check(finite_range(0.0, 1e6));
   app->add_flag("--allow-crossing", o->allow_crossing,

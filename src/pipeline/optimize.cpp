@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <filesystem>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -27,6 +28,7 @@
 #include <cutroute/model/kerf_offset.hpp>
 #include <cutroute/model/multi_segment.hpp>
 #include <cutroute/nc/compensation_check.hpp>
+#include <cutroute/nc/dialect.hpp>
 #include <cutroute/nc/frames.hpp>
 #include <cutroute/nc/post_dialect.hpp>
 #include <cutroute/solve/solve.hpp>
@@ -59,6 +61,39 @@ struct Setup {
   std::vector<Diagnostic> diagnostics;  // what the set-up changed of what was asked for
 };
 
+// The post-processor dialect the machine profile's `dialect` names, for writing (no --dialect): a
+// post dialect by name or file (beside the profile first) as it is; a reader dialect (built-in
+// name or explicit codes) only where the generic post writes what it reads (M3 on, M5 off, G4 P
+// in seconds), else an error: a program whose beam codes or dwell unit the machine reads
+// differently does not cut as planned (M3 for a machine switched by M7 never pierces; a pierce
+// dwell of 0.3 read in milliseconds pierces nothing).
+Result<nc::PostDialect> profile_post_dialect(const cost::MachineProfile& p) {
+  const cost::DialectSpec& d = p.dialect;
+  if (d.beam_on.empty() && !nc::builtin_dialect(d.name)) {
+    std::error_code ec;
+    const auto beside = std::filesystem::path(p.file).parent_path() / d.name;
+    auto post = nc::find_post_dialect(std::filesystem::path(d.name).is_relative() && std::filesystem::is_regular_file(beside, ec)
+                                          ? beside.string() : d.name);
+    if (!post) return make_error("field dialect: " + post.error().message, p.file);
+    return post;
+  }
+  auto generic = nc::find_post_dialect("generic");
+  if (!generic) return generic.error();
+  nc::Dialect reads;
+  if (d.beam_on.empty()) {
+    reads = *nc::builtin_dialect(d.name);
+  } else {
+    reads.name = d.name, reads.beam_on = d.beam_on, reads.beam_off = d.beam_off;
+  }
+  if (!d.dwell_p_unit.empty()) reads.dwell_p_unit = d.dwell_p_unit == "ms" ? nc::DwellUnit::milliseconds : nc::DwellUnit::seconds;
+  if (reads.switches_on(3) && reads.switches_off(5) && reads.dwell_p_unit == nc::DwellUnit::seconds) return generic;
+  return make_error("the machine profile's dialect '" + d.name +
+                        "' reads the beam codes or the dwell unit differently from what the generic post-processor "
+                        "writes (M3 on, M5 off, G4 P in seconds): give --dialect with a post-processor dialect JSON file "
+                        "that writes them, or name one in the profile's dialect field",
+                    p.file);
+}
+
 Result<Setup> setup(const OptimizeOptions& o) {
   Setup s;
   auto profile = cost::load_machine_profile(o.machine_file.empty() ? cost::default_machine_profile_path() : o.machine_file);
@@ -73,7 +108,7 @@ Result<Setup> setup(const OptimizeOptions& o) {
   auto cond = cost::make_conditions(s.profile, *table, material, thickness, o.interpolate);
   if (!cond) return cond.error();
   s.conditions = std::move(cond).value();
-  auto dialect = nc::find_post_dialect(o.dialect);
+  auto dialect = o.dialect.empty() ? profile_post_dialect(s.profile) : nc::find_post_dialect(o.dialect);
   if (!dialect) return dialect.error();
   s.dialect = std::move(dialect).value();
 
@@ -809,6 +844,8 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   r["material"] = s.conditions.material;
   r["thickness_mm"] = s.conditions.thickness_mm;
   r["measured_speed_row"] = s.conditions.speed.measured;
+  r["machine"] = s.profile.name;
+  r["dialect"] = s.dialect.name;
   r["kerf_mode"] = to_string(o.kerf_mode);
   r["kerf_mm"] = s.entries.kerf_mm;
   if (!compensation.is_null()) r["compensation"] = compensation;  // controller kerf: blocks at risk

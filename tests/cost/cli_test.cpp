@@ -186,6 +186,36 @@ TEST(CliEstimate, ReadsAProgramWithThePostDialectThatWroteIt) {
     EXPECT_TRUE(pj["warnings"].empty()) << named << ": " << pj["warnings"];
   }
 
+  // optimize writes with the profile's dialect when --dialect is not given, by name or file.
+  for (const char* named : {"plasma-thc", "my-thc.json"}) {
+    profile["dialect"] = named;
+    std::ofstream((dir / "machine.json").string()) << profile.dump(1);
+    const auto o = cli("optimize " + test::test_data("dxf/slots_random_order.dxf") + " -o " + (dir / "p2.ngc").string() +
+                       " --report " + (dir / "p2.json").string() + " --machine " + (dir / "machine.json").string() +
+                       " --time-limit 0.2 --quiet");
+    ASSERT_EQ(o.exit_code, 0) << named << ": " << o.err;
+    std::ifstream in(dir / "p2.json");
+    EXPECT_EQ(json::parse(in)["dialect"], "plasma-thc") << named;
+    const auto back = cli_json("estimate " + (dir / "p2.ngc").string() + " --dialect plasma-thc --json");
+    EXPECT_TRUE(back["warnings"].empty()) << named << ": " << back["warnings"];
+    EXPECT_EQ(back["pierces"], torch_on) << named;
+  }
+  // A profile whose machine reads other beam codes (M7/M9) or dwells in milliseconds: the generic
+  // post would write a program that does not cut there. An error, unless --dialect says how to write.
+  for (const char* reader : {"rs274-m7m9", "fanuc-ms"}) {
+    profile["dialect"] = reader;
+    std::ofstream((dir / "machine.json").string()) << profile.dump(1);
+    const std::string base = "optimize " + test::test_data("dxf/slots_random_order.dxf") + " -o " + (dir / "p3.ngc").string() +
+                             " --machine " + (dir / "machine.json").string() + " --time-limit 0.2 --quiet";
+    std::filesystem::remove(dir / "p3.ngc");
+    const auto refused = cli(base);
+    EXPECT_EQ(refused.exit_code, 2) << reader;
+    EXPECT_NE(refused.err.find("machine.json: error: the machine profile's dialect '" + std::string(reader) + "'"), std::string::npos)
+        << refused.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "p3.ngc"));
+    EXPECT_EQ(cli(base + " --dialect generic").exit_code, 0) << reader;
+  }
+
   const auto bad = cli("estimate " + prog + " --dialect nosuch");
   EXPECT_EQ(bad.exit_code, 2);
   for (const char* listed : {"unknown --dialect 'nosuch'", "rs274-m7m9", "fanuc-ms", "generic", "plasma-thc"})

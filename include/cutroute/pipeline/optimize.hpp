@@ -54,7 +54,9 @@ struct OptimizeOptions {
   // code "kerf.overlap") are an input error by default: one cut would cut into the other part.
   // With this set they are cut anyway, with a warning per pair.
   bool allow_kerf_overlap = false;
-  std::string dialect = "generic";           // name or JSON file
+  // Post-processor dialect, name or JSON file; empty: the machine profile's (generic for the
+  // built-in profile), see docs/MACHINE-PROFILE.md.
+  std::string dialect;
   double entry_step_mm = 0.0;                // 0: adaptive
   int max_candidates = 12;                   // entry candidates per contour
   bool refine_entries = true;                // continuous entry refinement after sequencing

@@ -161,7 +161,7 @@ struct NestOutcome {
 std::string printed_warnings(const std::string& nest, const std::vector<Diagnostic>& route, const std::vector<Diagnostic>& loading) {
   std::string out;
   for (Diagnostic d : route) {
-    if (d.code != "tip_up.time_limit" && d.code != "refine.time_limit" && d.code != "technique.time_limit" &&
+    if (d.code != "tip_up.time_limit" && d.code != "refine.time_limit" && d.code != "technique.time_limit" && d.code != "run.interrupted" &&
         d.code != "kerf.controller_detail" &&
         d.code != "tabs.resumed_on_path" && d.code != "tabs.part_without_skeleton_edge" && d.code != "tabs.on_a_neighbours_cut")
       continue;

@@ -625,6 +625,29 @@ TEST(OptimizeCli, OpenContoursAreNamedOncePerPlaceWithTheirCount) {
   fs::remove_all(dir);
 }
 
+// Ctrl-C or SIGTERM: the best program found so far is written, with a warning that says so (a
+// supervisor's SIGTERM must not pass the program off as a full run's).
+TEST(OptimizeCli, AnInterruptedRunSaysSo) {
+  const auto dir = temp_dir("interrupt");
+  const auto out = dir / "tops.ngc", rep = dir / "tops.json";
+  const auto script = dir / "interrupt.sh";
+  std::ofstream(script) << "'" << cli_path() << "' optimize '" << shared("data/dxf/deepnestsharp_TopsNest.dxf") << "' -o '"
+                        << out.string() << "' --report '" << rep.string() << "' --time-limit 120 --quiet 2>'"
+                        << (dir / "err.txt").string() << "' &\np=$!\nsleep 1.5\nkill -TERM $p\nwait $p\necho exit=$?\n";
+  const auto r = run_command("timeout -k 2 60 sh '" + script.string() + "'");
+  EXPECT_NE(r.out.find("exit=0"), std::string::npos) << r.out;
+  const std::string err = read_text(dir / "err.txt");
+  EXPECT_NE(err.find("warning: the run was interrupted (Ctrl-C or SIGTERM): the program holds the best route found before the stop"),
+            std::string::npos)
+      << err;
+  ASSERT_TRUE(fs::exists(out) && fs::exists(rep));
+  const auto report = nlohmann::json::parse(read_text(rep));
+  bool coded = false;
+  for (const auto& d : report["diagnostics"]) coded = coded || d.value("code", "") == "run.interrupted";
+  EXPECT_TRUE(coded) << report["diagnostics"];
+  fs::remove_all(dir);
+}
+
 // Every drawing of the shared corpus: the program cuts every closed contour exactly once, holes
 // and inner parts first, leads clear of other contours.
 class CorpusOptimize : public ::testing::TestWithParam<std::string> {};

@@ -451,10 +451,11 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
     double a1 = 0;
     if (e.type == "ARC") {
       a1 = p.a1 * kPi / 180;
+      // Angles count modulo 360 (AutoCAD, ezdxf): -30..390 is the 60° arc 330..30. An end a whole
+      // number of turns from the start (0..360, 0..0) is a full circle.
       sweep = std::fmod(p.a2 - p.a1, 360.0);
-      if (sweep <= 0) sweep += 360.0;
-      // 0..360 written as an ARC is a full circle.
-      if (std::abs(p.a2 - p.a1) >= 360.0 - 1e-9) sweep = 360.0;
+      if (sweep < 0) sweep += 360.0;
+      if (sweep <= 1e-9 || sweep >= 360.0 - 1e-9) sweep = 360.0;
       sweep *= kPi / 180;
     }
     if (sweep >= 2 * kPi - 1e-12) {
@@ -497,10 +498,12 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
       return std::nullopt;
     }
     const Vec2 m = Vec2{-n.z * M.y, n.z * M.x} * (p.ratio / nl);  // (N x M).xy with M in the XY plane
-    double u0 = p.t0, u1 = p.t1;
-    while (u1 <= u0) u1 += 2 * kPi;
-    bool full = u1 - u0 >= 2 * kPi - 1e-9;
-    if (full) u1 = u0 + 2 * kPi;
+    // Parameters count modulo 2π, as ARC angles do: an end a whole number of turns from the start
+    // is the full ellipse.
+    double span = std::fmod(p.t1 - p.t0, 2 * kPi);
+    if (span < 0) span += 2 * kPi;
+    const bool full = span <= 1e-9 || span >= 2 * kPi - 1e-9;
+    const double u0 = p.t0, u1 = p.t0 + (full ? 2 * kPi : span);
     const Vec2 C = p.center;
     if (!within_limit(t.apply(C)) ||
         !(geometry::norm(t.apply_linear(M)) + geometry::norm(t.apply_linear(m)) < units::kMaxCoordinateMm)) {

@@ -213,6 +213,21 @@ TEST(DxfCurves, PartialEllipseUsesParametersNotAngles) {
   EXPECT_LE(deviation(e.path, [&](double t) { return ellipse_point(c, major, 0.25, 1, t); }, 1.0, 2.5), kTol);
 }
 
+TEST(DxfCurves, EllipseParametersCountModuloAFullTurn) {
+  // 0.5 .. 0.5 + 2π + 1 is the arc over 0.5 .. 1.5, not the full ellipse; 0 .. 4π is the full one.
+  const Vec2 c{0, 0}, major{50, 0};
+  DxfBuilder b;
+  b.ellipse(c, major, 0.5, 0.5, 0.5 + 2 * kPi + 1);
+  const auto e = read_one(b.str());
+  EXPECT_FALSE(e.path.closed);
+  EXPECT_NEAR(dist(e.path.vertices.front().p, ellipse_point(c, major, 0.5, 1, 0.5)), 0, 1e-9);
+  EXPECT_NEAR(dist(e.path.vertices.back().p, ellipse_point(c, major, 0.5, 1, 1.5)), 0, 1e-9);
+  EXPECT_LE(deviation(e.path, [&](double t) { return ellipse_point(c, major, 0.5, 1, t); }, 0.5, 1.5), kTol);
+  DxfBuilder f;
+  f.ellipse(c, major, 0.5, 0, 4 * kPi);
+  EXPECT_TRUE(read_one(f.str()).path.closed);
+}
+
 TEST(DxfCurves, EllipseWithExtrusionMinusZRunsClockwise) {
   const Vec2 c{10, 10}, major{20, 5};
   DxfBuilder b;

@@ -92,6 +92,24 @@ TEST(DxfReader, ArcAcrossZeroDegreesAndFullArc) {
   EXPECT_NEAR(path_length(d.entities[1].path), 4 * kPi, 1e-12);
 }
 
+// Angles count modulo 360, as in AutoCAD: an end more than a turn past the start is not a full
+// circle (found by a hand-written DXF audit: -30..390 was read as a circle).
+TEST(DxfReader, ArcAnglesCountModuloAFullTurn) {
+  DxfBuilder b;
+  b.arc({0, 0}, 10, -30, 390).arc({0, 0}, 10, 10, 400).arc({0, 0}, 1, 0, 720).arc({0, 0}, 1, 90, -270);
+  const auto d = read(b.str());
+  ASSERT_EQ(d.entities.size(), 4u);
+  EXPECT_FALSE(d.entities[0].path.closed);
+  EXPECT_NEAR(path_length(d.entities[0].path), 10 * kPi / 3, 1e-12);  // 330..30
+  EXPECT_NEAR(dist(d.entities[0].path.vertices.front().p, {10 * std::cos(-kPi / 6), 10 * std::sin(-kPi / 6)}), 0, 1e-12);
+  EXPECT_FALSE(d.entities[1].path.closed);
+  EXPECT_NEAR(path_length(d.entities[1].path), 10 * kPi / 6, 1e-12);  // 10..40
+  for (std::size_t k : {2u, 3u}) {  // whole turns apart: a full circle
+    EXPECT_TRUE(d.entities[k].path.closed) << k;
+    EXPECT_NEAR(path_length(d.entities[k].path), 2 * kPi, 1e-12) << k;
+  }
+}
+
 // A 40 x 20 rectangle with its top-right corner rounded by r = 5 (counter-clockwise).
 std::vector<Vertex> rounded_rect() {
   const double b = std::tan(kPi / 8);

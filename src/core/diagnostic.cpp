@@ -33,11 +33,14 @@ std::string format(const Diagnostic& d) {
   out += to_string(d.severity);
   out += ": ";
   out += d.message;
-  if (!d.handle.empty() || !d.layer.empty()) {
+  // What the message names already (a nest message describes its contour) is not repeated.
+  const bool handle = !d.handle.empty() && d.message.find("entity " + d.handle) == std::string::npos;
+  const bool layer = !d.layer.empty() && d.message.find("layer " + d.layer) == std::string::npos;
+  if (handle || layer) {
     out += " (";
-    if (!d.handle.empty()) out += "entity " + d.handle;
-    if (!d.handle.empty() && !d.layer.empty()) out += ", ";
-    if (!d.layer.empty()) out += "layer " + d.layer;
+    if (handle) out += "entity " + d.handle;
+    if (handle && layer) out += ", ";
+    if (layer) out += "layer " + d.layer;
     out += ")";
   }
   return out;

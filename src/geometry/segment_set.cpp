@@ -112,6 +112,36 @@ BoundaryContact boundary_contact(const SegmentSet& a, const SegmentSet& b, doubl
   return contact;
 }
 
+std::optional<Vec2> self_contact(const SegmentSet& s, double min_loop_mm) {
+  const std::size_t n = s.segments.size();
+  std::vector<double> along(n + 1, 0.0);  // length of segments [0, k)
+  for (std::size_t k = 0; k < n; ++k) along[k + 1] = along[k] + s.segments[k].length();
+  std::optional<Vec2> found;
+  for (std::size_t i = 0; i < n && !found; ++i) {
+    s.index.visit(s.boxes[i], [&](std::uint32_t j32) {
+      const std::size_t j = j32;
+      if (j <= i + 1 || (s.closed && i == 0 && j + 1 == n)) return true;  // itself, or neighbours
+      const SegmentIntersection x = intersect(s.segments[i], s.segments[j], 0.0);
+      if (x.kind == SegmentIntersection::Kind::none) return true;
+      // The shorter of the two loops the contact closes: forward from i to j, or (closed) from j
+      // round the end back to i; each with the stretches of i and j past the contact, bounded by
+      // the straight distance to their ends (an upper bound is enough to keep real loops).
+      const Vec2 p = x.points[0];
+      const double inner = geometry::distance(p, s.segments[i].b) + along[j] - along[i + 1] + geometry::distance(s.segments[j].a, p);
+      double loop = inner;
+      if (s.closed) {
+        const double outer = geometry::distance(p, s.segments[j].b) + along[n] - along[j + 1] + along[i] +
+                             geometry::distance(s.segments[i].a, p);
+        loop = std::min(loop, outer);
+      }
+      if (loop < min_loop_mm) return true;
+      found = p;
+      return false;
+    });
+  }
+  return found;
+}
+
 BoundarySides boundary_sides(const SegmentSet& a, const SegmentSet& b, double tol_mm) {
   BoundarySides sides;
   for (const Segment& s : a.segments) {

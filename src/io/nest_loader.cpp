@@ -84,6 +84,7 @@ LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
 
   model::NestOptions nest_options = options.nest;
   nest_options.crossing_tol_mm = std::max(nest_options.crossing_tol_mm, options.dxf.curve_tol_mm);
+  nest_options.self_loop_tol_mm = std::max(nest_options.self_loop_tol_mm, 4 * std::max(options.snap_mm, options.dxf.curve_tol_mm));
   out.nest = model::build_nest(std::move(closed), nest_options);
   for (auto& d : out.nest.diagnostics) {
     if (d.file.empty()) d.file = out.file;

@@ -442,6 +442,15 @@ Nest build_nest(std::vector<SourceContour> contours, const NestOptions& options)
       tree = build_tree(nest, prep, std::nullopt, tol_mm, options.crossing_tol_mm);
     }
   }
+  // A contour that crosses or touches itself has no inside to speak of: its loops run in opposite
+  // senses, so one of them would get its lead-in and kerf on the part's side. As with two contours
+  // that cross, the drawing is wrong (--allow-crossing cuts it anyway).
+  for (std::size_t i = 0; i < nest.contours.size(); ++i)
+    if (const auto at = geometry::self_contact(prep.segments[i], options.self_loop_tol_mm))
+      tree.report(diagnostic_for(Severity::error,
+                                 describe(nest.contours[cid(i)].source, prep.input_index[i]) + " crosses or touches itself near " +
+                                     format_point(*at),
+                                 nest.contours[cid(i)].source, "nest.crossing"));
   std::optional<std::size_t> sheet_index;
   if (sheet) sheet_index = sheet->index;
   assign_tree(nest, tree, sheet_index);

@@ -262,6 +262,37 @@ TEST(Nest, CrossingContoursDiagnosedNamingBoth) {
   EXPECT_NE(shared.diagnostics[0].message.find("entity R"), std::string::npos);
 }
 
+Contour polygon(std::vector<Vec2> pts) {
+  Contour c;
+  for (const Vec2 p : pts) c.vertices.push_back({p, 0.0});
+  c.closed = true;
+  return c;
+}
+
+// A contour that crosses or touches itself has loops of opposite sense (a lead-in and the kerf
+// would go on the part's side of one): an error like two crossing contours. The zig-zag that
+// snapping leaves at a contour's closing (a few µm) is not.
+TEST(Nest, ContourCrossingItselfIsAnError) {
+  const Nest eight = build_nest({src(polygon({{0, 0}, {100, 60}, {100, 0}, {0, 40}}), "CUT", "8A", 12)}, NestOptions{});
+  ASSERT_EQ(eight.diagnostics.size(), 1u);
+  EXPECT_EQ(eight.diagnostics[0].severity, Severity::error);
+  EXPECT_EQ(eight.diagnostics[0].code, "nest.crossing");
+  EXPECT_EQ(eight.diagnostics[0].message, "contour 0 (entity 8A, line 12, layer CUT) crosses or touches itself near (40, 24)");
+  // Said once: not again after the message by format().
+  EXPECT_EQ(format(eight.diagnostics[0]), "line 12: error: " + eight.diagnostics[0].message);
+  // Touching itself at one point (two squares joined at a corner, drawn as one contour).
+  const Nest touch = build_nest({src(polygon({{0, 0}, {10, 0}, {10, 10}, {20, 10}, {20, 20}, {10, 20}, {10, 10}, {0, 10}}))}, NestOptions{});
+  ASSERT_FALSE(touch.diagnostics.empty());
+  EXPECT_NE(touch.diagnostics[0].message.find("crosses or touches itself near (10, 10)"), std::string::npos) << touch.diagnostics[0].message;
+  // A zig-zag of a few µm next to a corner: below the loop tolerance, a simple square.
+  const Nest zig = build_nest({src(polygon({{0, 0}, {10, 0}, {10, 10}, {0, 10}, {0, 0.002}, {0.003, 0.004}, {-0.002, 0.004}}))}, NestOptions{});
+  EXPECT_TRUE(zig.diagnostics.empty()) << zig.diagnostics[0].message;
+  NestOptions strict;
+  strict.self_loop_tol_mm = 0.0;
+  EXPECT_FALSE(build_nest({src(polygon({{0, 0}, {10, 0}, {10, 10}, {0, 10}, {0, 0.002}, {0.003, 0.004}, {-0.002, 0.004}}))}, strict)
+                   .diagnostics.empty());
+}
+
 TEST(Nest, ThousandsOfOverlapsAreCountedNotListed) {
   // 300 circles of r = 10 on a line, 1 mm apart: each crosses its neighbours within 20 mm,
   // 19 or so each side: ~5600 crossing pairs.

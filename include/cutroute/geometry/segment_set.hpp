@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include <cutroute/geometry/contour.hpp>
@@ -52,5 +53,11 @@ struct BoundarySides {
                        // bound of how far a reaches into b (at most 64 samples measured) [mm]
 };
 BoundarySides boundary_sides(const SegmentSet& a, const SegmentSet& b, double tol_mm);
+
+// A point where the boundary meets itself: two segments that are not neighbours along it cross,
+// touch or overlap (a figure eight, a spline that loops), the loop they close being at least
+// min_loop_mm long (shorter ones are the zig-zags of snapped or converted ends). nullopt: a simple
+// curve. Exact (no tolerance): neighbours share their end point, others must not meet at all.
+std::optional<Vec2> self_contact(const SegmentSet& s, double min_loop_mm);
 
 }  // namespace cutroute::geometry

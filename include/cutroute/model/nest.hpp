@@ -9,6 +9,7 @@
 
 #include <cutroute/core/diagnostic.hpp>
 #include <cutroute/core/ids.hpp>
+#include <cutroute/core/tolerances.hpp>
 #include <cutroute/geometry/contour.hpp>
 
 namespace cutroute::model {
@@ -60,6 +61,10 @@ struct NestOptions {
   // overlapping parts (an error) [mm]. The DXF loader sets its curve-conversion tolerance here:
   // a SPLINE touching a neighbour may cross it by that much once turned into arcs.
   double crossing_tol_mm = 0.0;
+  // A contour that meets itself is an error ("nest.crossing") unless the loop it closes is shorter
+  // than this [mm]: snapping ends (--snap) and converting curves leave zig-zags of a few of their
+  // tolerances (d2g_DRAAK: 53 loops of at most 0.015 mm). The DXF loader sets 4 × max(snap, curve tolerance).
+  double self_loop_tol_mm = 4 * tol::kSnapMm;
 };
 
 struct Nest {

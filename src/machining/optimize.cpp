@@ -200,25 +200,79 @@ void add_solution_warnings(const Problem& p, const OptimizeResult& r, std::vecto
   }
 }
 
-// Pitfall 9: a stepped spindle runs at the next lower available speed, which protects tool life.
-void apply_spindle_steps(const Problem& p, OptimizeResult& r) {
+// The cheapest point that meets every limit at a fixed cutting speed, over the feed range of `set`
+// (n_f log-spaced samples, feasible runs bisected onto g <= 0, golden section inside each).
+std::optional<PointEval> best_feed_at_vc(const Problem& p, int set, double vc, int n_f, long& evals) {
+  const SearchBox box = search_box(p, set);
+  if (box.f[0] > box.f[1]) return std::nullopt;
+  const auto eval = [&](double u) {
+    ++evals;
+    return evaluate(p, vc, std::exp(u), set);
+  };
+  const auto ok_at = [&](double u) { return eval(u).max_violation() <= 0.0; };
+  const auto ct_at = [&](double u) { return eval(u).cost.total; };
+  const std::vector<double> fg = log_grid(box.f[0], box.f[1], std::max(n_f, 2));
+  std::optional<PointEval> best;
+  for (std::size_t a = 0; a < fg.size();) {
+    if (!(eval(std::log(fg[a])).max_violation() <= tol::kConstraintSlackRel)) {
+      ++a;
+      continue;
+    }
+    std::size_t b = a;
+    while (b + 1 < fg.size() && eval(std::log(fg[b + 1])).max_violation() <= tol::kConstraintSlackRel) ++b;
+    double lo = std::log(fg[a]), hi = std::log(fg[b]);
+    if (a > 0) lo = detail::bisect_boundary(ok_at, std::log(fg[a - 1]), lo);
+    if (b + 1 < fg.size()) hi = detail::bisect_boundary(ok_at, std::log(fg[b + 1]), hi);
+    double u = hi > lo ? detail::golden_min(ct_at, lo, hi) : lo;
+    for (double e : {lo, hi})
+      if (ct_at(e) < ct_at(u)) u = e;
+    if (!eval(u).feasible()) u = ct_at(lo) <= ct_at(hi) ? lo : hi;
+    const PointEval e = eval(u);
+    if (e.feasible() && (!best || e.cost.total < best->cost.total)) best = e;
+    a = b + 1;
+  }
+  return best;
+}
+
+// Pitfall 9: a stepped spindle runs at the next lower available speed, which protects tool life;
+// the feed is chosen again there, the cheapest that meets every limit (at the old feed a lower
+// speed may break one: E2's accuracy). When no speed at or below n* has such a feed, the lowest
+// step above it that has one is taken, with a warning; when none has one, there is no solution.
+void apply_spindle_steps(const Problem& p, OptimizeResult& r, int n_f) {
   const auto& steps = p.machine.spindle_steps;
   if (steps.empty() || !r.solution) return;
-  double n_step = -1.0;
-  for (double s : steps) {
-    if (s <= r.solution->n * (1.0 + 1e-12)) n_step = std::max(n_step, s);
-  }
-  if (n_step <= 0.0) {
-    r.warnings.push_back("no available spindle speed at or below n = " + fmt(r.solution->n) + " rpm");
+  const double n_opt = r.solution->n;
+  std::vector<double> below, above;
+  for (double s : steps) (s <= n_opt * (1.0 + 1e-12) ? below : above).push_back(s);
+  std::sort(below.rbegin(), below.rend());
+  std::sort(above.begin(), above.end());
+  std::vector<double> order = below;
+  order.insert(order.end(), above.begin(), above.end());
+  for (double n_step : order) {
+    const double vc = kPi * p.op.D * n_step / 1000.0;
+    std::optional<PointEval> at;
+    int at_set = 0;
+    for (int set = 0; set < life_set_count(p); ++set)
+      if (auto e = best_feed_at_vc(p, set, vc, n_f, r.evaluations); e && (!at || e->cost.total < at->cost.total)) at = e, at_set = set;
+    if (!at) continue;
+    const bool up = n_step > n_opt * (1.0 + 1e-12);
+    r.warnings.push_back("stepped spindle: n " + std::string(up ? "raised" : "rounded down") + " from " + fmt(n_opt) + " to " +
+                         fmt(n_step) + " rpm (vc = " + fmt(vc) + " m/min), feed chosen again: f = " + fmt(at->f) + " mm/rev" +
+                         (up ? "; no available speed at or below it meets every limit" : ""));
+    r.solution = *at;
+    r.set = at_set;
+    r.active = active_names(*at);
     return;
   }
-  const double vc = kPi * p.op.D * n_step / 1000.0;
-  const PointEval e = evaluate(p, vc, r.solution->f, r.set);
-  r.warnings.push_back(
-      "stepped spindle: n rounded down from " + fmt(r.solution->n) + " to " + fmt(n_step) +
-      " rpm (vc = " + fmt(vc) + " m/min)" +
-      (e.feasible() ? std::string() : "; the rounded point violates " + std::string(to_string(e.worst()))));
-  r.solution = e;
+  Infeasibility inf;
+  inf.constraint = "spindle_steps";
+  inf.vc = r.solution->vc;  // where the continuous optimum lies
+  inf.f = r.solution->f;
+  inf.message = "no available spindle speed (machine.spindle_steps) has a feed that meets every limit; the continuous optimum is n = " +
+                fmt(n_opt) + " rpm";
+  inf.suggestions = {"add a spindle speed near " + fmt(n_opt) + " rpm, or relax the limit that binds there"};
+  r.infeasible = std::move(inf);
+  r.solution.reset();
 }
 
 }  // namespace
@@ -405,7 +459,11 @@ OptimizeResult optimize(const Problem& p, const OptimizeParams& params) {
   }
   if (!box_reasons.empty()) r.warnings.push_back("skipped tool-life sets: " + box_reasons);
   add_solution_warnings(p, r, r.warnings);
-  apply_spindle_steps(p, r);
+  apply_spindle_steps(p, r, ny);
+  if (!r.solution) {
+    r.status = Status::infeasible;
+    return r;
+  }
   // Valley vc*(f) across the feed range of the solution's set.
   if (params.valley_points > 0) {
     const SearchBox box{r.vc_bounds, r.f_bounds};

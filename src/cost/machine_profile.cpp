@@ -211,7 +211,14 @@ std::string default_machine_profile_path() { return std::string(data_dir()) + "/
 
 Result<MachineProfile> load_machine_profile(const std::string& path) {
   auto parsed = detail::parse_json_file(path);
-  if (!parsed) return parsed.error();
+  if (!parsed) {
+    // The built-in profile missing: the data folder is not where this binary looked.
+    Diagnostic e = parsed.error();
+    if (path == default_machine_profile_path())
+      e.message += " (the built-in machine profile, in the data folder " + std::string(data_dir()) +
+                   ": set CUTROUTE_DATA_DIR to the project's data/ folder, keep data/ beside the executable, or give --machine)";
+    return e;
+  }
   auto p = parse_profile(*parsed, path);
   if (!p) return detail::in_file(p.error(), path);
   return p;

@@ -223,6 +223,29 @@ TEST(CliEstimate, ReadsAProgramWithThePostDialectThatWroteIt) {
   std::filesystem::remove_all(dir);
 }
 
+// A copied binary reads the data/ folder beside it (a shop's deployment), not the source tree it
+// was built from; CUTROUTE_DATA_DIR overrides both, and a missing profile names the folder.
+TEST(CliData, ACopiedBinaryReadsTheDataBesideIt) {
+  const auto dir = std::filesystem::temp_directory_path() / ("cutroute-copied-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(test::cli_path(), dir / "cutroute");
+  std::filesystem::copy(data_dir(), dir / "data", std::filesystem::copy_options::recursive);
+  json profile = json::parse(std::ifstream(dir / "data" / "machines" / "bystar3015.json"));
+  profile["name"] = "the copy's own machine";
+  std::ofstream(dir / "data" / "machines" / "bystar3015.json") << profile.dump(1);
+  const std::string exe = (dir / "cutroute").string();
+  const auto r = test::run_command("'" + exe + "' estimate " + test::test_data("nc/square_abs_mm.nc") + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(json::parse(r.out)["machine"], "the copy's own machine");
+  const auto missing = test::run_command("CUTROUTE_DATA_DIR=" + (dir / "nowhere").string() + " '" + exe + "' estimate " +
+                                         test::test_data("nc/square_abs_mm.nc"));
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("the built-in machine profile, in the data folder " + (dir / "nowhere").string()), std::string::npos)
+      << missing.err;
+  std::filesystem::remove_all(dir);
+}
+
 TEST(CliEstimate, MaterialAndThicknessGoTogether) {
   EXPECT_EQ(cli("estimate " + test::test_data("nc/square_abs_mm.nc") + " --material AMg3M").exit_code, 1);
   const auto r =

@@ -3,7 +3,8 @@
 
 namespace cutroute {
 const char* version();
-// Absolute path of the bundled data/ folder (materials, dialects, examples); the environment
-// variable CUTROUTE_DATA_DIR overrides the path compiled in.
+// Path of the bundled data/ folder (machines, materials, dialects, examples): the environment
+// variable CUTROUTE_DATA_DIR, else data/ beside the executable or ../share/cutroute/data (a copied
+// or installed binary), else the source tree's data/ compiled in.
 const char* data_dir();
 }  // namespace cutroute

@@ -275,6 +275,17 @@ int run(const Opts& o) {
     std::cerr << "cutroute: " << outs.error().message << '\n';
     return kUsageError;
   }
+  // Where the outputs cannot go is said before the solving, not after it (10 s at the default limit).
+  for (const Outputs& out : *outs)
+    for (const std::string* path : {&out.program, &out.report, &out.svg, &out.html})
+      if (!path->empty())
+        if (Status st = io::check_output(*path); !st) {
+          std::string msg = format(st.error());
+          if (o.nests.size() == 1 && msg.find("is a folder") != std::string::npos)
+            msg += " (with one nest, -o names the program file; several nests write into -o DIR)";
+          std::cerr << "cutroute: " << msg << '\n';
+          return kInputError;
+        }
   const std::size_t workers = std::min<std::size_t>(o.nests.size(), std::max(1u, std::thread::hardware_concurrency()));
   po->threads = o.threads > 0 ? std::max(1, o.threads / static_cast<int>(workers))
                               : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / static_cast<int>(workers));
@@ -355,7 +366,7 @@ void add_optimize(CLI::App& root, Commands& out) {
   auto o = std::make_shared<Opts>();
   auto* app = root.add_subcommand("optimize", "Optimize the cutting route of DXF nest(s) and write the G-code program");
   app->add_option("NEST", o->nests, "DXF nest file(s); several are optimized in parallel")->required();
-  app->add_option("-o,--output", o->out, "Program file (one nest) or output folder (several nests)");
+  app->add_option("-o,--output", o->out, "Program file (one nest; default: the nest's name with .ngc, in the current folder) or output folder (several nests)");
   app->add_option("--report", o->report, "Write the JSON report to this file");
   app->add_option("--svg", o->svg, "Write the route picture to this SVG file");
   app->add_option("--html", o->html, "Write a self-contained HTML page with the animated route");

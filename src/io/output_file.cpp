@@ -117,6 +117,18 @@ Status write_files_atomic(const std::vector<OutputFile>& files) {
   return Ok{};
 }
 
+Status check_output(const std::string& path) {
+  if (path == "-") return Ok{};
+  auto t = resolve(path);
+  if (!t) return t.error();
+  if (t->in_place) return Ok{};
+  const std::string tmp = temp_name(t->path);
+  if (Status st = write_to(tmp, path, {}, false); !st) return st;
+  std::error_code ec;
+  fs::remove(tmp, ec);
+  return Ok{};
+}
+
 bool same_output(const std::string& a, const std::string& b) {
   if (a == "-" || b == "-") return a == b;
   std::error_code ea, eb;

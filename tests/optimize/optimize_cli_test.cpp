@@ -648,6 +648,26 @@ TEST(OptimizeCli, AnInterruptedRunSaysSo) {
   fs::remove_all(dir);
 }
 
+// Outputs that cannot be written are refused before the solving (a 30-s run would end past the
+// timeout), and the check leaves nothing behind.
+TEST(OptimizeCli, UnwritableOutputsAreRefusedBeforeSolving) {
+  const auto dir = temp_dir("unwritable");
+  const std::string base = "timeout 10 " + cli_path() + " optimize " + shared("data/dxf/deepnestsharp_TopsNest.dxf") +
+                           " --time-limit 30 --quiet ";
+  auto r = run_command(base + "-o " + (dir / "missing" / "x.ngc").string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("missing/x.ngc: error: cannot write output: No such file or directory"), std::string::npos) << r.err;
+  r = run_command(base + "-o " + (dir / "p.ngc").string() + " --report " + (dir / "missing" / "r.json").string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  r = run_command(base + "-o " + dir.string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("is a folder (with one nest, -o names the program file"), std::string::npos) << r.err;
+  std::size_t left = 0;
+  for (const auto& e : fs::directory_iterator(dir)) left += e.path().filename() != "missing";
+  EXPECT_EQ(left, 0u) << "no temporary file, no program";
+  fs::remove_all(dir);
+}
+
 // Every drawing of the shared corpus: the program cuts every closed contour exactly once, holes
 // and inner parts first, leads clear of other contours.
 class CorpusOptimize : public ::testing::TestWithParam<std::string> {};

@@ -28,6 +28,11 @@ struct OutputFile {
 // is written to stdout after the others are in place.
 Status write_files_atomic(const std::vector<OutputFile>& files);
 
+// Can an output be written there? The same checks and errors as write_files_atomic() (a folder,
+// a missing or read-only folder: a temporary file is created and removed), made before a long
+// run instead of after it. "-", devices and FIFOs pass.
+Status check_output(const std::string& path);
+
 // Do two output paths name the same file ("-" only itself; "x.ngc" and "./x.ngc" one file)?
 bool same_output(const std::string& a, const std::string& b);
 

@@ -249,6 +249,7 @@ class Expander {
 
   std::optional<Diagnostic> check_expansion();
   std::optional<Diagnostic> run();
+  std::optional<Diagnostic> check_layer_filters();
 
  private:
   struct Top {
@@ -676,6 +677,7 @@ std::optional<Diagnostic> Expander::emit(int idx, const Affine& t, const std::st
     }
     return std::nullopt;
   }
+  ++out_.layers[layer];
   if (!layer_kept(layer)) return std::nullopt;
   ++out_.entity_counts[e.type];
   if (!e.forwarded) {
@@ -695,6 +697,38 @@ std::optional<Diagnostic> Expander::run() {
                                                 " skipped (not cut)",
                                             out_.file));
   }
+  return check_layer_filters();
+}
+
+// A layer filter naming no layer of the drawing (a typo, another drawing's name) would cut nothing
+// or everything without a word: named, with the drawing's layers to choose from. When none of the
+// --layers names exists, nothing is left to cut: an error.
+std::optional<Diagnostic> Expander::check_layer_filters() {
+  auto exists = [&](const std::string& name) {
+    for (const auto& [l, n] : out_.layers)
+      if (upper(l) == upper(name)) return true;
+    return false;
+  };
+  std::string listed;
+  for (const auto& [l, n] : out_.layers)
+    listed += (listed.empty() ? "" : ", ") + (l.empty() ? std::string("(no name)") : l) + " (" + std::to_string(n) + ")";
+  if (listed.empty()) listed = "none";
+  std::string missing;
+  std::size_t found = 0;
+  for (const auto& l : opt_.layers) {
+    if (exists(l)) ++found;
+    else missing += (missing.empty() ? "'" : ", '") + l + "'";
+  }
+  if (!opt_.layers.empty() && found == 0)
+    return make_error("no layer given with --layers is in the drawing (" + missing + "); its layers, with their entities: " + listed,
+                      out_.file);
+  if (!missing.empty())
+    out_.diagnostics.push_back(make_warning("layer " + missing + " (--layers) is not in the drawing; its layers: " + listed, out_.file));
+  std::string unknown;
+  for (const auto& l : opt_.ignore_layers)
+    if (!exists(l)) unknown += (unknown.empty() ? "'" : ", '") + l + "'";
+  if (!unknown.empty())
+    out_.diagnostics.push_back(make_warning("layer " + unknown + " (--ignore-layers) is not in the drawing; its layers: " + listed, out_.file));
   return std::nullopt;
 }
 

@@ -42,6 +42,7 @@ nlohmann::json inspect_report(const LoadedNest& loaded) {
   j["units_source"] = loaded.units_source;
   j["mm_per_unit"] = loaded.mm_per_unit;
   j["entities"] = loaded.entity_counts;
+  j["layers"] = loaded.layers;  // entities per layer, before --layers / --ignore-layers
   j["skipped"] = loaded.skipped;
   j["contours_closed"] = nest.contours.size();
   j["contours_open"] = loaded.open_paths.size();
@@ -72,6 +73,11 @@ std::string inspect_text(const nlohmann::json& r) {
   s += "  entities:";
   for (const auto& [type, n] : r["entities"].items()) s += " " + type + " " + std::to_string(n.get<std::size_t>());
   s += "\n";
+  if (r.contains("layers") && !r["layers"].empty()) {
+    s += "  layers (entities):";
+    for (const auto& [layer, n] : r["layers"].items()) s += " " + (layer.empty() ? std::string("(no name)") : layer) + " " + std::to_string(n.get<std::size_t>());
+    s += "\n";
+  }
   s += "  contours: " + std::to_string(r["contours_closed"].get<std::size_t>()) + " closed, " +
        std::to_string(r["contours_open"].get<std::size_t>()) + " open\n";
   s += "  parts: " + std::to_string(r["parts"].get<std::size_t>()) + ", holes: " +

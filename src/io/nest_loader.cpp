@@ -30,6 +30,7 @@ LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
   out.units_source = drawing.units_source;
   out.mm_per_unit = drawing.mm_per_unit;
   out.entity_counts = drawing.entity_counts;
+  out.layers = drawing.layers;
   out.skipped = drawing.skipped;
   out.diagnostics = std::move(drawing.diagnostics);
 

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <numbers>
 #include <string>
 
@@ -399,6 +400,35 @@ TEST(DxfReader, LayerFilters) {
   ASSERT_EQ(d.entities.size(), 2u);
   EXPECT_EQ(d.entity_counts.count("LINE"), 1u);
   EXPECT_EQ(d.entity_counts.at("LINE"), 1u);
+}
+
+// A filter naming no layer of the drawing is said, with the drawing's layers: an error when nothing
+// would be left (--layers), else a warning.
+TEST(DxfReader, LayerFiltersNamingNoLayerOfTheDrawing) {
+  DxfBuilder b;
+  b.line({0, 0}, {1, 0}, "Cut").line({0, 1}, {1, 1}, "Gravír").circle({5, 5}, 1, "sheet").text({0, 0}, "x", "Cut");
+  const auto all = read(b.str());
+  EXPECT_EQ(all.layers, (std::map<std::string, std::size_t>{{"Cut", 2}, {"Gravír", 1}, {"sheet", 1}}));
+  io::DxfOptions none;
+  none.layers = {"Nope"};
+  auto r = io::read_dxf_string(b.str(), "x.dxf", none);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().message,
+            "no layer given with --layers is in the drawing ('Nope'); its layers, with their entities: Cut (2), Gravír (1), sheet (1)");
+  io::DxfOptions some;
+  some.layers = {"cut", "Nope"};
+  const auto d = read(b.str(), some);
+  EXPECT_EQ(d.entities.size(), 1u);
+  auto warned = [](const io::DxfDrawing& x, const std::string& text) {
+    for (const auto& w : x.diagnostics)
+      if (w.message.find(text) != std::string::npos) return true;
+    return false;
+  };
+  EXPECT_TRUE(warned(d, "layer 'Nope' (--layers) is not in the drawing; its layers: Cut (2)"));
+  io::DxfOptions ignore;
+  ignore.ignore_layers = {"Engrave"};
+  EXPECT_TRUE(warned(read(b.str(), ignore), "layer 'Engrave' (--ignore-layers) is not in the drawing"));
+  EXPECT_FALSE(warned(read(b.str(), io::DxfOptions{}), "is not in the drawing"));
 }
 
 // Drawings before AutoCAD 2007 store names in their code page ($DWGCODEPAGE, Windows-1252 when

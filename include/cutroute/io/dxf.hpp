@@ -56,6 +56,9 @@ struct DxfDrawing {
                                                       // each placed INSERT counts too; paper space
                                                       // and filtered layers do not
   std::map<std::string, std::size_t> skipped;        // types read but not turned into curves
+  // Modelspace entities per layer after INSERT expansion (a block's layer-0 entities on the
+  // INSERT's layer), before the layer filters: what --layers can name.
+  std::map<std::string, std::size_t> layers;
   Diagnostics diagnostics;                // warnings (skipped, converted, odd values)
 };
 

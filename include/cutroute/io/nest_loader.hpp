@@ -34,6 +34,7 @@ struct LoadedNest {
   double mm_per_unit = 1.0;
   std::map<std::string, std::size_t> entity_counts;  // every modelspace entity type (skipped included)
   std::map<std::string, std::size_t> skipped;
+  std::map<std::string, std::size_t> layers;         // entities per layer, filters not applied
   std::size_t dropped_zero_length = 0;
   std::size_t dropped_duplicates = 0;
   model::Nest nest;

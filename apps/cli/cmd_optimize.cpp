@@ -158,7 +158,8 @@ struct NestOutcome {
 // The warnings of a cut nest that reach stderr: rapids left over freed parts, cuts the controller's
 // compensation may refuse, cuts after a tab that resume on the part's edge although lead-ins were
 // asked for, parts or tabs that hold nothing, and the open contours not cut.
-std::string printed_warnings(const std::string& nest, const std::vector<Diagnostic>& route, const std::vector<Diagnostic>& loading) {
+std::string printed_warnings(const std::string& nest, const std::vector<Diagnostic>& route, const std::vector<Diagnostic>& loading,
+                             const nlohmann::json& report) {
   std::string out;
   for (Diagnostic d : route) {
     if (d.code != "tip_up.time_limit" && d.code != "refine.time_limit" && d.code != "technique.time_limit" && d.code != "run.interrupted" &&
@@ -167,6 +168,21 @@ std::string printed_warnings(const std::string& nest, const std::vector<Diagnost
       continue;
     if (d.file.empty()) d.file = nest;
     out += "cutroute: " + format(d) + "\n";
+  }
+  // A pierce on the contour marks the part's edge: one line for the written program's (the
+  // chosen technique's entries, not every alternative's), naming the first few.
+  if (report.contains("sequence")) {
+    int on_edge = 0;
+    std::string named;
+    std::set<int> seen;  // a common-line outline may be entered on one contour twice
+    for (const auto& e : report["sequence"])
+      if (e.value("fallback", "") == "on_contour" && seen.insert(e.value("contour", 0)).second && on_edge++ < 5)
+        named += (named.empty() ? "" : ", ") + ("part " + std::to_string(e.value("part", 0)) + " " + e.value("kind", "contour") + " (contour " +
+                                                std::to_string(e.value("contour", 0)) + ")");
+    if (on_edge > 0)
+      out += "cutroute: " + format(make_warning(std::to_string(on_edge) + " contour(s) pierced on their edge, no lead-in fitting (" + named +
+                                                    (on_edge > 5 ? ", ..." : "") + "): a mark on the part there",
+                                                nest)) + "\n";
   }
   // Open contours are not cut, and a part drawn with a gap would be missing from the program:
   // one line for them all (drawings with text or hatching have many), naming the first few places
@@ -242,7 +258,7 @@ NestOutcome cut_nest(const std::string& nest, const Outputs& out, const pipeline
     files.push_back({out.html, io::route_to_html(loaded->nest, res->toolpath, io::report_summary(res->report), pic)});
   files.push_back({out.program, res->program.text});
   if (const Status st = io::write_files_atomic(files); !st) return {kInputError, format(st.error()), {}, {}};
-  return {kOk, summary_line(nest, res->report, out.program), printed_warnings(nest, res->diagnostics, loaded->diagnostics),
+  return {kOk, summary_line(nest, res->report, out.program), printed_warnings(nest, res->diagnostics, loaded->diagnostics, res->report),
           res->report};
 }
 

@@ -572,7 +572,9 @@ Result<ScanResult> Scanner::run() {
   }
   if (!entities_seen_) return error("no ENTITIES section", std::nullopt);
   if (paperspace_skipped_ > 0) {
-    r_.warnings.push_back(make_warning(std::to_string(paperspace_skipped_) + " paper-space entities ignored", file_));
+    Diagnostic w = make_warning(std::to_string(paperspace_skipped_) + " paper-space entities ignored", file_);
+    w.code = "dxf.paper_space";
+    r_.warnings.push_back(std::move(w));
   }
   r_.dxflib_text += "0\nENDSEC\n";
   r_.zero_offsets.push_back(r_.dxflib_text.size());

@@ -685,8 +685,9 @@ std::vector<EntryCandidate> EntryPlanner::candidates(ContourId id, Diagnostics& 
   if (impl_->opt.free_direction) directions.push_back(!conv_cw);
 
   std::vector<EntryCandidate> out;
-  const auto diag = [&](const std::string& msg) {
+  const auto diag = [&](const std::string& msg, const char* code) {
     Diagnostic d = make_warning(msg, std::string(), c.source.line);
+    d.code = code;
     d.handle = c.source.handle;
     d.layer = c.source.layer;
     diagnostics.push_back(std::move(d));
@@ -706,7 +707,8 @@ std::vector<EntryCandidate> EntryPlanner::candidates(ContourId id, Diagnostics& 
     if (!out.empty()) {
       if (scale < 1.0)
         diag("contour " + std::to_string(id.value() + 1) + ": no room for the full lead-in; lead shortened to " +
-             format_fixed(scale * 100, 0) + " %");
+             format_fixed(scale * 100, 0) + " %",
+             "leads.shortened");
       return out;
     }
   }
@@ -714,7 +716,7 @@ std::vector<EntryCandidate> EntryPlanner::candidates(ContourId id, Diagnostics& 
   const double total = impl_->length[id.index()];
   if (c.role == ContourRole::hole) {
     if (auto e = impl_->centre_pierce(id, path, conv_cw, total)) {
-      diag("hole " + std::to_string(id.value() + 1) + ": too small for a lead-in; pierced at its centre");
+      diag("hole " + std::to_string(id.value() + 1) + ": too small for a lead-in; pierced at its centre", "leads.centre_pierce");
       out.push_back(std::move(*e));
       return out;
     }
@@ -730,7 +732,7 @@ std::vector<EntryCandidate> EntryPlanner::candidates(ContourId id, Diagnostics& 
   e.pieces = {SegmentPiece{PieceKind::contour, id, detail::sub_path(path, m, 0, total + impl_->opt.lead.overcut_mm), {}}};
   e.fallback = Fallback::on_contour;
   e.s_mm = 0;
-  diag("contour " + std::to_string(id.value() + 1) + ": no admissible lead-in; pierced on the contour");
+  diag("contour " + std::to_string(id.value() + 1) + ": no admissible lead-in; pierced on the contour", "leads.on_contour");
   out.push_back(std::move(e));
   return out;
 }

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <tuple>
 
@@ -665,6 +666,33 @@ TEST(OptimizeCli, UnwritableOutputsAreRefusedBeforeSolving) {
   std::size_t left = 0;
   for (const auto& e : fs::directory_iterator(dir)) left += e.path().filename() != "missing";
   EXPECT_EQ(left, 0u) << "no temporary file, no program";
+  fs::remove_all(dir);
+}
+
+// A pierce on a part's edge (no scrap for a lead-in: TopsNest's parts are drawn edge to edge) is
+// said on stderr, counted from the written program's entries, once per contour; warnings of that
+// kind and the leads' other fallbacks carry codes for summary.csv.
+TEST(OptimizeCli, PiercesOnThePartsEdgeAreSaid) {
+  const auto dir = temp_dir("on-edge");
+  for (const char* technique : {"standard", "auto"}) {
+    const auto rep = dir / "r.json";
+    const auto r = run_command(cli_path() + " optimize " + shared("data/dxf/deepnestsharp_TopsNest.dxf") + " -o " +
+                               (dir / "p.ngc").string() + " --report " + rep.string() + " --time-limit 0.3 --quiet --technique " +
+                               technique);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto report = nlohmann::json::parse(read_text(rep));
+    std::set<int> on_edge;
+    for (const auto& e : report["sequence"])
+      if (e.value("fallback", "") == "on_contour") on_edge.insert(e["contour"].get<int>());
+    ASSERT_FALSE(on_edge.empty()) << technique;
+    EXPECT_NE(r.err.find("warning: " + std::to_string(on_edge.size()) + " contour(s) pierced on their edge"), std::string::npos)
+        << technique << ": " << r.err;
+    for (const auto& d : report["diagnostics"]) {
+      if (d["message"].get<std::string>().find("pierced on the contour") != std::string::npos) {
+        EXPECT_EQ(d["code"], "leads.on_contour");
+      }
+    }
+  }
   fs::remove_all(dir);
 }
 

@@ -107,7 +107,7 @@ int run_machining(const MachiningOptions& o) {
 void add_machining(CLI::App& root, Commands& out) {
   auto opts = std::make_shared<MachiningOptions>();
   auto* app = root.add_subcommand("machining",
-                                  "optimise cutting speed and feed of a boring transition (MACHINING.md)");
+                                  "Optimise cutting speed and feed of boring on a machining centre by minimum cost (docs/MACHINING-SCHEMA.md)");
   app->add_option("problem", opts->problem, "problem file (JSON, see docs/MACHINING-SCHEMA.md)")->required();
   app->add_flag("--json", opts->json, "print the full report as JSON");
   app->add_option("--svg", opts->svg,

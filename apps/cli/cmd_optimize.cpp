@@ -345,6 +345,26 @@ int run(const Opts& o) {
   return code;
 }
 
+// Options given that the rest of the command line leaves without effect (a tab width without
+// --tabs, a chain gap for the standard technique): said, since the user expected them to act.
+std::vector<std::string> idle_options(const CLI::App& app, const Opts& o) {
+  std::vector<std::string> out;
+  auto given = [&](const char* name) { return app.count(name) > 0; };
+  auto idle = [&](std::initializer_list<const char*> names, bool acts, const std::string& why) {
+    for (const char* n : names)
+      if (given(n) && !acts) out.push_back(std::string(n) + " has no effect " + why);
+  };
+  idle({"--chain-gap"}, o.technique == "chain" || o.technique == "auto", "with --technique " + o.technique);
+  idle({"--multi-min-span", "--multi-pieces"}, o.technique == "multi" || o.multi_segment, "without --technique multi or --multi-segment");
+  idle({"--tab-width", "--tab-lead-in"}, o.rules.tabs > 0, "without --tabs");
+  idle({"--heat-weight", "--heat-memory"}, o.rules.heat_distance_mm > 0, "without --heat-distance");
+  idle({"--tip-up-weight", "--tip-up-margin"}, o.rules.avoid_tip_up, "without --avoid-tip-up");
+  idle({"--sheet-weight", "--sheet-band"}, !o.sheet_clamp.empty(), "without --sheet-clamp");
+  idle({"--allow-kerf-overlap"}, o.kerf_mode == "cam", "without --kerf-mode cam");
+  idle({"--kerf"}, o.kerf_mode != "none", "with --kerf-mode none");
+  return out;
+}
+
 // Shop rules (docs/SHOP-RULES.md): every rule off unless asked for.
 void add_shop_rule_options(CLI::App* app, pipeline::ShopRules& r, std::string& clamp, std::string& tab_lead_in) {
   const char* g = "Shop rules";
@@ -437,7 +457,10 @@ void add_optimize(CLI::App& root, Commands& out) {
   app->add_flag("-q,--quiet", o->quiet, "No progress and no summary");
   add_shop_rule_options(app, o->rules, o->sheet_clamp, o->tab_lead_in);
   add_input_options(app, o->input);
-  out.push_back({app, [o] { return run(*o); }});
+  out.push_back({app, [o, app] {
+                   for (const auto& w : idle_options(*app, *o)) std::cerr << "cutroute: warning: " << w << '\n';
+                   return run(*o);
+                 }});
 }
 
 }  // namespace cutroute::cli

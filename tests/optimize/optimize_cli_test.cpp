@@ -696,6 +696,23 @@ TEST(OptimizeCli, PiercesOnThePartsEdgeAreSaid) {
   fs::remove_all(dir);
 }
 
+// An option the rest of the command line leaves without effect is said (the run goes on).
+TEST(OptimizeCli, OptionsWithoutEffectAreSaid) {
+  const auto dir = temp_dir("idle");
+  const auto dxf = (dir / "d.dxf").string();
+  ASSERT_EQ(run_command(cli_path() + " demo " + dxf).exit_code, 0);
+  const std::string base = cli_path() + " optimize " + dxf + " -o " + (dir / "p.ngc").string() + " --time-limit 0.2 --quiet ";
+  auto r = run_command(base + "--technique standard --chain-gap 5 --tab-width 2 --kerf-mode none --kerf 0.3 --sheet-band 4");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  for (const char* w : {"warning: --chain-gap has no effect with --technique standard", "warning: --tab-width has no effect without --tabs",
+                        "warning: --kerf has no effect with --kerf-mode none", "warning: --sheet-band has no effect without --sheet-clamp"})
+    EXPECT_NE(r.err.find(w), std::string::npos) << w << ": " << r.err;
+  r = run_command(base + "--tabs 2 --tab-width 2 --chain-gap 5 --kerf 0.3");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("has no effect"), std::string::npos) << r.err;
+  fs::remove_all(dir);
+}
+
 // Every drawing of the shared corpus: the program cuts every closed contour exactly once, holes
 // and inner parts first, leads clear of other contours.
 class CorpusOptimize : public ::testing::TestWithParam<std::string> {};

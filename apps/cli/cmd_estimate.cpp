@@ -1,4 +1,5 @@
 // cutroute estimate: cutting time (eq. 1 and eq. 10) and cost (eq. 3) of a G-code program.
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -159,6 +160,21 @@ int run_estimate(const EstimateOptions& o) {
   auto stats = nc::read_gcode_file(o.program, ro);
   if (!stats) return fail(stats.error());
   for (const auto& w : stats->warnings) std::cerr << "cutroute: " << format(w) << '\n';
+  // Unknown M codes that a shipped post dialect writes (plasma-thc's torch-height outputs): the
+  // program was likely written with it.
+  if (!stats->unknown_m_codes.empty() && o.dialect.empty())
+    for (const auto& name : nc::post_dialect_names()) {
+      auto post = nc::find_post_dialect(name);
+      if (!post) continue;
+      auto reads = nc::reader_dialect(*post);
+      if (!reads) continue;
+      const bool all = std::all_of(stats->unknown_m_codes.begin(), stats->unknown_m_codes.end(),
+                                   [&](int m) { return reads->is_inert(m) || reads->switches_on(m) || reads->switches_off(m); });
+      if (!all) continue;
+      std::cerr << "cutroute: " << o.program << ": warning: its unknown M codes are what the post dialect '" << name
+                << "' writes: --dialect " << name << " reads the program as written by it\n";
+      break;
+    }
   if (stats->suppressed_warnings > 0)
     std::cerr << "cutroute: " << o.program << ": " << stats->suppressed_warnings
               << " more warning(s) not shown\n";

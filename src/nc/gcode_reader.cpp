@@ -1,5 +1,6 @@
 #include <cutroute/nc/gcode_reader.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <cmath>
@@ -321,7 +322,11 @@ class Reader {
                      "estimate; expand them into the main program");
       } else if (!(m == 0 || m == 1 || m == 3 || m == 4 || m == 5 || m == 6 || m == 7 || m == 8 || m == 9) &&
                  !opt_.dialect.is_inert(m)) {
-        warn(line_no_, "unknown word M" + std::to_string(m) + " ignored");
+        // Named once per code: a post-processor's output codes repeat at every contour.
+        if (std::find(st_.unknown_m_codes.begin(), st_.unknown_m_codes.end(), m) == st_.unknown_m_codes.end()) {
+          st_.unknown_m_codes.push_back(m);
+          warn(line_no_, "unknown word M" + std::to_string(m) + " ignored (and wherever it appears again)");
+        }
       }
       if ((m == 3 || m == 4 || m == 7 || m == 8) && !opt_.dialect.switches_on(m) && foreign_on_ < 0) {
         foreign_on_ = m;

@@ -137,13 +137,16 @@ Result<Setup> setup(const OptimizeOptions& o) {
     lead.in_arc_radius_mm = std::max(lead.in_arc_radius_mm, 2 * r);
     lead.out_length_mm = std::max(lead.out_length_mm, 3 * r);
     s.entries.min_lead_mm = r;  // shortened leads of tight spots too
-    if (lead.in_length_mm != asked.in_length_mm || lead.in_arc_radius_mm != asked.in_arc_radius_mm ||
-        lead.out_length_mm != asked.out_length_mm) {
+    std::string changed;  // only what was lengthened
+    auto note = [&](const char* what, double from, double to) {
+      if (to != from) changed += (changed.empty() ? "" : ", ") + std::string(what) + " " + format_fixed(from, 3) + " -> " + format_fixed(to, 3) + " mm";
+    };
+    note("lead-in", asked.in_length_mm, lead.in_length_mm);
+    note("its arc radius", asked.in_arc_radius_mm, lead.in_arc_radius_mm);
+    note("lead-out", asked.out_length_mm, lead.out_length_mm);
+    if (!changed.empty()) {
       Diagnostic d = make_warning("leads lengthened for controller compensation with a " + format_fixed(s.entries.kerf_mm, 3) +
-                                  " mm kerf: lead-in " + format_fixed(asked.in_length_mm, 3) + " -> " + format_fixed(lead.in_length_mm, 3) +
-                                  " mm, its arc radius " + format_fixed(asked.in_arc_radius_mm, 3) + " -> " +
-                                  format_fixed(lead.in_arc_radius_mm, 3) + " mm, lead-out " + format_fixed(asked.out_length_mm, 3) +
-                                  " -> " + format_fixed(lead.out_length_mm, 3) + " mm (at least the kerf, the kerf, 1.5 kerf)");
+                                  " mm kerf: " + changed + " (at least the kerf, the kerf, 1.5 kerf)");
       d.code = "leads.kerf";
       s.diagnostics.push_back(std::move(d));
     }

@@ -168,6 +168,9 @@ TEST(CliEstimate, ReadsAProgramWithThePostDialectThatWroteIt) {
   const auto plain = cli("estimate " + prog);
   EXPECT_EQ(plain.exit_code, 0) << plain.err;
   EXPECT_NE(plain.err.find("unknown word M64 ignored"), std::string::npos) << plain.err;
+  // Once per code, not at every contour, and with the dialect that explains them.
+  EXPECT_EQ(plain.err.find("unknown word M64", plain.err.find("unknown word M64") + 1), std::string::npos) << plain.err;
+  EXPECT_NE(plain.err.find("are what the post dialect 'plasma-thc' writes: --dialect plasma-thc"), std::string::npos) << plain.err;
   // A post dialect given as a JSON file reads the same.
   const auto by_path = cli_json("estimate " + prog + " --dialect " + std::string(data_dir()) +
                                 "/dialects/plasma-thc.json --json");

@@ -84,6 +84,7 @@ struct ProgramStats {
   std::size_t arc_moves = 0;       // G2/G3 blocks (beam on or off)
   std::size_t beam_on_rapids = 0;  // G0 moves made while the beam was switched on
   bool inch = false;               // G20 was used somewhere
+  std::vector<int> unknown_m_codes;  // M codes neither the dialect nor the reader knows, as first met
   Diagnostics warnings;            // at most ReadOptions::max_warnings
   std::size_t suppressed_warnings = 0;
 };

@@ -426,6 +426,10 @@ Result<ScanResult> Scanner::run() {
       const auto r = std::from_chars(code_text.data(), code_text.data() + code_text.size(), code_l);
       if (code_text.empty() || r.ec != std::errc{} || r.ptr != code_text.data() + code_text.size()) {
         std::string shown(code_text.substr(0, 40));
+        // On the first pair the file is no DXF at all (a G-code program, an SVG, a DWG export
+        // name mix-up): say so rather than blame one group code.
+        if (code_no == 1)
+          return error("not a DXF drawing: a text DXF starts with a group code (0) and SECTION, this file with '" + shown + "'", code_no);
         return error("group code '" + shown + "' is not an integer", code_no);
       }
     }

@@ -203,7 +203,13 @@ class Reader {
           warn(line_no_, std::string("unknown word ") + w.letter + num(w.value) + " ignored");
       }
     });
-    if (scan.error != detail::ScanError::none) return scan_error(scan);
+    if (scan.error != detail::ScanError::none) {
+      // A drawing given where a program was meant: say what it is, not which character failed.
+      if (line_no_ <= 2 && text_.substr(0, 200).find("SECTION") != std::string_view::npos)
+        return error("not a G-code program: it looks like a DXF drawing (group codes, SECTION); cutroute optimize and "
+                     "inspect read drawings");
+      return scan_error(scan);
+    }
     if (!dup.message.empty()) return dup;
     // A program between two '%' lines ends at the second (LinuxCNC needs no M2/M30 then).
     if (scan.tape_mark) {

@@ -68,6 +68,14 @@ TEST(DxfBad, HandlesOfTheOffendingInsertAreReported) {
                                    ":101: error: INSERT cycle: block 'A' -> 'B' -> 'A' (entity 301)");
 }
 
+// Another kind of file where a drawing was meant (a G-code program, say) is named as such.
+TEST(DxfBad, AProgramIsNotADrawing) {
+  const auto r = io::read_dxf_string("(cutroute demo.dxf)\nG21\nG0 X1\nM30\n", "p.dxf", {});
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().line, 1);
+  EXPECT_EQ(r.error().message, "not a DXF drawing: a text DXF starts with a group code (0) and SECTION, this file with '(cutroute demo.dxf)'");
+}
+
 TEST(DxfBad, MissingFile) {
   const auto r = io::read_dxf(test_data("dxf/bad/no_such_file.dxf"), {});
   ASSERT_FALSE(r.ok());

@@ -107,6 +107,14 @@ TEST(BrokenProgramInline, DwellsAndFeedsThatOverflowTheTotals) {
   ASSERT_TRUE(big.ok()) << format(big.error());
 }
 
+// A drawing where a program was meant is named as such.
+TEST(BrokenProgramInline, ADrawingIsNotAProgram) {
+  auto r = read_gcode("  0\nSECTION\n  2\nHEADER\n  0\nENDSEC\n  0\nEOF\n", "d.nc", ReadOptions{});
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(*r.error().line, 1);
+  EXPECT_NE(r.error().message.find("not a G-code program: it looks like a DXF drawing"), std::string::npos) << r.error().message;
+}
+
 TEST(BrokenProgramInline, MissingFile) {
   auto r = read_gcode_file(test::test_data("nc/does_not_exist.nc"), ReadOptions{});
   ASSERT_FALSE(r.ok());

@@ -106,7 +106,11 @@ Result<Setup> setup(const OptimizeOptions& o) {
   if (material.empty() || thickness <= 0)
     return make_error("no material/thickness given and the machine profile has no default job (--material, --thickness)");
   auto cond = cost::make_conditions(s.profile, *table, material, thickness, o.interpolate);
-  if (!cond) return cond.error();
+  if (!cond) {
+    Diagnostic e = cond.error();
+    if (o.material.empty()) e.message += " (" + material + " is the machine profile's default material; --material chooses another)";
+    return e;
+  }
   s.conditions = std::move(cond).value();
   auto dialect = o.dialect.empty() ? profile_post_dialect(s.profile) : nc::find_post_dialect(o.dialect);
   if (!dialect) return dialect.error();

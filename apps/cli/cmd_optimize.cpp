@@ -386,7 +386,7 @@ void add_shop_rule_options(CLI::App* app, pipeline::ShopRules& r, std::string& c
       ->check(finite_range(0.0, 1e6))->capture_default_str()->group(g);
   app->add_option("--sheet-band", r.sheet_band_mm, "Sheet rigidity: allowed step back behind the front [mm]")
       ->check(finite_range(0.0, 1e6))->capture_default_str()->group(g);
-  app->add_option("--tabs", r.tabs, "Micro-joints: uncut tabs per outer contour (0: off; standard, chain and common techniques)")
+  app->add_option("--tabs", r.tabs, "Micro-joints: uncut tabs per outer contour (0: off)")
       ->check(CLI::Range(0, 64))->group(g);
   app->add_option("--tab-width", r.tab_width_mm, "Micro-joints: tab width [mm]")
       ->check(finite_range(0.001, 1e3))->capture_default_str()->group(g);
@@ -439,7 +439,7 @@ void add_optimize(CLI::App& root, Commands& out) {
                   "Basic segments: standard (one per contour), chain (neighbouring parts joined by bridges), "
                   "common (shared edges cut once), multi (long contours cut in pieces, ECP), auto (each available "
                   "one solved, the fastest kept, with shop rules the fastest plus the rules' price; multi only with "
-                  "--multi-segment; only standard with --part-rigidity, not multi with --tabs)")
+                  "--multi-segment; only standard with --part-rigidity)")
       ->check(CLI::IsMember({"standard", "chain", "common", "multi", "auto"}))
       ->capture_default_str();
   app->add_option("--chain-gap", o->chain_gap, "Chain cutting: largest gap between parts bridged [mm]")

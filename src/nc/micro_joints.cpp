@@ -169,8 +169,9 @@ MicroJointStats add_micro_joints(Toolpath& path, const model::Nest& nest, const 
       for (int k = 0; k < n; ++k) place(pieces[0], (k + 0.5) * spacing, spacing, -kAnywhere, kAnywhere);
     } else {
       // Common lines: the part is held only by its own edges, the stretches of the group's outline
-      // between junctions. The gaps are spread over them, at least max(w, 1 mm) from a junction
-      // (where a neighbour's cut meets the edge), at (k + 1/2) U / N along the usable length U.
+      // between junctions; multi-segment cutting: by its pieces, which meet end to end at the split
+      // points. The gaps are spread over them, at least max(w, 1 mm) from a junction (where a
+      // neighbour's cut or the next piece meets the edge), at (k + 1/2) U / N along the usable length U.
       const double margin = step + w / 2;
       const auto usable_of = [&](PieceRef r) { return std::max(0.0, gaps[r.segment][r.piece].length - 2 * margin); };
       double usable = 0;

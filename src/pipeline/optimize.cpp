@@ -402,13 +402,12 @@ Result<model::CutJob> build_job(const model::Nest& nest, const model::EntryPlann
 // Why the shop rules cannot be written into a technique's program (nullopt: they can). Part
 // rigidity picks the corner each outer contour is entered at: only the standard technique enters
 // every contour by its own lead-in (a chain enters its later contours where a bridge lands). Tabs
-// go on the edges that hold a part to the skeleton: its whole loop (standard, chain) or, with
-// common lines, its stretches of the group's outline. Multi-segment cutting already splits long
-// contours between pierces, where its gaps would meet the tabs'. The order rules (heat, tip-up,
-// sheet rigidity) price any technique's segments.
+// go on the edges that hold a part to the skeleton, with every technique: its whole loop
+// (standard, chain), its stretches of a group's outline (common lines) or its pieces (multi-segment
+// cutting), away from where pieces meet. The order rules (heat, tip-up, sheet rigidity) price any
+// technique's segments.
 std::optional<std::string> rules_exclude(const ShopRules& r, Technique t) {
   if (r.part_rigidity && t != Technique::standard) return "--part-rigidity works with --technique standard only";
-  if (r.tabs > 0 && t == Technique::multi) return "--tabs works with --technique standard, chain or common only";
   return std::nullopt;
 }
 

@@ -268,17 +268,75 @@ TEST(MultiOptimize, SameSeedSameBytes) {
   fs::remove_all(dir);
 }
 
-// Refused with a clear message: shop rules (one pierce per contour) with multi, a nest without a
+// Micro-joints on split contours: each part keeps its N gaps, spread over its pieces at least
+// max(w, 1 mm) + w/2 from where the pieces meet (a gap at a junction would be cut by the other
+// piece's start), and the frame is held: cut in 2 pieces + 2 gaps = 4 runs, every other outer
+// contour in 3. The program re-parsed: each contour covered but for its gaps, holes first, leads
+// in scrap; LinuxCNC accepts it with the kerf as its tool.
+TEST(MultiOptimize, TabsAreSpreadOverThePiecesAwayFromTheirJunctions) {
+  const auto dir = temp_dir("multi-tabs");
+  const auto dxf = write_frame(dir);
+  const double w = 1.5;
+  auto loaded = io::load_nest(dxf, io::NestLoadOptions{});
+  ASSERT_TRUE(loaded.ok());
+  const std::size_t frame = frame_index(dxf);
+  const geometry::Contour& f = loaded->nest.contours[model::ContourId(static_cast<std::int32_t>(frame))].source.contour;
+  // With one tab the spread puts it where the first piece's usable length ends: at the second
+  // piece's margin, the closest a gap may come to a junction.
+  for (const int tabs : {2, 1}) {
+    const OptRun run = optimize(dxf, dir, "--technique multi --tab-width 1.5 --tabs " + std::to_string(tabs));
+    ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
+    EXPECT_EQ(run.report["rules"]["tabs"]["tabs"], 5 * tabs);  // 5 outer contours (the frame, 4 parts)
+    ProgramCheckOptions opt;
+    opt.clearance_mm = 1.0;
+    opt.tabs = tabs;
+    opt.tab_width_mm = w;
+    opt.max_runs_per_contour = 2;
+    const auto check = check_program(loaded->nest, run.program, opt);
+    for (const auto& e : check.failures) ADD_FAILURE() << tabs << ": " << e;
+    ASSERT_GT(check.runs_per_contour.size(), frame);
+    EXPECT_EQ(check.runs_per_contour[frame], 2 + tabs);
+    EXPECT_EQ(check.split_contours, 1);
+    // The frame's pieces start at its split points, two opposite corners. Every place where the
+    // beam goes off and on again on the frame's edge is a gap end, at least max(w, 1 mm) from both
+    // (straight distance: the nearest lie on the same edge).
+    const auto probe = probe_gcode(run.program);
+    std::vector<geometry::Vec2> ends;
+    bool on = false;
+    geometry::Vec2 last{};
+    for (const auto& m : probe.moves) {
+      const geometry::Vec2 a{m.x0, m.y0}, b{m.x1, m.y1};
+      if (m.beam_on && !m.rapid) {
+        if (!on && geometry::distance(f, a) < 1e-3) ends.push_back(a);
+        on = true;
+        last = b;
+      } else if (m.rapid) {
+        if (on && geometry::distance(f, last) < 1e-3) ends.push_back(last);
+        on = false;
+      }
+    }
+    const std::vector<geometry::Vec2> splits = {{50, 100}, {1550, 180}};
+    int gap_ends = 0;
+    for (const auto& e : ends) {
+      const double d = std::min(geometry::distance(e, splits[0]), geometry::distance(e, splits[1]));
+      if (d < 1e-3) continue;  // a piece's own start or end
+      ++gap_ends;
+      EXPECT_GE(d, std::max(w, 1.0) - 1e-3) << tabs << ": " << e.x << ", " << e.y;
+    }
+    EXPECT_EQ(gap_ends, 2 * tabs) << "each gap ended and resumed on the frame";
+    expect_rs274_accepts(dir / "out.ngc");
+  }
+  fs::remove_all(dir);
+}
+
+// Refused with a clear message: part rigidity (one lead-in per contour) with multi, a nest without a
 // contour long enough, option values out of range.
 TEST(MultiOptimize, BadCombinationsAreRefused) {
   const auto dir = temp_dir("multi-bad");
   const auto dxf = write_frame(dir);
   const auto prog = (dir / "p.ngc").string();
   const std::string base = cli_path() + " optimize " + dxf + " -o " + prog + " --quiet --time-limit 0.2 ";
-  auto r = run_command(base + "--technique multi --tabs 2");
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("--tabs works with --technique standard, chain or common only, not multi"), std::string::npos) << r.err;
-  r = run_command(base + "--multi-segment --part-rigidity");
+  auto r = run_command(base + "--multi-segment --part-rigidity");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("not with --multi-segment"), std::string::npos) << r.err;
   r = run_command(base + "--technique chain --multi-segment");

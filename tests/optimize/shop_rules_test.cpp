@@ -815,11 +815,10 @@ TEST(ShopRules, BadRuleOptionsAreUsageErrors) {
     EXPECT_EQ(r.exit_code, 1) << bad;
     EXPECT_FALSE(fs::exists(dir / "x.ngc"));
   }
-  // Part rigidity chooses each outer contour's entry, tabs split the pieces each part is held by:
-  // a technique that lacks those, asked for, is refused with the reason.
+  // Part rigidity chooses each outer contour's entry: a technique that enters contours otherwise,
+  // asked for, is refused with the reason.
   for (const auto& [bad, why] : std::vector<std::pair<std::string, std::string>>{
            {"--part-rigidity --technique chain", "--part-rigidity works with --technique standard only, not chain"},
-           {"--tabs 1 --multi-segment", "--tabs works with --technique standard, chain or common only, not with --multi-segment"},
            {"--part-rigidity --heat-distance 5 --technique multi", "--part-rigidity works with --technique standard only, not multi"}}) {
     const auto r = run_command(cli_path() + " optimize " + dxf + " -o " + (dir / "x.ngc").string() + " --quiet " + bad);
     EXPECT_EQ(r.exit_code, 2) << bad;

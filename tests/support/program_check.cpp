@@ -278,13 +278,14 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
 
   // Every boundary point of contour k within on_contour_mm of a move of its runs that lies on it
   // (several runs: pieces that must meet without a gap).
-  auto check_pieces_cover = [&](std::size_t k, const std::string& name) {
+  // With tabs, the samples in their gaps (at most w / 0.5 + 1 each) are left uncut on purpose.
+  auto check_pieces_cover = [&](std::size_t k, const std::string& name, int tabs) {
     const MoveIndex index_k(moves_on(k), opt.on_contour_mm);
     int missed = 0;
     Vec2 first_missed;
     for (const Vec2 q : boundary_samples(cut[k]->source.contour, 0.5))
       if (index_k.first_within(q, opt.on_contour_mm) == index_k.size() && missed++ == 0) first_missed = q;
-    if (missed > 0)
+    if (missed > tabs * static_cast<int>(std::floor(opt.tab_width_mm / 0.5) + 1))
       out.failures.push_back(name + ": " + std::to_string(missed) + " boundary points cut by none of its " +
                              std::to_string(runs_of[k].size()) + " runs, e.g. (" + format_fixed(first_missed.x, 4) + ", " +
                              format_fixed(first_missed.y, 4) + ")");
@@ -307,14 +308,16 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
     const std::size_t want_runs = tabbed ? static_cast<std::size_t>(opt.tabs) + 1 : 1;
     const double gaps = tabbed ? opt.tabs * opt.tab_width_mm : 0.0;
     const std::size_t runs = runs_of[k].size();
-    const bool pieces = !tabbed && runs > 1 && runs <= static_cast<std::size_t>(std::max(1, opt.max_runs_per_contour));
+    // Multi-segment pieces: up to max_runs_per_contour runs, each tab adding one more.
+    const std::size_t max_pieces = static_cast<std::size_t>(std::max(1, opt.max_runs_per_contour));
+    const bool pieces = runs > want_runs && runs < want_runs + max_pieces;
     if (runs != want_runs && !pieces)
       out.failures.push_back(name + " is cut in " + std::to_string(runs) + " runs (want " + std::to_string(want_runs) + ")");
     run_of[k] = *runs_of[k].begin();
     last_run_of[k] = *runs_of[k].rbegin();
     out.runs_per_contour[k] = static_cast<int>(runs);
     out.split_contours += pieces;
-    const double overcuts = pieces ? static_cast<double>(runs) * opt.max_overcut_mm : opt.max_overcut_mm;
+    const double overcuts = pieces ? static_cast<double>(runs - want_runs + 1) * opt.max_overcut_mm : opt.max_overcut_mm;
     if (off > 0) {
       check_offset_cover(k, name, covered[k], len);
     } else {
@@ -322,7 +325,7 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
       // differ from the drawing's by a few µm; a real gap would be a tenth of a kerf or more.
       if (covered[k] < len - gaps - 0.01 - len * 1e-5) out.failures.push_back(name + " is cut only over " + format_fixed(covered[k], 3) + " mm");
       if (covered[k] > len - gaps + overcuts + 1e-3) out.failures.push_back(name + " is cut over " + format_fixed(covered[k], 3) + " mm: twice?");
-      if (pieces) check_pieces_cover(k, name);
+      if (pieces) check_pieces_cover(k, name, tabbed ? opt.tabs : 0);
     }
     ++out.contours_cut;
   }

@@ -52,10 +52,11 @@ struct MicroJointStats {
 // likewise up to L / 4N - w, to the nearest place that holds and whose resumed cut gets one), so none
 // sits at the entry where the lead-in (or a chain's bridge) joins or at the end where the part
 // drops last. Each piece is a whole loop: a segment of the standard technique cuts one, a chain
-// several joined by bridges (each loop gets its gaps). With common lines a part is held only by
-// its own edges (its pieces of the group's outline, `CutPiece::shared_with` < 0): its N gaps are
-// spread over them at (k + 1/2) U / N along their usable length U, at least max(w, 1 mm) from
-// each piece's ends (junctions with a neighbour's cut, the loop's entry), never on a common line;
+// several joined by bridges (each loop gets its gaps). A part cut in several pieces (its stretches
+// of a common-line group's outline, `CutPiece::shared_with` < 0, or the pieces of multi-segment
+// cutting) is held by those: its N gaps are spread over them at (k + 1/2) U / N along their usable
+// length U, at least max(w, 1 mm) from each piece's ends (junctions with a neighbour's cut or with
+// its other pieces, the loop's entry), never on a common line;
 // a part whose usable length is under 2·N·w is left whole and counted. The segment is split there:
 // the beam goes off before each gap, the head moves over the gap, and the next piece is a new
 // segment with the same feed and kerf side: pierced on the contour (no lead-in) and marked

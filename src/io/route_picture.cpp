@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <vector>
@@ -27,9 +28,11 @@ bool far_off(const geometry::Box& nest, geometry::Vec2 p) {
   return !nest.empty() && distance_to(nest, p) > std::max(nest.width(), nest.height());
 }
 
-geometry::Box nest_box(const model::Nest& nest, const nc::Toolpath& path) {
+geometry::Box nest_box(const model::Nest& nest, const nc::Toolpath& path, const RoutePictureOptions& options) {
   geometry::Box b;
   for (const auto& c : nest.contours) b.add(c.box);
+  for (const auto& [c, why] : options.not_cut)
+    for (const auto& v : c.vertices) b.add(v.p);
   for (const auto& s : path.segments) b.add(s.pierce);
   return b;
 }
@@ -53,6 +56,40 @@ geometry::Vec2 entry_point(const geometry::Box& b, geometry::Vec2 from, geometry
     t0 = std::max(t0, std::min((lo - p) / v, (hi - p) / v));
   }
   return from + d * std::clamp(t0, 0.0, 1.0);
+}
+
+// The median over the pierces of the distance to the nearest other pierce [mm]; +inf with fewer
+// than two. A grid of cells about the typical spacing finds each one's nearest among the cells
+// around it, widening the search until one is found.
+double median_pierce_spacing(const nc::Toolpath& path) {
+  const std::size_t n = path.segments.size();
+  if (n < 2) return std::numeric_limits<double>::infinity();
+  geometry::Box b;
+  for (const auto& s : path.segments) b.add(s.pierce);
+  const double cell = std::max(std::max(b.width(), b.height()) / std::sqrt(static_cast<double>(n)), 1e-3);
+  auto key = [&](geometry::Vec2 p) {
+    return std::pair{static_cast<long long>(std::floor((p.x - b.xmin) / cell)), static_cast<long long>(std::floor((p.y - b.ymin) / cell))};
+  };
+  std::map<std::pair<long long, long long>, std::vector<std::size_t>> grid;
+  for (std::size_t i = 0; i < n; ++i) grid[key(path.segments[i].pierce)].push_back(i);
+  std::vector<double> nearest(n, std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < n; ++i) {
+    const geometry::Vec2 p = path.segments[i].pierce;
+    const auto [cx, cy] = key(p);
+    // Ring r of cells covers every point nearer than r cells: stop one ring after a find.
+    for (long long r = 1; r < 64; ++r) {
+      for (long long x = cx - r; x <= cx + r; ++x)
+        for (long long y = cy - r; y <= cy + r; ++y) {
+          const auto it = grid.find({x, y});
+          if (it == grid.end()) continue;
+          for (std::size_t j : it->second)
+            if (j != i) nearest[i] = std::min(nearest[i], geometry::distance(p, path.segments[j].pierce));
+        }
+      if (nearest[i] <= static_cast<double>(r - 1) * cell) break;
+    }
+  }
+  std::nth_element(nearest.begin(), nearest.begin() + static_cast<std::ptrdiff_t>(n / 2), nearest.end());
+  return nearest[n / 2];
 }
 
 // A rapid as drawn: straight, or through the waypoints of a detour (shop rules).
@@ -81,15 +118,23 @@ std::optional<double> gap_percent(const nlohmann::json& r) {
 }  // namespace
 
 std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, const RoutePictureOptions& options) {
-  const geometry::Box drawn = nest_box(nest, path);
+  const geometry::Box drawn = nest_box(nest, path, options);
   const geometry::Box world = world_box(drawn, path);
   const double span = std::max(world.width(), world.height());
   const double margin = span * 0.02 + 1.0;
   SvgDocument svg(world, margin, options.width_px);
-  const double label_mm = std::max(span / 90.0, 0.5);
-  const double mark_mm = std::max(span / 400.0, 0.2);
+  // Marks and numbers are sized for the nest seen whole, but no larger than the spacing of its
+  // pierces allows (a number 0.8, a mark 0.25 of the median distance to the nearest other
+  // pierce), so that on dense nests they stay beside their own pierce when zoomed in (d2g_DRAAK:
+  // numbers of 4.6 mm instead of 53 mm).
+  const double spacing = median_pierce_spacing(path);
+  const double label_mm = std::max(std::min(span / 90.0, 0.8 * spacing), 0.5);
+  const double mark_mm = std::max(std::min(span / 400.0, 0.25 * spacing), 0.2);
 
   if (!options.title.empty()) svg.add_raw("<title>" + xml_escape(options.title) + "</title>\n");
+  svg.add_raw("<desc>cut: red (pieces of one contour cut in several segments: orange and ochre); lead-in and lead-out: green; "
+              "bridge: violet; rapid: dashed blue; tab (material left, the head moves over it with the beam off): teal; "
+              "pierce: orange dot with its number; compensation may be refused: red ring; not cut: dashed orange</desc>\n");
   svg.add_raw("<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n");
   if (nest.sheet) {
     svg.add_contour(nest.contours[*nest.sheet].source.contour,
@@ -102,6 +147,16 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
     svg.add_contours(rings, kNs);
   }
   svg.end_group();
+  if (!options.not_cut.empty()) {
+    svg.begin_group("class=\"not-cut\" fill=\"none\" stroke=\"#e67e22\" stroke-width=\"1.5\" stroke-dasharray=\"3 3\"");
+    for (const auto& [c, why] : options.not_cut) {
+      svg.begin_group("");
+      svg.add_raw("<title>" + xml_escape(why) + "</title>\n");
+      svg.add_contour(c, kNs);
+      svg.end_group();
+    }
+    svg.end_group();
+  }
 
   // Contours whose cut is shared out over several segments (multi-segment cutting, common lines):
   // their pieces are drawn apart (class "piece"), so that where one stops and the next starts shows.
@@ -118,30 +173,53 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
   geometry::Vec2 at = path.start;
   // A number spans its digits to the right of its x: bold sans-serif digits advance up to 0.7 of
   // the size (DejaVu Sans Bold, the browsers' sans-serif on Debian), plus a tenth of the size kept
-  // free. Two numbers overlap across when their spans meet (with a fixed 1.6 sizes, 281 pairs of
-  // d2g_DRAAK's 3- and 4-digit numbers overprinted).
+  // free; its digits rise about 0.75 of the size above the baseline.
   auto width_of = [label_mm](std::size_t number) { return label_mm * (0.7 * static_cast<double>(std::to_string(number).size()) + 0.1); };
-  struct Placed {
-    geometry::Vec2 at;
-    double width;
+  // Each number goes to the first free place of a ring of places round its pierce mark, nearest
+  // first, and stays within three label heights of it; where all are taken (a dense nest seen
+  // whole) it is left out, the segment's <title> and the page's slider still name it. Before, a
+  // number only moved up its column until free: on d2g_DRAAK 707 of 904 numbers stood nearer
+  // another pierce than their own (one 8.7 m above it) and 282 were pushed off the picture.
+  // Placed labels are looked up in a grid of label-sized cells.
+  const double cell = label_mm * 1.2;
+  std::map<std::pair<long long, long long>, std::vector<geometry::Box>> taken;
+  auto key = [cell](double x, double y) {
+    auto c = [cell](double v) {
+      const double q = v / cell;
+      return std::isfinite(q) ? static_cast<long long>(std::floor(std::clamp(q, -1e15, 1e15))) : 0LL;
+    };
+    return std::pair{c(x), c(y)};
   };
-  std::vector<Placed> placed;  // labels so far
-  // A label keeps its x and only moves up, so only labels in its column can push it: they are
-  // looked up by column (cells of the widest number's span in x), in the order they were placed,
-  // which gives the same positions as scanning every label. That scan was O(n^2): 5 000 parts
-  // with two holes each (13 333 pierces) spent 1 s in each picture.
-  const double push_x = width_of(path.segments.size()), push_y = label_mm * 0.9;
-  std::map<long long, std::vector<std::size_t>> columns;  // column -> indices into `placed`
-  auto column_of = [push_x](double x) {
-    const double c = x / push_x;
-    return std::isfinite(c) ? static_cast<long long>(std::floor(std::clamp(c, -1e15, 1e15))) : 0LL;
+  auto free_at = [&](const geometry::Box& b) {
+    const auto lo = key(b.xmin, b.ymin), hi = key(b.xmax, b.ymax);
+    for (long long i = lo.first; i <= hi.first; ++i)
+      for (long long j = lo.second; j <= hi.second; ++j) {
+        const auto it = taken.find({i, j});
+        if (it == taken.end()) continue;
+        for (const auto& o : it->second)
+          if (b.xmin < o.xmax && o.xmin < b.xmax && b.ymin < o.ymax && o.ymin < b.ymax) return false;
+      }
+    return true;
   };
-  std::vector<std::size_t> near;
-  // A number pushed above the picture's top edge could not be seen: it is left out (the page's
-  // slider names every step from its segment's title) and pushes no other. On dense nests the
-  // stacks grew metres tall: 24 000 parts with two holes each, 56 000 pierces, spent 6 s in each
-  // picture and wrote 62 MB.
-  const double top = world.ymax + margin;
+  auto take = [&](const geometry::Box& b) {
+    const auto lo = key(b.xmin, b.ymin), hi = key(b.xmax, b.ymax);
+    for (long long i = lo.first; i <= hi.first; ++i)
+      for (long long j = lo.second; j <= hi.second; ++j) taken[{i, j}].push_back(b);
+  };
+  const double rise = label_mm * 0.75, gap = mark_mm * 1.5;
+  const geometry::Box frame{world.xmin - margin, world.ymin - margin, world.xmax + margin, world.ymax + margin};
+  // Places by distance: beside the mark (upper right first, as before), then one and two label
+  // heights further out.
+  // Every pierce mark is kept clear, so that no number sits on another segment's mark.
+  for (const auto& seg : path.segments)
+    take({seg.pierce.x - mark_mm, seg.pierce.y - mark_mm, seg.pierce.x + mark_mm, seg.pierce.y + mark_mm});
+  std::vector<geometry::Vec2> offsets;  // of the label's lower-left corner, width 0
+  for (int ring = 0; ring < 3; ++ring) {
+    const double d = gap + ring * label_mm;
+    for (const geometry::Vec2 o : {geometry::Vec2{d, d}, {d, -d - rise}, {-d, d}, {-d, -d - rise}, {d, -rise / 2}, {-d, -rise / 2},
+                                   {0, d}, {0, -d - rise}})
+      offsets.push_back(o);
+  }
   std::vector<std::size_t> risky = options.compensation_at_risk;
   std::sort(risky.begin(), risky.end());
   for (std::size_t k = 0; k < path.segments.size(); ++k) {
@@ -152,6 +230,17 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
                 (at_risk ? " (details finer than the kerf: the controller's compensation may refuse this cut)" : "") +
                 "</title>\n");
     add_rapid(svg, at, s.rapid_via, s.pierce);
+    // Over a tab the head moves with the beam off along the contour: that stretch is the tab,
+    // drawn thick (under a pierce mark of a millimetre it would not show); its pierce mark small.
+    const bool tab = s.after_tab && !s.pieces.empty() && s.pieces.front().role != nc::PieceRole::lead_in;
+    if (tab) {
+      geometry::Vec2 from = at;
+      for (const geometry::Vec2 p : s.rapid_via) {
+        svg.add_line(from, p, std::string("class=\"tab\" stroke=\"#16a085\" stroke-width=\"5\" stroke-linecap=\"round\" ") + kNs);
+        from = p;
+      }
+      svg.add_line(from, s.pierce, std::string("class=\"tab\" stroke=\"#16a085\" stroke-width=\"5\" stroke-linecap=\"round\" ") + kNs);
+    }
     for (const auto& piece : s.pieces) {
       const bool lead = piece.role == nc::PieceRole::lead_in || piece.role == nc::PieceRole::lead_out;
       const bool bridge = piece.role == nc::PieceRole::bridge;
@@ -166,36 +255,17 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
       const char* cls = bridge ? "class=\"bridge\" " : shared ? "class=\"piece\" " : "";
       svg.add_contour(piece.path, std::string("fill=\"none\" stroke=\"") + colour + "\" stroke-width=\"" + width + "\" " + cls + kNs);
     }
-    svg.add_circle(s.pierce, mark_mm, "fill=\"#f39c12\" stroke=\"#7a4a00\" stroke-width=\"0.6\" " + std::string(kNs));
+    svg.add_circle(s.pierce, s.after_tab ? mark_mm * 0.4 : mark_mm, "fill=\"#f39c12\" stroke=\"#7a4a00\" stroke-width=\"0.6\" " + std::string(kNs));
     if (at_risk) svg.add_circle(s.pierce, mark_mm * 3, "class=\"risk\" fill=\"none\" stroke=\"#e00000\" stroke-width=\"2\" " + std::string(kNs));
-    // Numbers of pierces that stand close together are stacked upwards instead of overprinted.
-    geometry::Vec2 label_at = s.pierce + geometry::Vec2{mark_mm * 1.5, mark_mm * 1.5};
+    // The number at the first free place round its mark (see above); "left" places end at the mark.
     const double width = width_of(k + 1);
-    const long long col = column_of(label_at.x);
-    near.clear();
-    // Two columns either side: x / push_x may round across a cell boundary. Labels lower than the
-    // push distance below the start can never be reached (twice that, for rounding).
-    const double y0 = label_at.y;
-    for (auto it = columns.lower_bound(col - 2); it != columns.end() && it->first <= col + 2; ++it)
-      for (std::size_t i : it->second)
-        if (placed[i].at.x < label_at.x + width && label_at.x < placed[i].at.x + placed[i].width && placed[i].at.y > y0 - 2 * push_y)
-          near.push_back(i);
-    std::sort(near.begin(), near.end());
-    for (bool moved = true; moved && label_at.y <= top;) {
-      moved = false;
-      for (std::size_t i : near) {
-        if (std::abs(placed[i].at.y - label_at.y) < push_y) {
-          label_at.y = placed[i].at.y + label_mm;
-          moved = true;
-          if (label_at.y > top) break;
-        }
-      }
-    }
-    if (label_at.y <= top) {
-      columns[col].push_back(placed.size());
-      placed.push_back({label_at, width});
-      svg.add_text(label_at, std::to_string(k + 1), label_mm,
-                   "fill=\"#5b1a12\" font-family=\"sans-serif\" font-weight=\"bold\"");
+    for (const geometry::Vec2 o : offsets) {
+      const double x = o.x < 0 ? s.pierce.x + o.x - width : o.x == 0 ? s.pierce.x - width / 2 : s.pierce.x + o.x;
+      const geometry::Box box{x, s.pierce.y + o.y, x + width, s.pierce.y + o.y + rise};
+      if (box.xmin < frame.xmin || box.xmax > frame.xmax || box.ymin < frame.ymin || box.ymax > frame.ymax || !free_at(box)) continue;
+      take(box);
+      svg.add_text({box.xmin, box.ymin}, std::to_string(k + 1), label_mm, "fill=\"#5b1a12\" font-family=\"sans-serif\" font-weight=\"bold\"");
+      break;
     }
     svg.end_group();
     at = nc::tool_off_point(s);
@@ -208,8 +278,13 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
   const geometry::Vec2 first = path.segments.empty() ? path.end : path.segments.front().pierce;
   const geometry::Vec2 start_mark = start_off ? entry_point(world, path.start, first) : path.start;
   svg.add_circle(start_mark, mark_mm * 2.5, "fill=\"none\" stroke=\"#111111\" stroke-width=\"2\" " + std::string(kNs));
-  svg.add_text(start_mark + geometry::Vec2{mark_mm * 3, -mark_mm * 6},
-               start_off ? "start (" + format_fixed(path.start.x, 1) + ", " + format_fixed(path.start.y, 1) + ")" : "start",
+  const std::string start_text =
+      start_off ? "start (" + format_fixed(path.start.x, 1) + ", " + format_fixed(path.start.y, 1) + ")" : "start";
+  // Written to the left of the mark where it would run past the picture's right edge (a far
+  // start comes in at an edge); sans-serif letters advance about 0.6 of the size.
+  const double text_mm = 0.6 * label_mm * static_cast<double>(start_text.size());
+  const double right = start_mark.x + mark_mm * 3 + text_mm > world.xmax + margin ? -mark_mm * 3 - text_mm : mark_mm * 3;
+  svg.add_text(start_mark + geometry::Vec2{std::max(right, world.xmin - margin - start_mark.x), -mark_mm * 6}, start_text,
                label_mm, "fill=\"#111111\" font-family=\"sans-serif\"");
   return svg.str();
 }
@@ -303,6 +378,16 @@ std::string route_to_html(const model::Nest& nest, const nc::Toolpath& path,
   html += "<div id=\"controls\"><button id=\"play\" type=\"button\">Play</button>"
           "<input id=\"step\" type=\"range\" min=\"0\" max=\"" + std::to_string(n + 1) + "\" value=\"" + std::to_string(n + 1) +
           "\"><span id=\"label\"></span></div>\n";
+  html += "<p id=\"legend\">"
+          "<span style=\"color:#c0392b\">&#9644; cut</span> &nbsp; "
+          "<span style=\"color:#d35400\">&#9644;</span><span style=\"color:#b7950b\">&#9644; pieces of one contour</span> &nbsp; "
+          "<span style=\"color:#1a9c3a\">&#9644; lead-in / lead-out</span> &nbsp; "
+          "<span style=\"color:#8e44ad\">&#9644; bridge</span> &nbsp; "
+          "<span style=\"color:#2f6fdf\">- - rapid</span> &nbsp; "
+          "<span style=\"color:#16a085\">&#9644; tab (material left)</span> &nbsp; "
+          "<span style=\"color:#f39c12\">&#9679; pierce</span> &nbsp; "
+          "<span style=\"color:#e00000\">&#9711; compensation may be refused</span> &nbsp; "
+          "<span style=\"color:#e67e22\">- - not cut (open contour)</span></p>\n";
   html += route_to_svg(nest, path, options).substr(std::string("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n").size());
   html += "<table>\n" + rows + "</table>\n";
   html += "<script>\n"
@@ -310,7 +395,8 @@ std::string route_to_html(const model::Nest& nest, const nc::Toolpath& path,
           "const step=document.getElementById('step'),label=document.getElementById('label'),play=document.getElementById('play');\n"
           "function show(k){segs.forEach(g=>{g.style.display=(+g.dataset.k<=k)?'':'none';});\n"
           " const g=segs.find(g=>+g.dataset.k===k);const t=g&&g.querySelector('title');\n"
-          " label.textContent=k+' / '+(segs.length)+(t?'  '+t.textContent:'');}\n"
+          " const last=segs.length-1;\n"
+          " label.textContent=(k>last?last+' / '+last+'  park':k+' / '+last)+(t?'  '+t.textContent:'');}\n"
           "let timer=null;\n"
           "step.addEventListener('input',()=>show(+step.value));\n"
           "play.addEventListener('click',()=>{if(timer){clearInterval(timer);timer=null;play.textContent='Play';return;}\n"

@@ -18,15 +18,20 @@ struct RoutePictureOptions {
   // Segments (numbered from 1, as drawn) whose cut a controller's compensation may refuse: their
   // pierce gets a red ring and their title says why (report "compensation").
   std::vector<std::size_t> compensation_at_risk;
+  // Drawn paths the program does not cut (open contours), each with what to say of it: dashed
+  // orange, so that a part missing from the program shows (its holes would look like parts).
+  std::vector<std::pair<geometry::Contour, std::string>> not_cut;
 };
 
 // The report's compensation.at_risk_segments, for RoutePictureOptions (empty when absent).
 std::vector<std::size_t> compensation_at_risk(const nlohmann::json& report);
 
 // Parts (filled, holes open), then per cutting segment in order: the rapid to its pierce (dashed),
-// the pierce mark, the lead-in, the cut, the lead-out, and the segment's order number at the
-// pierce (the numbers of close pierces stacked upwards; one pushed above the picture is left out,
-// the segment's <title> still names it); the start point is marked. A start or park point
+// the pierce mark, the lead-in, the cut, the lead-out, and the segment's order number beside the
+// pierce (marks and numbers sized for the nest seen whole but at most a fraction of the pierces'
+// median spacing; each number at the first free place of eight round its mark at three distances,
+// clear of every mark and earlier number; with none free it is left out, the segment's <title>
+// still names it); the start point is marked. A start or park point
 // farther from the nest than the nest is wide is left out of the frame, and the start is marked
 // where its rapid comes in, with its coordinates. Each segment is one <g class="seg" data-k="k">
 // (k from 1).

@@ -90,9 +90,29 @@ bool finite_contour(const Contour& c) {
   return true;
 }
 
-// The vertex cycle read counter-clockwise from its lexicographically smallest vertex, -0 folded.
+// The vertex cycle read counter-clockwise from its lexicographically smallest vertex, -0 folded,
+// without the vertices that only split a straight edge: a rectangle drawn as a polyline with an
+// extra point on one side and again as four LINEs is one outline drawn twice (before, the pair
+// was refused as crossing contours).
 std::vector<Vertex> canonical_cycle(const Contour& c, double signed_area) {
-  const Contour ccw = signed_area < 0 ? geometry::reversed(c) : c;
+  Contour ccw = signed_area < 0 ? geometry::reversed(c) : c;
+  for (bool removed = true; removed && ccw.vertices.size() > 3;) {
+    removed = false;
+    const std::size_t m = ccw.vertices.size();
+    for (std::size_t i = 0; i < m; ++i) {
+      const Vertex& prev = ccw.vertices[(i + m - 1) % m];
+      const Vertex& here = ccw.vertices[i];
+      const Vertex& next = ccw.vertices[(i + 1) % m];
+      if (prev.bulge != 0.0 || here.bulge != 0.0) continue;
+      const Vec2 u = here.p - prev.p, v = next.p - here.p;
+      const double cross = u.x * v.y - u.y * v.x, dot = u.x * v.x + u.y * v.y;
+      if (dot > 0.0 && std::abs(cross) <= 1e-12 * geometry::norm(u) * geometry::norm(v)) {
+        ccw.vertices.erase(ccw.vertices.begin() + static_cast<std::ptrdiff_t>(i));
+        removed = true;
+        break;
+      }
+    }
+  }
   const std::size_t n = ccw.vertices.size();
   std::size_t start = 0;
   for (std::size_t i = 1; i < n; ++i) {

@@ -293,6 +293,26 @@ TEST(Nest, ContourCrossingItselfIsAnError) {
                    .diagnostics.empty());
 }
 
+// The same outline drawn twice, once with an extra point on a straight side (a polyline and an
+// exploded copy of LINEs): one contour, the copy left out with a warning, in either order and
+// direction. A point off the side by 0.01 mm makes another outline (then the pair crosses).
+TEST(Nest, DuplicateOutlineWithAPointOnAStraightSideIsOneContour) {
+  const Contour plain = polygon({{0, 0}, {100, 0}, {100, 50}, {0, 50}});
+  const Contour split = polygon({{0, 50}, {0, 0}, {50, 0}, {100, 0}, {100, 50}});
+  for (const bool reversed_copy : {false, true}) {
+    const Contour copy = reversed_copy ? geometry::reversed(split) : split;
+    const Nest nest = build_nest({src(plain, "0", "P", 5), src(copy, "0", "L", 33)}, NestOptions{});
+    ASSERT_EQ(nest.contours.size(), 1u) << reversed_copy;
+    EXPECT_EQ(nest.dropped_duplicates, 1u);
+    ASSERT_EQ(nest.diagnostics.size(), 1u);
+    EXPECT_EQ(nest.diagnostics[0].code, "nest.duplicate");
+    EXPECT_NE(nest.diagnostics[0].message.find("duplicates contour 0"), std::string::npos) << nest.diagnostics[0].message;
+  }
+  const Nest off = build_nest({src(plain), src(polygon({{0, 50}, {0, 0}, {50, 0.01}, {100, 0}, {100, 50}}))}, NestOptions{});
+  EXPECT_EQ(off.contours.size(), 2u);
+  EXPECT_EQ(off.dropped_duplicates, 0u);
+}
+
 TEST(Nest, ThousandsOfOverlapsAreCountedNotListed) {
   // 300 circles of r = 10 on a line, 1 mm apart: each crosses its neighbours within 20 mm,
   // 19 or so each side: ~5600 crossing pairs.

@@ -1,6 +1,8 @@
 #include <cutroute/io/svg.hpp>
 
 #include <cmath>
+#include <cstdlib>
+#include <string>
 
 #include <cutroute/core/number_format.hpp>
 #include <cutroute/core/text.hpp>
@@ -38,13 +40,23 @@ std::string SvgDocument::path_data(const geometry::Contour& c) const {
       append_point(d, b.p);
       continue;
     }
-    // bulge b = tan(θ/4); chord c; radius r = c (1 + b²) / (4 |b|).
-    const double chord = geometry::distance(a.p, b.p);
+    // bulge b = tan(θ/4); chord c; radius r = c (1 + b²) / (4 |b|). The chord is taken between
+    // the end points as written (to the µm) and r written to 1e-9 mm: near a half circle the arc's
+    // bulge off its chord depends steeply on r against c/2, and r rounded apart from them drew slot
+    // ends 0.1-0.15 mm off (a radius 30.000 over a chord of 59.9996: the short arc, not the half).
+    auto written = [](double coordinate) {
+      std::string t;
+      append_fixed(t, coordinate, kDecimals);
+      return std::strtod(t.c_str(), nullptr);
+    };
+    const geometry::Vec2 wa{written(a.p.x - world_.xmin + margin_mm_), written(world_.ymax - a.p.y + margin_mm_)};
+    const geometry::Vec2 wb{written(b.p.x - world_.xmin + margin_mm_), written(world_.ymax - b.p.y + margin_mm_)};
+    const double chord = geometry::distance(wa, wb);
     const double r = chord * (1 + a.bulge * a.bulge) / (4 * std::abs(a.bulge));
     d += 'A';
-    append_fixed(d, r, kDecimals);
+    append_fixed(d, r, 9);
     d += ' ';
-    append_fixed(d, r, kDecimals);
+    append_fixed(d, r, 9);
     d += " 0 ";
     d += std::abs(a.bulge) > 1 ? '1' : '0';  // large-arc: sweep beyond 180°
     d += ' ';

@@ -41,6 +41,7 @@ struct EstimateOptions {
   std::string dialect;
   bool interpolate = false;
   bool json = false;
+  std::string start;  // "X,Y": where the head stands when the program starts (default the origin)
 };
 
 std::string joined(const std::vector<std::string>& names) {
@@ -128,9 +129,19 @@ std::vector<cost::MotionMove> cutting_moves(const std::vector<nc::Move>& moves, 
 }
 
 int run_estimate(const EstimateOptions& o) {
-  if (o.material.empty() != (o.thickness_mm <= 0.0)) {
-    std::cerr << "cutroute: error: --material and --thickness go together\n";
+  // A thickness alone is looked up for the profile's default material, as optimize does.
+  if (!o.material.empty() && o.thickness_mm <= 0.0) {
+    std::cerr << "cutroute: error: --material needs --thickness\n";
     return kUsageError;
+  }
+  geometry::Vec2 start{0, 0};
+  if (!o.start.empty()) {
+    auto p = parse_point(o.start, "--start");
+    if (!p) {
+      std::cerr << "cutroute: error: " << p.error().message << '\n';
+      return kUsageError;
+    }
+    start = *p;
   }
   auto profile =
       cost::load_machine_profile(o.machine.empty() ? cost::default_machine_profile_path() : o.machine);
@@ -146,7 +157,7 @@ int run_estimate(const EstimateOptions& o) {
                      profile->file));
     }
     material = *profile->default_material;
-    thickness = *profile->default_thickness_mm;
+    if (thickness <= 0.0) thickness = *profile->default_thickness_mm;
   }
   auto conditions = cost::make_conditions(*profile, *table, material, thickness, o.interpolate);
   if (!conditions) return fail(conditions.error());
@@ -154,6 +165,7 @@ int run_estimate(const EstimateOptions& o) {
   if (!dialect) return fail(dialect.error());
   nc::ReadOptions ro;
   ro.dialect = *dialect;
+  ro.start_mm = start;
   std::vector<nc::Move> moves;
   const auto& lim = profile->motion;
   if (lim.accel_m_s2) ro.moves = &moves;
@@ -276,6 +288,9 @@ void add_estimate(CLI::App& root, Commands& out) {
                   "dialect (generic, plasma-thc, a dialect JSON file) to read a program written with it");
   app->add_flag("--interpolate", opt->interpolate, "Blend the two neighbouring thicknesses linearly");
   app->add_flag("--json", opt->json, "Print JSON");
+  app->add_option("--start", opt->start,
+                  "Where the head stands when the program starts, X,Y [mm] (default 0,0; optimize's --start: "
+                  "its program begins with the rapid from there)");
   out.push_back({app, [opt] { return run_estimate(*opt); }});
 }
 

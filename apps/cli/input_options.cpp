@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <exception>
+#include <stdexcept>
 #include <string>
 
 #include <cutroute/core/number_format.hpp>
@@ -60,6 +61,23 @@ Result<io::NestLoadOptions> to_load_options(const InputOptions& o) {
     lo.nest.sheet_size = geometry::Vec2{w, h};
   }
   return lo;
+}
+
+Result<geometry::Vec2> parse_point(const std::string& s, const char* what) {
+  const auto comma = s.find(',');
+  try {
+    if (comma == std::string::npos) throw std::invalid_argument("no comma");
+    std::size_t i1 = 0, i2 = 0;
+    const double x = std::stod(s.substr(0, comma), &i1);
+    const double y = std::stod(s.substr(comma + 1), &i2);
+    if (i1 != comma || i2 != s.size() - comma - 1 || !std::isfinite(x) || !std::isfinite(y)) throw std::invalid_argument("bad");
+    // A start 1e308 mm away made rapids of infinite length ("G0 Xinf" in the program).
+    if (std::abs(x) > units::kMaxCoordinateMm || std::abs(y) > units::kMaxCoordinateMm)
+      return make_error(std::string(what) + " is more than 1e6 mm from the origin (got '" + s + "')");
+    return geometry::Vec2{x, y};
+  } catch (const std::exception&) {
+    return make_error(std::string(what) + " wants X,Y in mm (got '" + s + "')");
+  }
 }
 
 }  // namespace cutroute::cli

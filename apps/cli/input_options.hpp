@@ -29,4 +29,7 @@ void add_input_options(CLI::App* app, InputOptions& o);
 // Turns parsed options into loader options; a malformed --sheet is a usage error (message only).
 Result<io::NestLoadOptions> to_load_options(const InputOptions& o);
 
+// "X,Y" in mm (--start of optimize and estimate); the message names the option `what`.
+Result<geometry::Vec2> parse_point(const std::string& s, const char* what);
+
 }  // namespace cutroute::cli

@@ -114,7 +114,7 @@ bool inert_g(int t) {
 class Reader {
  public:
   Reader(std::string_view text, const std::string& file, const ReadOptions& opt)
-      : text_(text), file_(file), opt_(opt) {}
+      : text_(text), file_(file), opt_(opt), x_(opt.start_mm.x), y_(opt.start_mm.y) {}
 
   Result<ProgramStats> run() {
     std::size_t pos = 0;
@@ -640,7 +640,7 @@ class Reader {
   bool pierce_dwelled_ = false;  // a dwell was counted for the current pierce
   bool new_cut_ = false;      // a beam-on code was executed: the next recorded cut starts from a pierce
   double feed_mm_min_ = 0.0;  // 0 = not programmed yet
-  double x_ = 0.0;            // [mm] current position; programs start at the origin
+  double x_ = 0.0;            // [mm] current position; programs start at ReadOptions::start_mm
   double y_ = 0.0;            // [mm]
 };
 

@@ -233,7 +233,10 @@ WrittenProgram write_gcode(const Toolpath& path, const PostDialect& d, const Gco
   e.start_numbers();
   if (!options.title.empty()) e.comment(options.title);
   e.block(d.units == "in" ? "G20" : "G21");
-  for (const auto& h : d.header) e.block(h);
+  // Header (and footer) lines may name {feed} and {pierce_s} too: the job's cutting feed (the first
+  // segment's) and pierce time; written literally, "F{feed}" was a block no controller reads.
+  const double job_feed = path.segments.empty() ? 0.0 : path.segments.front().feed_mm_min;
+  e.codes(d.header, path.pierce_time_s, job_feed);
   e.set_position(path.start);
 
   // Micro-joints under controller compensation: a segment that resumes its contour past a tab keeps
@@ -279,7 +282,7 @@ WrittenProgram write_gcode(const Toolpath& path, const PostDialect& d, const Gco
   }
   for (const Vec2 via : path.end_via) e.rapid(via);  // shop rules: detour around freed parts
   e.rapid(path.end);
-  for (const auto& f : d.footer) e.block(f);
+  e.codes(d.footer, path.pierce_time_s, job_feed);
   e.block(d.program_end);
   return out;
 }

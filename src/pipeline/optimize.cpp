@@ -879,6 +879,9 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   r["v_on_regime"] = cost::to_string(best_ev.estimate.regime);
   r["t_cut_s"] = best_ev.estimate.t_cut_s;
   r["t_cut_const_speed_s"] = best_ev.estimate.t_cut_const_speed_s;
+  // What the machine takes in all, as `estimate` reports it: eq. 10 plus what lies outside it
+  // (head lift and lowering per pierce, programmed dwells beyond the pierce times, beam-off feed).
+  r["total_s"] = best_ev.estimate.total_s;
   r["cost"] = best_ev.estimate.cost;
   r["cost_unit"] = best_ev.estimate.cost_unit;
   r["breakdown_s"] = {{"cutting", best_ev.estimate.cutting_s}, {"rapid", best_ev.estimate.rapid_s},

@@ -249,6 +249,29 @@ TEST(CliData, ACopiedBinaryReadsTheDataBesideIt) {
   std::filesystem::remove_all(dir);
 }
 
+// optimize --start: the report's first rapid comes from that point, and estimate measures it from
+// the same point when told (the program itself cannot say where the head stands).
+TEST(CliEstimate, StartPointAsOptimizeUsedIt) {
+  const auto dir = std::filesystem::temp_directory_path() / ("cutroute-start-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string dxf = (dir / "d.dxf").string(), prog = (dir / "p.ngc").string(), rep = (dir / "r.json").string();
+  ASSERT_EQ(cli("demo " + dxf).exit_code, 0);
+  ASSERT_EQ(cli("optimize " + dxf + " -o " + prog + " --report " + rep + " --start 2000,1000 --quiet").exit_code, 0);
+  const json r = json::parse(std::ifstream(rep));
+  const auto at = cli_json("estimate " + prog + " --start 2000,1000 --json");
+  EXPECT_NEAR(at["rapid_length_mm"].get<double>(), r["rapid_length_mm"].get<double>(), 1e-6);
+  EXPECT_NEAR(at["t_cut_s"].get<double>(), r["t_cut_s"].get<double>(), 1e-9);
+  EXPECT_NEAR(at["breakdown"]["total_s"].get<double>(), r["total_s"].get<double>(), 1e-9);
+  // From the origin the first rapid is longer.
+  EXPECT_GT(cli_json("estimate " + prog + " --json")["rapid_length_mm"].get<double>(), r["rapid_length_mm"].get<double>() + 100);
+  EXPECT_EQ(cli("estimate " + prog + " --start 1,x").exit_code, 1);
+  // A thickness alone is the profile's default material, as with optimize.
+  const auto t = cli_json("estimate " + prog + " --thickness 1.5 --json");
+  EXPECT_EQ(t["material"], "AMg3M");
+  EXPECT_EQ(t["thickness_mm"], 1.5);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(CliEstimate, MaterialAndThicknessGoTogether) {
   EXPECT_EQ(cli("estimate " + test::test_data("nc/square_abs_mm.nc") + " --material AMg3M").exit_code, 1);
   const auto r =

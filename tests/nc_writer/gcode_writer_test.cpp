@@ -188,6 +188,23 @@ TEST(GcodeWriter, InchDialectConvertsCoordinatesAndFeed) {
   EXPECT_NEAR(probe.cut_length, 305.0, 0.01);
 }
 
+// The placeholders are filled in header and footer lines too (the job's feed, its pierce time),
+// in the dialect's units: a literal "F{feed}" was a block no controller reads.
+TEST(GcodeWriter, HeaderAndFooterPlaceholdersAreFilled) {
+  PostDialect d;
+  d.header = {"G17 G90 G40 G94", "F{feed}"};
+  d.footer = {"(pierce {pierce_s} s)"};
+  auto w = write_gcode(square_path(), d, GcodeWriteOptions{});
+  EXPECT_NE(w.text.find("\nF6000\n"), std::string::npos) << w.text;
+  EXPECT_NE(w.text.find("(pierce 0.5 s)\nM30\n"), std::string::npos) << w.text;
+  EXPECT_EQ(w.text.find('{'), std::string::npos) << w.text;
+  d.units = "in";
+  d.decimals = 4;
+  d.feed_decimals = 1;
+  w = write_gcode(square_path(), d, GcodeWriteOptions{});
+  EXPECT_NE(w.text.find("\nF236.2\n"), std::string::npos) << w.text;
+}
+
 TEST(GcodeWriter, LineNumbersThcAndKerfCodesFromTheDialect) {
   auto d = find_post_dialect("plasma-thc");
   ASSERT_TRUE(d.ok()) << format(d.error());

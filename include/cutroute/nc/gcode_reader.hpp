@@ -9,6 +9,7 @@
 #include <cutroute/core/diagnostic.hpp>
 #include <cutroute/core/result.hpp>
 #include <cutroute/core/tolerances.hpp>
+#include <cutroute/geometry/vec2.hpp>
 #include <cutroute/nc/dialect.hpp>
 
 namespace cutroute::nc {
@@ -57,6 +58,9 @@ struct ReadOptions {
   // When set, every XY move of non-zero length is appended here (one allocation per move: keep
   // it unset when only totals are needed).
   std::vector<Move>* moves = nullptr;
+  // Where the head stands when the program starts [mm]: the first move's length is measured from
+  // it (a program made with optimize --start begins with the rapid from that point).
+  geometry::Vec2 start_mm{0, 0};
 };
 
 // Totals of one program. Lengths are XY path lengths in mm (arcs exact: radius × sweep; Z and

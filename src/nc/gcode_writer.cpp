@@ -140,7 +140,32 @@ class Emitter {
     }
     // The centre as written (I J rounded to the resolution): what the controller will cut.
     Vec2 c = arc_center(pos_, q, bulge);
-    if (d_.arc_format == ArcFormat::ij) c = pos_ + quantise_delta(c - pos_);
+    if (d_.arc_format == ArcFormat::ij) {
+      const Vec2 exact = c;
+      c = pos_ + quantise_delta(c - pos_);
+      // On a coarse grid (2 decimals: 0.01 mm) the rounded centre can lie 0.014 mm nearer one end
+      // than the other, an arc the controller (and our reader, at 0.01 mm) refuses: the grid
+      // point next to it with the least difference is taken instead. At the default 1 µm the
+      // difference stays below a third of the tolerance, and the centre as rounded is kept.
+      auto mismatch = [&](Vec2 cc) { return std::abs(geometry::distance(cc, pos_) - geometry::distance(cc, q)); };
+      if (mismatch(c) > 0.5 * tol::kGcodeArcRadiusMm) {
+        const Vec2 rounded = c;
+        for (int i = -1; i <= 1; ++i)
+          for (int j = -1; j <= 1; ++j) {
+            const Vec2 cand = pos_ + quantise_delta(rounded - pos_ + Vec2{i * res_mm_, j * res_mm_});
+            const double m = mismatch(cand), mc = mismatch(c);
+            if (m < mc - 1e-12 || (std::abs(m - mc) <= 1e-12 && geometry::distance(cand, exact) < geometry::distance(c, exact))) c = cand;
+          }
+        // A grid coarser still (1 decimal) has no such point: the arc goes as chords whose
+        // sagitta stays within the grid step.
+        if (mismatch(c) > 0.9 * tol::kGcodeArcRadiusMm) {
+          const double r = geometry::distance(exact, pos_);
+          const double step = 2 * std::acos(std::clamp(1 - res_mm_ / std::max(r, res_mm_), -1.0, 1.0));
+          const int k = std::clamp(static_cast<int>(std::ceil(std::abs(sweep) / std::max(step, 1e-3))), 2, 720);
+          return flat_arc(q, bulge, k, feed_word);
+        }
+      }
+    }
     std::string s = bulge < 0 ? "G2 X" : "G3 X";
     coord(s, q.x);
     s += " Y";

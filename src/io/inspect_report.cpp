@@ -59,7 +59,10 @@ nlohmann::json inspect_report(const LoadedNest& loaded) {
   j["open_length_mm"] = open;
   j["total_length_mm"] = total;
   j["bbox_mm"] = bbox.empty() ? nlohmann::json::array() : nlohmann::json{bbox.xmin, bbox.ymin, bbox.xmax, bbox.ymax};
-  j["dropped"] = {{"zero_length", loaded.dropped_zero_length}, {"duplicates", loaded.dropped_duplicates}};
+  // Repeated entities (a LINE twice) and whole outlines drawn twice (warned "duplicates contour").
+  j["dropped"] = {{"zero_length", loaded.dropped_zero_length},
+                  {"duplicates", loaded.dropped_duplicates},
+                  {"duplicate_contours", loaded.nest.dropped_duplicates}};
   auto diags = nlohmann::json::array();
   for (const auto& d : loaded.diagnostics) diags.push_back(to_json(d));
   j["diagnostics"] = std::move(diags);

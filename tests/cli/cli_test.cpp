@@ -151,6 +151,8 @@ TEST(Cli, DemoThenInspectDescribesThePaperLikeSheet) {
   EXPECT_EQ(j["max_depth"], 1);
   ASSERT_FALSE(j["sheet"].is_null());
   EXPECT_EQ(j["units_in_file"], "mm");
+  EXPECT_EQ(j["layers"].size(), 2u) << j["layers"];  // the demo's CUT and SHEET layers, with their entities
+  EXPECT_EQ(j["dropped"]["duplicate_contours"], 0);
   // Analytic cut length: plates (rounded rectangle r15 + Ø80 hole), flanges Ø300 with Ø100 bore,
   // L-brackets 250 x 300 with an R20 inner fillet.
   const double pi = 3.14159265358979323846;

@@ -5,6 +5,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include <cutroute/core/number_format.hpp>
@@ -58,6 +59,14 @@ geometry::Vec2 entry_point(const geometry::Box& b, geometry::Vec2 from, geometry
   return from + d * std::clamp(t0, 0.0, 1.0);
 }
 
+// Cells of the grids below are only looked up, never walked, so their order cannot change a picture.
+struct CellHash {
+  std::size_t operator()(const std::pair<long long, long long>& c) const {
+    const auto x = static_cast<unsigned long long>(c.first), y = static_cast<unsigned long long>(c.second);
+    return static_cast<std::size_t>((x * 0x9E3779B97F4A7C15ULL) ^ (y + 0x632BE59BD9B4E019ULL + (x << 6)));
+  }
+};
+
 // The median over the pierces of the distance to the nearest other pierce [mm]; +inf with fewer
 // than two. A grid of cells about the typical spacing finds each one's nearest among the cells
 // around it, widening the search until one is found.
@@ -70,7 +79,7 @@ double median_pierce_spacing(const nc::Toolpath& path) {
   auto key = [&](geometry::Vec2 p) {
     return std::pair{static_cast<long long>(std::floor((p.x - b.xmin) / cell)), static_cast<long long>(std::floor((p.y - b.ymin) / cell))};
   };
-  std::map<std::pair<long long, long long>, std::vector<std::size_t>> grid;
+  std::unordered_map<std::pair<long long, long long>, std::vector<std::size_t>, CellHash> grid;
   for (std::size_t i = 0; i < n; ++i) grid[key(path.segments[i].pierce)].push_back(i);
   std::vector<double> nearest(n, std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < n; ++i) {
@@ -182,7 +191,7 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
   // another pierce than their own (one 8.7 m above it) and 282 were pushed off the picture.
   // Placed labels are looked up in a grid of label-sized cells.
   const double cell = label_mm * 1.2;
-  std::map<std::pair<long long, long long>, std::vector<geometry::Box>> taken;
+  std::unordered_map<std::pair<long long, long long>, std::vector<geometry::Box>, CellHash> taken;
   auto key = [cell](double x, double y) {
     auto c = [cell](double v) {
       const double q = v / cell;

@@ -41,6 +41,25 @@ json constraints_json(const PointEval& e) {
   return rows;
 }
 
+// The search bounds the answer lies on (pitfall 7: the optimum always lies on a boundary; where no
+// constraint is active it is one of these, and the user should know that widening it may pay):
+// the search box's ends in vc and f, named by what sets them.
+std::vector<std::string> bounds_reached(const Problem& p, const OptimizeResult& r) {
+  std::vector<std::string> out;
+  if (!r.solution) return out;
+  const PointEval& e = *r.solution;
+  auto at = [](double v, double b) { return std::abs(v - b) <= 1e-9 * std::max(1.0, std::abs(b)); };
+  if (at(e.vc, r.vc_bounds[0])) out.push_back("search.vc_min");
+  if (at(e.vc, r.vc_bounds[1])) out.push_back(at(r.vc_bounds[1], p.search.vc_max) ? "search.vc_max" : "machine.n_max");
+  if (at(e.f, r.f_bounds[0])) out.push_back(at(r.f_bounds[0], p.search.f_min) ? "search.f_min" : "tool-life set feed range");
+  if (at(e.f, r.f_bounds[1])) {
+    const auto range = life_feed_range(p, r.set);
+    if (at(r.f_bounds[1], p.search.f_max)) out.push_back("search.f_max");
+    else if (at(r.f_bounds[1], range[1])) out.push_back("tool-life set feed range");
+  }
+  return out;
+}
+
 }  // namespace
 
 const char* constraint_unit(ConstraintId c) {
@@ -116,6 +135,7 @@ json report_json(const RunOutput& out) {
     }
     j["constraints"] = constraints_json(e);
     j["active"] = r.active;
+    j["bounds_reached"] = bounds_reached(p, r);
     if (r.grid_best) j["grid_best"] = point_json(*r.grid_best);
     j["search_box"] = {{"vc_m_min", {r.vc_bounds[0], r.vc_bounds[1]}},
                        {"f_mm_rev", {r.f_bounds[0], r.f_bounds[1]}}};
@@ -201,6 +221,11 @@ std::string report_text(const RunOutput& out) {
            constraint_unit(id) + ", slack " + fmt(-c.g, 3) +
            (std::abs(c.g) <= tol::kConstraintSlackRel ? "  ACTIVE" : "") + "\n";
     }
+  }
+  if (const auto bounds = bounds_reached(p, r); !bounds.empty()) {
+    std::string b;
+    for (const auto& n : bounds) b += (b.empty() ? "" : ", ") + n;
+    s += "on the search bound" + std::string(bounds.size() > 1 ? "s " : " ") + b + " (not a limit of the process: a wider search may find a cheaper point)\n";
   }
   if (r.infeasible) {
     s += r.infeasible->message + "\n";

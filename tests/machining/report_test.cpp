@@ -41,6 +41,23 @@ TEST(MachiningReport, JsonHasEveryIssueField) {
   EXPECT_EQ(j["valley"].size(), 25u);
 }
 
+// Pitfall 7: the optimum lies on a boundary. Where it is a search bound, not a constraint (E0: f on
+// search.f_max, no limit active), the report names it; where a constraint binds (E2), no bound.
+TEST(MachiningReport, SearchBoundsTheAnswerLiesOnAreNamed) {
+  const Problem e0 = test::load_machining_example(test::kE0);
+  const OptimizeResult r0 = optimize(e0);
+  RunOutput out0{&e0, &r0, {}, {}};
+  const auto j0 = report_json(out0);
+  EXPECT_TRUE(j0["active"].empty());
+  EXPECT_EQ(j0["bounds_reached"], nlohmann::json::array({"search.f_max"}));
+  EXPECT_NE(report_text(out0).find("on the search bound search.f_max"), std::string::npos) << report_text(out0);
+  const Problem e2 = test::load_machining_example(test::kE2);
+  const OptimizeResult r2 = optimize(e2);
+  RunOutput out2{&e2, &r2, {}, {}};
+  EXPECT_TRUE(report_json(out2)["bounds_reached"].empty());
+  EXPECT_EQ(report_text(out2).find("on the search bound"), std::string::npos);
+}
+
 TEST(MachiningReport, InfeasibleJsonNamesConstraintAndRemedies) {
   Problem p = test::load_machining_example(test::kE2);
   p.accuracy->K_TZ = 0.0005;

@@ -2,7 +2,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <filesystem>
 #include <iostream>
 #include <numbers>
 #include <optional>
@@ -44,48 +43,10 @@ struct EstimateOptions {
   std::string start;  // "X,Y": where the head stands when the program starts (default the origin)
 };
 
-std::string joined(const std::vector<std::string>& names) {
-  std::string s;
-  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
-  return s;
-}
-
-// A reader dialect by name: a built-in one, else a post-processor dialect (shipped name or JSON
-// file; a relative file is looked for in `beside` first) read the way it writes, so that the
-// programs `optimize --dialect NAME` wrote are understood. `unknown` starts the message when the
-// name is neither; `file` is the file that named it (a machine profile), "" for the command line.
-Result<nc::Dialect> dialect_named(const std::string& name, const std::string& unknown, const std::string& file = "",
-                                  const std::filesystem::path& beside = {}) {
-  if (auto b = nc::builtin_dialect(name)) return b;
-  std::string path = name;
-  std::error_code ec;
-  if (!beside.empty() && std::filesystem::path(name).is_relative() && std::filesystem::is_regular_file(beside / name, ec))
-    path = (beside / name).string();
-  auto post = nc::find_post_dialect(path);
-  if (post) return nc::reader_dialect(*post);
-  if (!post.error().file.empty()) return post.error();  // a dialect file that does not load
-  return make_error(unknown + " '" + name + "' (reader dialects: " + joined(nc::builtin_dialect_names()) +
-                        "; post-processor dialects: " + joined(nc::post_dialect_names()) + "; or a dialect JSON file)",
-                    file);
-}
-
-// The profile's dialect (a reader dialect name, a post-processor dialect's name or JSON file, or
-// explicit codes) as reader options. A relative file path is read from the profile's folder.
+// The reader dialect: --dialect when given, else the machine profile's.
 Result<nc::Dialect> dialect_of(const cost::MachineProfile& p, const std::string& override_name) {
-  if (!override_name.empty()) return dialect_named(override_name, "unknown --dialect");
-  const auto& d = p.dialect;
-  if (d.beam_on.empty()) {
-    auto b = dialect_named(d.name, "field dialect: unknown dialect", p.file, std::filesystem::path(p.file).parent_path());
-    if (!b) return b;
-    if (!d.dwell_p_unit.empty())
-      b->dwell_p_unit = d.dwell_p_unit == "ms" ? nc::DwellUnit::milliseconds : nc::DwellUnit::seconds;
-    return b;
-  }
-  auto m = nc::make_dialect(d.name, d.beam_on, d.beam_off,
-                            d.dwell_p_unit == "ms" ? nc::DwellUnit::milliseconds : nc::DwellUnit::seconds,
-                            "dialect");
-  if (!m) return make_error("field " + m.error().message, p.file);
-  return m;
+  if (!override_name.empty()) return nc::reader_dialect_named(override_name, "unknown --dialect");
+  return cost::profile_reader_dialect(p);
 }
 
 cost::ProgramTotals totals_of(const nc::ProgramStats& s) {

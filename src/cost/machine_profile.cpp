@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include <cutroute/core/version.hpp>
+#include <cutroute/nc/post_dialect.hpp>
 
 #include "cost/json_fields.hpp"
 
@@ -222,6 +223,20 @@ Result<MachineProfile> load_machine_profile(const std::string& path) {
   auto p = parse_profile(*parsed, path);
   if (!p) return detail::in_file(p.error(), path);
   return p;
+}
+
+Result<nc::Dialect> profile_reader_dialect(const MachineProfile& p) {
+  const auto& d = p.dialect;
+  const auto unit = d.dwell_p_unit == "ms" ? nc::DwellUnit::milliseconds : nc::DwellUnit::seconds;
+  if (d.beam_on.empty()) {
+    auto b = nc::reader_dialect_named(d.name, "field dialect: unknown dialect", p.file,
+                                      std::filesystem::path(p.file).parent_path().string());
+    if (b && !d.dwell_p_unit.empty()) b->dwell_p_unit = unit;
+    return b;
+  }
+  auto m = nc::make_dialect(d.name, d.beam_on, d.beam_off, unit, "dialect");
+  if (!m) return make_error("field " + m.error().message, p.file);
+  return m;
 }
 
 }  // namespace cutroute::cost

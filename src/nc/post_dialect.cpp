@@ -130,6 +130,30 @@ Result<PostDialect> find_post_dialect(const std::string& name_or_path) {
   return make_error("unknown dialect '" + name_or_path + "' (built in: " + names + "; or give a JSON file)");
 }
 
+Result<PostDialect> find_post_dialect(const std::string& name_or_path, const std::string& folder) {
+  std::error_code ec;
+  const std::filesystem::path beside = std::filesystem::path(folder) / name_or_path;
+  if (!folder.empty() && std::filesystem::path(name_or_path).is_relative() && std::filesystem::is_regular_file(beside, ec))
+    return load_post_dialect(beside.string());
+  return find_post_dialect(name_or_path);
+}
+
+Result<Dialect> reader_dialect_named(const std::string& name, const std::string& unknown, const std::string& file,
+                                     const std::string& folder) {
+  if (auto b = builtin_dialect(name)) return b;
+  auto post = find_post_dialect(name, folder);
+  if (post) return reader_dialect(*post);
+  if (!post.error().file.empty()) return post.error();  // a dialect file that does not load
+  auto joined = [](const std::vector<std::string>& names) {
+    std::string s;
+    for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+    return s;
+  };
+  return make_error(unknown + " '" + name + "' (reader dialects: " + joined(builtin_dialect_names()) +
+                        "; post-processor dialects: " + joined(post_dialect_names()) + "; or a dialect JSON file)",
+                    file);
+}
+
 std::string fill_placeholders(std::string line, const std::string& pierce_s, const std::string& feed) {
   const auto replace = [&line](const std::string& what, const std::string& with) {
     for (auto p = line.find(what); p != std::string::npos; p = line.find(what, p + with.size()))

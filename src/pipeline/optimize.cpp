@@ -70,23 +70,15 @@ struct Setup {
 Result<nc::PostDialect> profile_post_dialect(const cost::MachineProfile& p) {
   const cost::DialectSpec& d = p.dialect;
   if (d.beam_on.empty() && !nc::builtin_dialect(d.name)) {
-    std::error_code ec;
-    const auto beside = std::filesystem::path(p.file).parent_path() / d.name;
-    auto post = nc::find_post_dialect(std::filesystem::path(d.name).is_relative() && std::filesystem::is_regular_file(beside, ec)
-                                          ? beside.string() : d.name);
+    auto post = nc::find_post_dialect(d.name, std::filesystem::path(p.file).parent_path().string());
     if (!post) return make_error("field dialect: " + post.error().message, p.file);
     return post;
   }
   auto generic = nc::find_post_dialect("generic");
   if (!generic) return generic.error();
-  nc::Dialect reads;
-  if (d.beam_on.empty()) {
-    reads = *nc::builtin_dialect(d.name);
-  } else {
-    reads.name = d.name, reads.beam_on = d.beam_on, reads.beam_off = d.beam_off;
-  }
-  if (!d.dwell_p_unit.empty()) reads.dwell_p_unit = d.dwell_p_unit == "ms" ? nc::DwellUnit::milliseconds : nc::DwellUnit::seconds;
-  if (reads.switches_on(3) && reads.switches_off(5) && reads.dwell_p_unit == nc::DwellUnit::seconds) return generic;
+  auto reads = cost::profile_reader_dialect(p);
+  if (!reads) return reads.error();
+  if (reads->switches_on(3) && reads->switches_off(5) && reads->dwell_p_unit == nc::DwellUnit::seconds) return generic;
   return make_error("the machine profile's dialect '" + d.name +
                         "' reads the beam codes or the dwell unit differently from what the generic post-processor "
                         "writes (M3 on, M5 off, G4 P in seconds): give --dialect with a post-processor dialect JSON file "

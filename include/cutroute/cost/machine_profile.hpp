@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <cutroute/core/result.hpp>
+#include <cutroute/nc/dialect.hpp>
 
 namespace cutroute::cost {
 
@@ -65,5 +66,10 @@ struct MachineProfile {
 Result<MachineProfile> load_machine_profile(const std::string& path);
 // <data_dir>/machines/bystar3015.json
 std::string default_machine_profile_path();
+
+// The dialect the machine reads its programs in, from the profile's `dialect` (a reader dialect
+// name, a post-processor dialect's name or JSON file, read from the profile's folder first, or
+// explicit codes); errors name the profile and the field.
+Result<nc::Dialect> profile_reader_dialect(const MachineProfile& p);
 
 }  // namespace cutroute::cost

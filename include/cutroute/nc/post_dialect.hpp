@@ -52,6 +52,8 @@ struct PostDialect {
 Result<PostDialect> load_post_dialect(const std::string& path);
 // "generic", "plasma-thc", ... from <data_dir>/dialects/<name>.json, or a file path.
 Result<PostDialect> find_post_dialect(const std::string& name_or_path);
+// The same, a relative file name looked for in `folder` first (a machine profile's folder).
+Result<PostDialect> find_post_dialect(const std::string& name_or_path, const std::string& folder);
 // `line` with the placeholders {pierce_s} and {feed} replaced by the given texts (as written).
 std::string fill_placeholders(std::string line, const std::string& pierce_s, const std::string& feed);
 // The names of the shipped dialects (<data_dir>/dialects/*.json), sorted.
@@ -73,5 +75,12 @@ bool beam_switches_under_compensation(const PostDialect& post);
 // Errors (a line that is no G-code block, no M code in beam_on, a beam code with a fixed meaning
 // or in both beam_on and beam_off) name the dialect's file and the field.
 Result<Dialect> reader_dialect(const PostDialect& post);
+
+// A reader dialect by name: a built-in one, else a post-processor dialect (shipped name or JSON
+// file; a relative file is looked for in `folder` first) read the way it writes, so that the
+// programs `optimize --dialect NAME` wrote are understood. `unknown` starts the message when the
+// name is neither; `file` is the file that named it (a machine profile), "" for the command line.
+Result<Dialect> reader_dialect_named(const std::string& name, const std::string& unknown, const std::string& file = "",
+                                     const std::string& folder = "");
 
 }  // namespace cutroute::nc

@@ -96,22 +96,29 @@ bool finite_contour(const Contour& c) {
 // was refused as crossing contours).
 std::vector<Vertex> canonical_cycle(const Contour& c, double signed_area) {
   Contour ccw = signed_area < 0 ? geometry::reversed(c) : c;
+  // One pass drops every vertex between two straight segments running on in one direction (the
+  // previous vertex being the last one kept); a second pass catches the one where the cycle closes.
+  auto splits_a_side = [](const Vertex& prev, const Vertex& here, Vec2 next) {
+    if (prev.bulge != 0.0 || here.bulge != 0.0) return false;
+    const Vec2 u = here.p - prev.p, v = next - here.p;
+    const double cross = u.x * v.y - u.y * v.x, dot = u.x * v.x + u.y * v.y;
+    return dot > 0.0 && std::abs(cross) <= 1e-12 * geometry::norm(u) * geometry::norm(v);
+  };
   for (bool removed = true; removed && ccw.vertices.size() > 3;) {
     removed = false;
-    const std::size_t m = ccw.vertices.size();
+    const std::vector<Vertex>& v = ccw.vertices;
+    const std::size_t m = v.size();
+    std::vector<Vertex> kept;
+    kept.reserve(m);
     for (std::size_t i = 0; i < m; ++i) {
-      const Vertex& prev = ccw.vertices[(i + m - 1) % m];
-      const Vertex& here = ccw.vertices[i];
-      const Vertex& next = ccw.vertices[(i + 1) % m];
-      if (prev.bulge != 0.0 || here.bulge != 0.0) continue;
-      const Vec2 u = here.p - prev.p, v = next.p - here.p;
-      const double cross = u.x * v.y - u.y * v.x, dot = u.x * v.x + u.y * v.y;
-      if (dot > 0.0 && std::abs(cross) <= 1e-12 * geometry::norm(u) * geometry::norm(v)) {
-        ccw.vertices.erase(ccw.vertices.begin() + static_cast<std::ptrdiff_t>(i));
+      const Vertex& prev = kept.empty() ? v[m - 1] : kept.back();
+      if (m - (i - kept.size()) > 3 && splits_a_side(prev, v[i], v[(i + 1) % m].p)) {
         removed = true;
-        break;
+        continue;
       }
+      kept.push_back(v[i]);
     }
+    ccw.vertices = std::move(kept);
   }
   const std::size_t n = ccw.vertices.size();
   std::size_t start = 0;

@@ -220,7 +220,7 @@ class Reader {
       }
       if (!any_block_) percent_open_ = true;
     }
-    if (!line_is_blank(line)) any_block_ = true;
+    if (!any_block_ && !line_is_blank(line)) any_block_ = true;
     if (scan.tape_mark || !b.frame) {
       skip_motion_ = false;
       return {};

@@ -201,37 +201,17 @@ void add_solution_warnings(const Problem& p, const OptimizeResult& r, std::vecto
 }
 
 // The cheapest point that meets every limit at a fixed cutting speed, over the feed range of `set`
-// (n_f log-spaced samples, feasible runs bisected onto g <= 0, golden section inside each).
+// (n_f log-spaced samples; detail::cheapest_on_line).
 std::optional<PointEval> best_feed_at_vc(const Problem& p, int set, double vc, int n_f, long& evals) {
   const SearchBox box = search_box(p, set);
   if (box.f[0] > box.f[1]) return std::nullopt;
-  const auto eval = [&](double u) {
+  const auto at = [&](double f) {
     ++evals;
-    return evaluate(p, vc, std::exp(u), set);
+    return evaluate(p, vc, f, set);
   };
-  const auto ok_at = [&](double u) { return eval(u).max_violation() <= 0.0; };
-  const auto ct_at = [&](double u) { return eval(u).cost.total; };
-  const std::vector<double> fg = log_grid(box.f[0], box.f[1], std::max(n_f, 2));
-  std::optional<PointEval> best;
-  for (std::size_t a = 0; a < fg.size();) {
-    if (!(eval(std::log(fg[a])).max_violation() <= tol::kConstraintSlackRel)) {
-      ++a;
-      continue;
-    }
-    std::size_t b = a;
-    while (b + 1 < fg.size() && eval(std::log(fg[b + 1])).max_violation() <= tol::kConstraintSlackRel) ++b;
-    double lo = std::log(fg[a]), hi = std::log(fg[b]);
-    if (a > 0) lo = detail::bisect_boundary(ok_at, std::log(fg[a - 1]), lo);
-    if (b + 1 < fg.size()) hi = detail::bisect_boundary(ok_at, std::log(fg[b + 1]), hi);
-    double u = hi > lo ? detail::golden_min(ct_at, lo, hi) : lo;
-    for (double e : {lo, hi})
-      if (ct_at(e) < ct_at(u)) u = e;
-    if (!eval(u).feasible()) u = ct_at(lo) <= ct_at(hi) ? lo : hi;
-    const PointEval e = eval(u);
-    if (e.feasible() && (!best || e.cost.total < best->cost.total)) best = e;
-    a = b + 1;
-  }
-  return best;
+  const auto u = detail::cheapest_on_line(at, log_grid(box.f[0], box.f[1], std::max(n_f, 2)));
+  if (!u) return std::nullopt;
+  return at(std::exp(*u));
 }
 
 // Pitfall 9: a stepped spindle runs at the next lower available speed, which protects tool life;
@@ -301,73 +281,18 @@ SearchBox search_box(const Problem& p, int set) {
 FeedOptimum best_vc_at_feed(const Problem& p, int set, double f, const std::vector<double>& vc_grid,
                             long* evals) {
   long count = 0;
-  const auto eval = [&](double vc) {
-    ++count;
-    return evaluate(p, vc, f, set);
-  };
+  const auto u = detail::cheapest_on_line(
+      [&](double vc) {
+        ++count;
+        return evaluate(p, vc, f, set);
+      },
+      vc_grid);
   FeedOptimum out;
   out.f = f;
   out.set = set;
-  // Boundaries are bisected onto g <= 0 (not the slack) so that the answer is strictly feasible.
-  const auto ok_at = [&](double u) { return eval(std::exp(u)).max_violation() <= 0.0; };
-  const auto ct_at = [&](double u) { return eval(std::exp(u)).cost.total; };
-  const std::size_t n = vc_grid.size();
-  std::vector<char> ok(n);
-  std::vector<double> viol(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    viol[i] = eval(vc_grid[i]).max_violation();
-    ok[i] = viol[i] <= tol::kConstraintSlackRel ? 1 : 0;
-  }
-  // Feasible vc-intervals [lo, hi] in u = ln vc. Monotone constraints give one run of feasible samples;
-  // several runs are handled all the same.
-  std::vector<std::array<double, 2>> intervals;
-  for (std::size_t a = 0; a < n;) {
-    if (!ok[a]) {
-      ++a;
-      continue;
-    }
-    std::size_t b = a;
-    while (b + 1 < n && ok[b + 1]) ++b;
-    double lo = std::log(vc_grid[a]);
-    double hi = std::log(vc_grid[b]);
-    if (a > 0) lo = detail::bisect_boundary(ok_at, std::log(vc_grid[a - 1]), lo);
-    if (b + 1 < n) hi = detail::bisect_boundary(ok_at, std::log(vc_grid[b + 1]), hi);
-    intervals.push_back({lo, hi});
-    a = b + 1;
-  }
-  if (intervals.empty() && n >= 2) {
-    // Near a corner of two active constraints (one bounding vc from below, one from above) the feasible
-    // interval can be narrower than a grid cell. The largest violation is quasi-convex in vc: minimise
-    // it around the least-violated sample and keep the sliver when it reaches g <= 0.
-    const std::size_t k = static_cast<std::size_t>(std::min_element(viol.begin(), viol.end()) - viol.begin());
-    const double ua = std::log(vc_grid[k == 0 ? 0 : k - 1]);
-    const double ub = std::log(vc_grid[std::min(n - 1, k + 1)]);
-    const auto worst = [&](double u) { return eval(std::exp(u)).max_violation(); };
-    const double u0 = detail::golden_min(worst, ua, ub, tol::kBoundaryBisectRel);
-    if (worst(u0) <= 0.0) {
-      const double lo = u0 > ua && !ok_at(ua) ? detail::bisect_boundary(ok_at, ua, u0) : ua;
-      const double hi = u0 < ub && !ok_at(ub) ? detail::bisect_boundary(ok_at, ub, u0) : ub;
-      intervals.push_back({lo, hi});
-    }
-  }
-  double best_ct = kInf, best_u = 0.0;
-  for (const auto& [lo, hi] : intervals) {
-    double u = hi > lo ? detail::golden_min(ct_at, lo, hi) : lo;
-    double ct = ct_at(u);
-    // Clamp onto the interval ends when they are better: the constrained optimum is usually there.
-    for (double e : {lo, hi}) {
-      const double c = ct_at(e);
-      if (c < ct) ct = c, u = e;
-    }
-    if (!eval(std::exp(u)).feasible()) {  // keep the promise of feasibility
-      u = ct_at(lo) <= ct_at(hi) ? lo : hi;
-      ct = ct_at(u);
-    }
-    if (ct < best_ct) best_ct = ct, best_u = u;
-  }
   if (evals) *evals += count;
-  if (best_ct == kInf) return out;
-  const PointEval e = evaluate(p, std::exp(best_u), f, set);
+  if (!u) return out;
+  const PointEval e = evaluate(p, std::exp(*u), f, set);
   out.feasible = true;
   out.vc = e.vc;
   out.CT = e.cost.total;

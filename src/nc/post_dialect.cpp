@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cutroute/core/text.hpp>
 #include <cutroute/core/version.hpp>
 #include <cutroute/io/output_file.hpp>
 
@@ -125,9 +126,7 @@ Result<PostDialect> find_post_dialect(const std::string& name_or_path) {
   if (std::filesystem::is_regular_file(name_or_path, ec)) return load_post_dialect(name_or_path);
   const std::string builtin = std::string(data_dir()) + "/dialects/" + name_or_path + ".json";
   if (std::filesystem::is_regular_file(builtin, ec)) return load_post_dialect(builtin);
-  std::string names;
-  for (const auto& n : post_dialect_names()) names += (names.empty() ? "" : ", ") + n;
-  return make_error("unknown dialect '" + name_or_path + "' (built in: " + names + "; or give a JSON file)");
+  return make_error("unknown dialect '" + name_or_path + "' (built in: " + join(post_dialect_names(), ", ") + "; or give a JSON file)");
 }
 
 Result<PostDialect> find_post_dialect(const std::string& name_or_path, const std::string& folder) {
@@ -144,13 +143,8 @@ Result<Dialect> reader_dialect_named(const std::string& name, const std::string&
   auto post = find_post_dialect(name, folder);
   if (post) return reader_dialect(*post);
   if (!post.error().file.empty()) return post.error();  // a dialect file that does not load
-  auto joined = [](const std::vector<std::string>& names) {
-    std::string s;
-    for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
-    return s;
-  };
-  return make_error(unknown + " '" + name + "' (reader dialects: " + joined(builtin_dialect_names()) +
-                        "; post-processor dialects: " + joined(post_dialect_names()) + "; or a dialect JSON file)",
+  return make_error(unknown + " '" + name + "' (reader dialects: " + join(builtin_dialect_names(), ", ") +
+                        "; post-processor dialects: " + join(post_dialect_names(), ", ") + "; or a dialect JSON file)",
                     file);
 }
 

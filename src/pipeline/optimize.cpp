@@ -771,8 +771,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   }
   lap("solve");
   if (!unsolved.empty()) {
-    std::string names;
-    for (const auto& n : unsolved) names += (names.empty() ? "" : ", ") + n;
+    const std::string names = join(unsolved, ", ");
     Diagnostic w = make_warning("the time limit was spent before the " + names + " alternative" +
                                 (unsolved.size() > 1 ? "s" : "") +
                                 " could be solved (a longer --time-limit compares every technique)");
@@ -782,8 +781,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   // A program written after Ctrl-C or SIGTERM is admissible but may be far from the route the run
   // would have found (TopsNest stopped at 2.5 s: chain, 498.5 s, against common, 398.9 s).
   if (stop.cancelled()) {
-    std::string names;
-    for (const auto& n : interrupted) names += (names.empty() ? "" : ", ") + n;
+    const std::string names = join(interrupted, ", ");
     Diagnostic w = make_warning("the run was interrupted (Ctrl-C or SIGTERM): the program holds the best route found before "
                                 "the stop" + (names.empty() ? std::string() : ", and the " + names + " alternative" +
                                                                                   (interrupted.size() > 1 ? "s were" : " was") +

@@ -3,6 +3,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace cutroute {
 
@@ -15,5 +16,8 @@ bool is_utf8(std::string_view s);
 // code page AutoCAD writes Western European drawings in) through glibc's iconv, and each byte it
 // cannot convert (or every byte, when iconv lacks the charset) becomes U+FFFD.
 std::string to_utf8(std::string_view bytes, const char* charset = "CP1252");
+
+// The parts with `separator` between them ("a, b, c" for a list in a message).
+std::string join(const std::vector<std::string>& parts, std::string_view separator);
 
 }  // namespace cutroute

@@ -214,6 +214,23 @@ std::optional<PointEval> best_feed_at_vc(const Problem& p, int set, double vc, i
   return at(std::exp(*u));
 }
 
+// Deviation from MACHINING.md 5.1 step 2, which returns Infeasible when no grid point is feasible:
+// a feasible band narrower than a grid cell (a tool-life window of 0.001 min, two limits nearly
+// meeting) passes between the samples. Each grid line is searched as in the refinement (the line
+// search minimises the largest violation around its least-violated sample, so it finds a sliver the
+// line crosses); the cheapest point found, or nullopt when the region is really empty.
+std::optional<PointEval> sliver_on_grid_lines(const Problem& p, int set, const Surface& grid, long& evals) {
+  std::optional<PointEval> best;
+  for (double f : grid.f) {
+    const FeedOptimum fo = best_vc_at_feed(p, set, f, grid.vc, &evals);
+    if (fo.feasible && (!best || fo.CT < best->cost.total)) best = evaluate(p, fo.vc, fo.f, set);
+  }
+  for (double vc : grid.vc)
+    if (auto e = best_feed_at_vc(p, set, vc, static_cast<int>(grid.f.size()), evals); e && (!best || e->cost.total < best->cost.total))
+      best = e;
+  return best;
+}
+
 // Pitfall 9: a stepped spindle runs at the next lower available speed, which protects tool life;
 // the feed is chosen again there, the cheapest that meets every limit (at the old feed a lower
 // speed may break one: E2's accuracy). When no speed at or below n* has such a feed, the lowest
@@ -316,6 +333,7 @@ OptimizeResult optimize(const Problem& p, const OptimizeParams& params) {
   std::optional<PointEval> least_violated;
   double least_violation = kInf;
   std::string box_reasons;
+  std::vector<int> sliver_sets;
   for (int set = 0; set < life_set_count(p); ++set) {
     const SearchBox box = search_box(p, set);
     if (box.vc[0] > box.vc[1] || box.f[0] > box.f[1]) {
@@ -329,6 +347,8 @@ OptimizeResult optimize(const Problem& p, const OptimizeParams& params) {
       least_violation = scan.least_violation;
       least_violated = scan.least_violated;
     }
+    const bool on_grid = scan.best.has_value();
+    if (!on_grid && (scan.best = sliver_on_grid_lines(p, set, scan.surface, r.evaluations))) sliver_sets.push_back(set);
     if (!scan.best) continue;
     PointEval sol = *scan.best;
     if (params.refine) {
@@ -341,7 +361,7 @@ OptimizeResult optimize(const Problem& p, const OptimizeParams& params) {
     if (!best || sol.cost.total < best->cost.total) {
       best = sol;
       r.set = set;
-      r.grid_best = scan.best;
+      r.grid_best = on_grid ? scan.best : std::nullopt;
       r.vc_bounds = box.vc;
       r.f_bounds = box.f;
       if (params.keep_surface)
@@ -383,6 +403,9 @@ OptimizeResult optimize(const Problem& p, const OptimizeParams& params) {
     r.V_rho_cubature = cub.acc->V_rho;
   }
   if (!box_reasons.empty()) r.warnings.push_back("skipped tool-life sets: " + box_reasons);
+  if (std::find(sliver_sets.begin(), sliver_sets.end(), r.set) != sliver_sets.end())
+    r.warnings.push_back("no grid point meets every limit: the feasible region is narrower than a grid cell and was found by "
+                         "line searches along the grid lines; the answer has almost no margin on the limits that bound it");
   add_solution_warnings(p, r, r.warnings);
   apply_spindle_steps(p, r, ny);
   if (!r.solution) {

@@ -407,5 +407,28 @@ TEST(MachiningOptimizer, ToolLifeWindowIsAHardConstraint) {
   EXPECT_NE(std::find(r.active.begin(), r.active.end(), "tool_life_min"), r.active.end());
 }
 
+// A window narrower than a grid cell: no grid point has 40 <= T <= 40.001 min, the band lies
+// between the samples. The answer must be the one the wide window [40, 60] gives (T = 40 binds in
+// both), with a warning that says how it was found.
+TEST(MachiningOptimizer, ToolLifeWindowNarrowerThanAGridCellIsFound) {
+  Problem wide = test::load_machining_example(test::kE1);
+  wide.search.T_min = 40.0;
+  wide.search.T_max = 60.0;
+  const OptimizeResult w = optimize(wide);
+  ASSERT_TRUE(w.solution);
+  Problem narrow = wide;
+  narrow.search.T_max = 40.001;
+  const OptimizeResult r = optimize(narrow);
+  ASSERT_TRUE(r.solution) << (r.infeasible ? r.infeasible->message : "");
+  EXPECT_EQ(r.status, Status::warning);
+  EXPECT_FALSE(r.grid_best);
+  EXPECT_GE(r.solution->T, 40.0 * (1 - 1e-9));
+  EXPECT_LE(r.solution->T, 40.001 * (1 + 1e-9));
+  EXPECT_NEAR(r.solution->vc / w.solution->vc, 1.0, 1e-6);
+  EXPECT_NEAR(r.solution->cost.total / w.solution->cost.total, 1.0, 1e-9);
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_NE(r.warnings.back().find("narrower than a grid cell"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace cutroute::machining

@@ -10,6 +10,7 @@
 #include <mutex>
 #include <numeric>
 #include <optional>
+#include <set>
 #include <span>
 #include <thread>
 
@@ -291,6 +292,54 @@ nlohmann::json sequence_json(const model::Nest& nest, const std::vector<model::E
     arr.push_back(std::move(j));
   }
   return arr;
+}
+
+// The leads' fallbacks of the written program, one warning per contour: the entries the program
+// uses, not the candidates a job was built with (a common-cut job reuses the standard job's
+// candidates without their warnings, and the standard job's name contours the program may enter
+// elsewhere). A common line pierced on the line is said by the job itself (common.pierce_on_line).
+Diagnostics lead_fallback_diagnostics(const model::Nest& nest, const std::vector<model::EntryCandidate>& seq) {
+  std::vector<const model::EntryCandidate*> fell_back;  // in contour order, as the nest lists them
+  std::set<std::int32_t> said;
+  for (const auto& e : seq)
+    if (e.fallback != model::Fallback::none && said.insert(e.contour.value()).second) fell_back.push_back(&e);
+  std::stable_sort(fell_back.begin(), fell_back.end(), [](const auto* a, const auto* b) { return a->contour.value() < b->contour.value(); });
+  Diagnostics out;
+  for (const auto* entry : fell_back) {
+    const model::EntryCandidate& e = *entry;
+    const bool multi = model::is_multi_piece(e);
+    if (multi && e.fallback == model::Fallback::on_contour) continue;
+    const auto& c = nest.contours[e.contour];
+    std::string at = "(";  // piece by piece: GCC 12 warns (-Wrestrict) on "(" + std::string
+    at += format_fixed(e.point.x, 3);
+    at += ", ";
+    at += format_fixed(e.point.y, 3);
+    at += ")";
+    const std::string what = multi ? "the joined cut entered at " + at
+                                   : "part " + std::to_string(c.part.valid() ? c.part.value() + 1 : 0) + " " +
+                                         (c.role == model::ContourRole::hole ? "hole" : "outer") + " (contour " +
+                                         std::to_string(e.contour.value() + 1) + ")";
+    Diagnostic d = make_warning(std::string(), std::string(), c.source.line);
+    switch (e.fallback) {
+      case model::Fallback::short_lead:
+        d.message = what + ": no room for the full lead-in; lead-in shortened to " +
+                    format_fixed(e.lead_in.vertices.size() >= 2 ? geometry::length(e.lead_in) : 0.0, 2) + " mm";
+        d.code = "leads.shortened";
+        break;
+      case model::Fallback::centre_pierce:
+        d.message = what + ": too small for a lead-in; pierced at its centre";
+        d.code = "leads.centre_pierce";
+        break;
+      default:
+        d.message = what + ": no admissible lead-in; pierced on the contour";
+        d.code = "leads.on_contour";
+        break;
+    }
+    d.handle = c.source.handle;
+    d.layer = c.source.layer;
+    out.push_back(std::move(d));
+  }
+  return out;
 }
 
 using Clock = std::chrono::steady_clock;
@@ -675,7 +724,9 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     slot.push_back(alternatives.size());
     alternatives.push_back(nullptr);
   }
-  for (const auto& d : jobs.front().diagnostics) result.diagnostics.push_back(d);
+  // The chosen job's diagnostics go here, once the choice is made: a common-cut job has its own
+  // (common.pierce_on_line, common.open_loop), which the standard job's would have hidden.
+  const std::size_t job_diagnostics_at = result.diagnostics.size();
   lap("entries");
 
   // --time-limit is the budget of the whole optimisation from here on: the solvers get what the
@@ -770,6 +821,13 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     }
   }
   lap("solve");
+  if (best) {
+    Diagnostics said;
+    for (const auto& d : jobs[chosen].diagnostics)
+      if (!d.code.starts_with("leads.")) said.push_back(d);
+    for (auto& d : lead_fallback_diagnostics(cut_nest, best->sequence)) said.push_back(std::move(d));
+    result.diagnostics.insert(result.diagnostics.begin() + static_cast<std::ptrdiff_t>(job_diagnostics_at), said.begin(), said.end());
+  }
   if (!unsolved.empty()) {
     const std::string names = join(unsolved, ", ");
     Diagnostic w = make_warning("the time limit was spent before the " + names + " alternative" +

@@ -696,6 +696,47 @@ TEST(OptimizeCli, PiercesOnThePartsEdgeAreSaid) {
   fs::remove_all(dir);
 }
 
+// The leads' fallbacks in the report are those of the written program, whichever technique won:
+// one warning per contour entered with a fallback (a joined cut pierced on a common line is said
+// as common.pierce_on_line), and none for a contour the program enters with a full lead.
+// TopsNest is cut by common lines (the standard job's 15 pierces on the contour are not in its
+// program), the pong box by chains with holes pierced at their centre.
+TEST(OptimizeCli, LeadFallbacksAreTheWrittenPrograms) {
+  const auto dir = temp_dir("fallbacks");
+  for (const char* nest : {"data/dxf/deepnestsharp_TopsNest.dxf", "data/dxf/bryanduxbury_pongbox_panelized_3mm.dxf"}) {
+    const auto rep = dir / "r.json";
+    const auto r = run_command(cli_path() + " optimize " + shared(nest) + " -o " + (dir / "p.ngc").string() + " --report " + rep.string() +
+                               " --time-limit 0 --work-limit 0.2 --threads 1 --quiet");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto report = nlohmann::json::parse(read_text(rep));
+    EXPECT_NE(report["chosen"], "standard") << nest;
+    std::map<int, std::string> expected;  // contour -> code
+    for (const auto& e : report["sequence"]) {
+      const std::string f = e.value("fallback", "");
+      if (f.empty() || (f == "on_contour" && e.contains("pieces"))) continue;
+      expected[e["contour"].get<int>()] = f == "short_lead" ? "leads.shortened" : "leads." + f;
+    }
+    ASSERT_FALSE(expected.empty()) << nest;
+    std::map<int, std::string> said;
+    for (const auto& d : report["diagnostics"]) {
+      const std::string code = d.value("code", "");
+      if (!code.starts_with("leads.")) continue;
+      const std::string m = d["message"];
+      const auto at = m.find("(contour ");
+      int contour = 0;
+      if (at != std::string::npos) contour = std::stoi(m.substr(at + 9));
+      else  // a joined cut: named by its entry point; find it in the sequence
+        for (const auto& e : report["sequence"])
+          if (e.contains("pieces") && m.find("entered at") != std::string::npos && e.value("fallback", "") == "short_lead" &&
+              !said.contains(e["contour"].get<int>()))
+            contour = e["contour"].get<int>();
+      EXPECT_TRUE(said.emplace(contour, code).second) << nest << ": said twice: " << m;
+    }
+    EXPECT_EQ(said, expected) << nest;
+  }
+  fs::remove_all(dir);
+}
+
 // An option the rest of the command line leaves without effect is said (the run goes on).
 TEST(OptimizeCli, OptionsWithoutEffectAreSaid) {
   const auto dir = temp_dir("idle");

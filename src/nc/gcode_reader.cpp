@@ -427,13 +427,16 @@ class Reader {
       if (length > 0.0) {
         st_.rapid_length_mm += length;
         ++st_.rapid_moves;
-        if (beam_on_) {
-          if (st_.beam_on_rapids == 0)
+        // Before the first cut since the beam came on, the pierce counted at the beam-on code is
+        // the next cut's (GRBL laser programs: M4 S0 at the top, then G0 to the first cut).
+        if (beam_on_ && !new_cut_) {
+          if (!warned_beam_on_rapid_)
             warn(line_no_,
                  "rapid move (G0) with the beam on: counted as travel; the next cut counts as a new pierce");
-          ++st_.beam_on_rapids;
+          warned_beam_on_rapid_ = true;
           repierce_ = true;
         }
+        if (beam_on_) ++st_.beam_on_rapids;
       }
     } else if (beam_on_) {
       if (length > 0.0) {
@@ -629,6 +632,7 @@ class Reader {
   bool absolute_ = true;       // G90
   bool arc_absolute_ = false;  // G90.1
   bool beam_on_ = false;
+  bool warned_beam_on_rapid_ = false;
   bool repierce_ = false;     // a rapid was made with the beam on: the next cut pierces again
   bool have_feed_word_ = false, warned_zero_feed_ = false, warned_no_feed_ = false, warned_long_dwell_ = false;
   bool percent_open_ = false;    // the program opened with a '%' line: the next one ends it

@@ -126,6 +126,21 @@ TEST(GcodeReader, BeamOffFeedAndRapidWithBeamOn) {
   EXPECT_EQ(s.warnings[0].line, 7);
 }
 
+// GRBL laser programs switch the beam on once at the top (M4 S0: dynamic power, off during G0)
+// and rapid to the first cut: that rapid moves the pierce counted at M4, it does not add one. Each
+// later G0 between cuts is a new pierce, as the controller fires again at the next G1.
+TEST(GcodeReader, RapidBeforeTheFirstCutMovesThePierce) {
+  auto r = read_gcode("G21 G90\nM4 S0\nG0 X10 Y10\nG1 X20 Y10 F1000 S1000\nG1 X20 Y20\nG0 X50 Y50\nG1 X60 Y50 S1000\n"
+                      "G1 X60 Y60\nM5\nG0 X0 Y0\nM2\n",
+                      "grbl.nc", ReadOptions{});
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r->pierces, 2u);
+  EXPECT_EQ(r->beam_on_rapids, 2u);
+  EXPECT_NEAR(r->cut_length_mm, 40.0, kLenTol);
+  ASSERT_EQ(r->warnings.size(), 1u);
+  EXPECT_EQ(r->warnings[0].line, 6);  // the rapid between the cuts, not the one to the first
+}
+
 TEST(GcodeReader, CutterCompensationAndUnknownWordsAreWarnings) {
   const auto s = read_ok("cutter_comp_misc.nc");
   EXPECT_NEAR(s.cut_length_mm, 400.0, kLenTol);  // programmed path, no compensation applied

@@ -233,7 +233,9 @@ NestOutcome cut_nest(const std::string& nest, const Outputs& out, const pipeline
   }
   // All outputs or none: a report or picture that fails to write leaves no program behind, and
   // a program that fails leaves no report of it.
-  io::RoutePictureOptions pic{1400, std::filesystem::path(nest).filename().string(), {}, {}};
+  io::RoutePictureOptions pic;
+  pic.title = std::filesystem::path(nest).filename().string();
+  pic.caption = io::report_caption(res->report);
   pic.compensation_at_risk = io::compensation_at_risk(res->report);
   for (const auto& o : loaded->open_paths)
     pic.not_cut.emplace_back(o.path, "not cut: open contour" + (o.line ? " (line " + std::to_string(*o.line) + ", layer " + o.layer + ")"

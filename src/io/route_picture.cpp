@@ -131,7 +131,6 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
   const geometry::Box world = world_box(drawn, path);
   const double span = std::max(world.width(), world.height());
   const double margin = span * 0.02 + 1.0;
-  SvgDocument svg(world, margin, options.width_px);
   // Marks and numbers are sized for the nest seen whole, but no larger than the spacing of its
   // pierces allows (a number 0.8, a mark 0.25 of the median distance to the nearest other
   // pierce), so that on dense nests they stay beside their own pierce when zoomed in (d2g_DRAAK:
@@ -139,7 +138,13 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
   const double spacing = median_pierce_spacing(path);
   const double label_mm = std::max(std::min(span / 90.0, 0.8 * spacing), 0.5);
   const double mark_mm = std::max(std::min(span / 400.0, 0.25 * spacing), 0.2);
-
+  // The caption's line goes below the drawing and below the start's label (written under its
+  // mark); the scale depends on the width alone.
+  const double caption_mm = 15.0 * (world.width() + 2 * margin) / options.width_px;
+  const double caption_y = world.ymin - mark_mm * 6 - 0.5 * label_mm - 1.3 * caption_mm;
+  geometry::Box page = world;
+  if (!options.caption.empty()) page.ymin = caption_y - 0.4 * caption_mm;
+  SvgDocument svg(page, margin, options.width_px);
   if (!options.title.empty()) svg.add_raw("<title>" + xml_escape(options.title) + "</title>\n");
   svg.add_raw("<desc>cut: red (pieces of one contour cut in several segments: orange and ochre); lead-in and lead-out: green; "
               "bridge: violet; rapid: dashed blue; tab (material left, the head moves over it with the beam off): teal; "
@@ -295,6 +300,9 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
   const double right = start_mark.x + mark_mm * 3 + text_mm > world.xmax + margin ? -mark_mm * 3 - text_mm : mark_mm * 3;
   svg.add_text(start_mark + geometry::Vec2{std::max(right, world.xmin - margin - start_mark.x), -mark_mm * 6}, start_text,
                label_mm, "fill=\"#111111\" font-family=\"sans-serif\"");
+  if (!options.caption.empty())
+    svg.add_text({world.xmin, caption_y}, options.caption, caption_mm,
+                 "class=\"caption\" fill=\"#222222\" font-family=\"sans-serif\"");
   return svg.str();
 }
 
@@ -358,6 +366,19 @@ std::vector<std::pair<std::string, std::string>> report_summary(const nlohmann::
   return rows;
 }
 
+std::string report_caption(const nlohmann::json& r) {
+  if (!r.is_object()) return {};
+  auto num = [&](const char* key, int decimals) {
+    return r.contains(key) && r[key].is_number() ? format_fixed(r[key].get<double>(), decimals) : std::string("-");
+  };
+  std::string out = r.value("material", std::string("-")) + " " + num("thickness_mm", 2) + " mm";
+  if (r.contains("chosen") && r["chosen"].is_string()) out += " · " + r["chosen"].get<std::string>() + " cutting";
+  out += " · " + num("pierces", 0) + " pierces · cut " + num("cut_length_mm", 1) + " mm · rapid " + num("rapid_length_mm", 1) +
+         " mm · T_cut " + num("t_cut_s", 2) + " s (eq. 10)";
+  if (const std::string q = route_quality(r); !q.empty()) out += " · route " + q;
+  return out;
+}
+
 std::string route_quality(const nlohmann::json& r) {
   if (r.is_object() && r.contains("solver") && r["solver"].is_object() && r["solver"].value("status", std::string()) == "optimal")
     return "optimal";
@@ -397,7 +418,9 @@ std::string route_to_html(const model::Nest& nest, const nc::Toolpath& path,
           "<span style=\"color:#f39c12\">&#9679; pierce</span> &nbsp; "
           "<span style=\"color:#e00000\">&#9711; compensation may be refused</span> &nbsp; "
           "<span style=\"color:#e67e22\">- - not cut (open contour)</span></p>\n";
-  html += route_to_svg(nest, path, options).substr(std::string("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n").size());
+  RoutePictureOptions in_page = options;
+  in_page.caption.clear();  // the table below says it all
+  html += route_to_svg(nest, path, in_page).substr(std::string("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n").size());
   html += "<table>\n" + rows + "</table>\n";
   html += "<script>\n"
           "const segs=[...document.querySelectorAll('g.seg')];\n"

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <optional>
@@ -189,6 +190,61 @@ TEST(RoutePicture, TabsAndUncutContoursShow) {
   const std::string html = route_to_html(model::Nest{}, path, {}, o);
   EXPECT_NE(html.find("const last=segs.length-1;"), std::string::npos);
   EXPECT_NE(html.find("id=\"legend\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace cutroute::io
+
+namespace cutroute::io {
+namespace {
+
+// The text elements of a picture: body -> baseline y (picture units, down) and font size.
+std::map<std::string, Label> texts(const std::string& svg) {
+  std::map<std::string, Label> out;
+  for (auto at = svg.find("<text "); at != std::string::npos; at = svg.find("<text ", at + 1)) {
+    const auto open_end = svg.find('>', at), close = svg.find("</text>", at);
+    const std::string el = svg.substr(at, open_end - at);
+    out[svg.substr(open_end + 1, close - open_end - 1)] = {std::stod(attribute(el, "x")), std::stod(attribute(el, "y")),
+                                                           std::stod(attribute(el, "font-size"))};
+  }
+  return out;
+}
+
+// A standalone picture says what it shows: one line of the report's figures, below the drawing
+// and the start's label (the start at the nest's lower left corner puts its label lowest), inside
+// the page. The HTML page has its table instead.
+TEST(RoutePicture, StandalonePictureHasACaption) {
+  const nlohmann::json report = {{"material", "S235"},     {"thickness_mm", 3.0},         {"chosen", "chain"},
+                                 {"pierces", 18},          {"cut_length_mm", 17564.44},   {"rapid_length_mm", 4336.36},
+                                 {"t_cut_s", 245.614},     {"solver", {{"status", "optimal"}}}};
+  const std::string caption = report_caption(report);
+  EXPECT_EQ(caption, "S235 3 mm · chain cutting · 18 pierces · cut 17564.4 mm · rapid 4336.4 mm · T_cut 245.61 s (eq. 10) · route optimal");
+  nc::Toolpath path;
+  path.start = path.end = {0, 0};
+  for (int k = 0; k < 20; ++k) {
+    nc::CutSegment s;
+    s.pierce = {100.0 * (k % 5), 50.0 * (k / 5)};
+    path.segments.push_back(s);
+  }
+  RoutePictureOptions o;
+  o.caption = caption;
+  const std::string svg = route_to_svg(model::Nest{}, path, o);
+  const auto t = texts(svg);
+  ASSERT_TRUE(t.contains(caption));
+  ASSERT_TRUE(t.contains("start"));
+  const Label c = t.at(caption);
+  // The caption's capitals (a font size above the baseline) clear every other text's descenders
+  // (a quarter of its size below its baseline).
+  for (const auto& [text, l] : t) {
+    if (text == caption) continue;
+    EXPECT_LT(l.y + 0.25 * l.size, c.y - c.size) << text;
+  }
+  const std::string view = svg.substr(svg.find("viewBox=\"") + 9);
+  double x0 = 0, y0 = 0, w = 0, h = 0;
+  ASSERT_EQ(std::sscanf(view.c_str(), "%lf %lf %lf %lf", &x0, &y0, &w, &h), 4);
+  EXPECT_LT(c.y + 0.25 * c.size, h);
+  EXPECT_EQ(route_to_svg(model::Nest{}, path, RoutePictureOptions{}).find(caption), std::string::npos);
+  EXPECT_EQ(route_to_html(model::Nest{}, path, {}, o).find(caption), std::string::npos);
 }
 
 }  // namespace

@@ -21,7 +21,14 @@ struct RoutePictureOptions {
   // Drawn paths the program does not cut (open contours), each with what to say of it: dashed
   // orange, so that a part missing from the program shows (its holes would look like parts).
   std::vector<std::pair<geometry::Contour, std::string>> not_cut;
+  // One line of figures written under the picture (report_caption()), so that a standalone SVG
+  // says what it shows; empty: none (the HTML page has its table).
+  std::string caption;
 };
+
+// The caption of a standalone picture: material, technique, pierces, lengths, T_cut and how good
+// the route is, from an optimize report.
+std::string report_caption(const nlohmann::json& report);
 
 // The report's compensation.at_risk_segments, for RoutePictureOptions (empty when absent).
 std::vector<std::size_t> compensation_at_risk(const nlohmann::json& report);

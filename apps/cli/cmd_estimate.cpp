@@ -14,6 +14,7 @@
 #include <cutroute/cost/machine_profile.hpp>
 #include <cutroute/cost/motion_model.hpp>
 #include <cutroute/cost/speed_table.hpp>
+#include <cutroute/io/estimate_json.hpp>
 #include <cutroute/nc/dialect.hpp>
 #include <cutroute/nc/gcode_reader.hpp>
 #include <cutroute/nc/post_dialect.hpp>
@@ -47,20 +48,6 @@ struct EstimateOptions {
 Result<nc::Dialect> dialect_of(const cost::MachineProfile& p, const std::string& override_name) {
   if (!override_name.empty()) return nc::reader_dialect_named(override_name, "unknown --dialect");
   return cost::profile_reader_dialect(p);
-}
-
-cost::ProgramTotals totals_of(const nc::ProgramStats& s) {
-  cost::ProgramTotals t;
-  t.cut_length_mm = s.cut_length_mm;
-  t.rapid_length_mm = s.rapid_length_mm;
-  t.feed_off_length_mm = s.feed_off_length_mm;
-  t.feed_off_time_s = s.feed_off_time_s;
-  t.feed_off_length_no_feed_mm = s.feed_off_length_no_feed_mm;
-  t.dwell_s = s.dwell_s;
-  t.pierce_dwells = s.pierce_dwells;
-  t.pierces = s.pierces;
-  t.frames = s.frames;
-  return t;
 }
 
 // The cutting moves as the motion model sees them: a move starts from rest after a pierce or
@@ -151,7 +138,7 @@ int run_estimate(const EstimateOptions& o) {
   if (stats->suppressed_warnings > 0)
     std::cerr << "cutroute: " << o.program << ": " << stats->suppressed_warnings
               << " more warning(s) not shown\n";
-  const auto e = cost::estimate_time(totals_of(*stats), *conditions);
+  const auto e = cost::estimate_time(cost::program_totals(*stats), *conditions);
   const bool measured = conditions->speed.measured;
   std::optional<cost::MotionTime> motion;
   if (lim.accel_m_s2) {
@@ -182,14 +169,7 @@ int run_estimate(const EstimateOptions& o) {
     j["t_cut_s"] = e.t_cut_s;
     j["cost"] = e.cost;
     j["cost_unit"] = e.cost_unit;
-    j["breakdown"] = {{"cutting_s", e.cutting_s},
-                      {"rapid_s", e.rapid_s},
-                      {"pierce_s", e.pierce_s},
-                      {"dwell_s", e.dwell_s},
-                      {"pierce_replaced_s", e.pierce_replaced_s},
-                      {"feed_off_s", e.feed_off_s},
-                      {"head_s", e.head_s},
-                      {"total_s", e.total_s}};
+    j["breakdown"] = io::breakdown_json(e);
     j["dwells"] = stats->dwells;
     j["cut_time_at_programmed_feed_s"] = stats->cut_time_at_feed_s;
     if (motion) {

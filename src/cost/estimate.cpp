@@ -117,4 +117,18 @@ TimeEstimate estimate_time(const ProgramTotals& p, const CuttingConditions& c) {
   return e;
 }
 
+ProgramTotals program_totals(const nc::ProgramStats& s) {
+  ProgramTotals t;
+  t.cut_length_mm = s.cut_length_mm;
+  t.rapid_length_mm = s.rapid_length_mm;
+  t.feed_off_length_mm = s.feed_off_length_mm;
+  t.feed_off_time_s = s.feed_off_time_s;
+  t.feed_off_length_no_feed_mm = s.feed_off_length_no_feed_mm;
+  t.dwell_s = s.dwell_s;
+  t.pierce_dwells = s.pierce_dwells;
+  t.pierces = s.pierces;
+  t.frames = s.frames;
+  return t;
+}
+
 }  // namespace cutroute::cost

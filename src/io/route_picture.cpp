@@ -322,11 +322,11 @@ std::vector<std::pair<std::string, std::string>> report_summary(const nlohmann::
   rows.emplace_back("working speed V_on*(n)", num("v_on_m_s", 4) + " m/s (" + str("v_on_regime") + ")");
   rows.emplace_back("T_cut, eq. 10", num("t_cut_s", 2) + " s");
   rows.emplace_back("T_cut at the set speed, eq. 1", num("t_cut_const_speed_s", 2) + " s");
-  if (r.contains("breakdown_s")) {
-    const auto& b = r["breakdown_s"];
-    rows.emplace_back("cutting / rapid / pierce", format_fixed(b.value("cutting", 0.0), 1) + " / " +
-                                                      format_fixed(b.value("rapid", 0.0), 1) + " / " +
-                                                      format_fixed(b.value("pierce", 0.0), 1) + " s");
+  if (r.contains("breakdown")) {
+    const auto& b = r["breakdown"];
+    rows.emplace_back("cutting / rapid / pierce", format_fixed(b.value("cutting_s", 0.0), 1) + " / " +
+                                                      format_fixed(b.value("rapid_s", 0.0), 1) + " / " +
+                                                      format_fixed(b.value("pierce_s", 0.0), 1) + " s");
   }
   rows.emplace_back("lead-in", str("lead_in"));
   if (r.contains("compensation") && r["compensation"].value("at_risk", 0) > 0)

@@ -262,6 +262,12 @@ TEST(CliEstimate, StartPointAsOptimizeUsedIt) {
   EXPECT_NEAR(at["rapid_length_mm"].get<double>(), r["rapid_length_mm"].get<double>(), 1e-6);
   EXPECT_NEAR(at["t_cut_s"].get<double>(), r["t_cut_s"].get<double>(), 1e-9);
   EXPECT_NEAR(at["breakdown"]["total_s"].get<double>(), r["total_s"].get<double>(), 1e-9);
+  // The report's breakdown is the same object as the estimate's, key for key.
+  ASSERT_EQ(r["breakdown"].size(), at["breakdown"].size());
+  for (const auto& [key, value] : at["breakdown"].items()) {
+    ASSERT_TRUE(r["breakdown"].contains(key)) << key;
+    EXPECT_NEAR(r["breakdown"][key].get<double>(), value.get<double>(), 1e-9) << key;
+  }
   // From the origin the first rapid is longer.
   EXPECT_GT(cli_json("estimate " + prog + " --json")["rapid_length_mm"].get<double>(), r["rapid_length_mm"].get<double>() + 100);
   EXPECT_EQ(cli("estimate " + prog + " --start 1,x").exit_code, 1);

@@ -9,6 +9,7 @@
 #include <cutroute/core/result.hpp>
 #include <cutroute/cost/machine_profile.hpp>
 #include <cutroute/cost/speed_table.hpp>
+#include <cutroute/nc/gcode_reader.hpp>
 
 namespace cutroute::cost {
 
@@ -71,5 +72,8 @@ struct TimeEstimate {
 };
 
 TimeEstimate estimate_time(const ProgramTotals& program, const CuttingConditions& conditions);
+
+// The totals of a program as the G-code reader measured them (what `estimate` prices).
+ProgramTotals program_totals(const nc::ProgramStats& s);
 
 }  // namespace cutroute::cost

@@ -37,6 +37,7 @@ struct Opts {
   std::string start;
   double kerf = -1;
   std::string kerf_mode = "controller";
+  bool keep_compensation = false;
   std::string dialect;  // empty: the machine profile's
   double entry_step = 0;
   bool quiet = false;
@@ -80,6 +81,7 @@ Result<pipeline::OptimizeOptions> optimize_options(const Opts& o) {
                  : o.kerf_mode == "cam" ? nc::KerfMode::cam
                                         : nc::KerfMode::controller;
   po.allow_kerf_overlap = o.allow_kerf_overlap;
+  po.offset_refused_cuts = !o.keep_compensation;
   po.dialect = o.dialect;
   po.entry_step_mm = o.entry_step;
   po.allow_crossing = o.allow_crossing;
@@ -147,7 +149,7 @@ std::string printed_warnings(const std::string& nest, const std::vector<Diagnost
   std::string out;
   for (Diagnostic d : route) {
     if (d.code != "tip_up.time_limit" && d.code != "refine.time_limit" && d.code != "technique.time_limit" && d.code != "run.interrupted" &&
-        d.code != "kerf.controller_detail" &&
+        d.code != "kerf.controller_detail" && d.code != "kerf.offset_written" &&
         d.code != "tabs.resumed_on_path" && d.code != "tabs.part_without_skeleton_edge" && d.code != "tabs.on_a_neighbours_cut")
       continue;
     if (d.file.empty()) d.file = nest;
@@ -350,6 +352,7 @@ std::vector<std::string> idle_options(const CLI::App& app, const Opts& o) {
   idle({"--tip-up-weight", "--tip-up-margin"}, o.rules.avoid_tip_up, "without --avoid-tip-up");
   idle({"--sheet-weight", "--sheet-band"}, !o.sheet_clamp.empty(), "without --sheet-clamp");
   idle({"--allow-kerf-overlap"}, o.kerf_mode == "cam", "without --kerf-mode cam");
+  idle({"--keep-compensation"}, o.kerf_mode == "controller", "without --kerf-mode controller");
   idle({"--kerf"}, o.kerf_mode != "none", "with --kerf-mode none");
   return out;
 }
@@ -415,6 +418,9 @@ void add_optimize(CLI::App& root, Commands& out) {
                   "controller: G41/G42, the machine offsets the drawn contours; cam: the program offsets the "
                   "toolpath by kerf/2 to the scrap side (arcs stay G2/G3, no G41/G42); none: the drawn contours")
       ->check(CLI::IsMember({"controller", "cam", "none"}));
+  app->add_flag("--keep-compensation", o->keep_compensation,
+                "With --kerf-mode controller: keep G41/G42 on cuts whose drawing has details finer than the kerf, which the "
+                "controller refuses (LinuxCNC stops there); by default they are written on their kerf offset without it");
   app->add_option("--dialect", o->dialect,
                   "Post-processor: generic, plasma-thc, or a dialect JSON file (default: the machine profile's dialect; "
                   "generic for the built-in profile)");

@@ -13,6 +13,8 @@
 #include <cutroute/geometry/segment_set.hpp>
 #include <cutroute/geometry/spatial_index.hpp>
 
+#include "path_ops.hpp"
+
 namespace cutroute::model {
 namespace {
 
@@ -160,7 +162,7 @@ std::optional<Vec2> missed_point(const Contour& drawn, const geometry::SegmentSe
 // drawing, the offset is tried again without the outline's tiny details (its known weak spot:
 // fitted splines) and the better result kept; warnings say by how much the cut deviates.
 geometry::OffsetResult offset_with_retries(const NestContour& c, const std::string& label, double d, double kerf_mm,
-                                           Diagnostics& diagnostics) {
+                                           Diagnostics& diagnostics, double* simplified_by = nullptr) {
   const double half = kerf_mm / 2;
   geometry::OffsetResult r = geometry::offset_contour(c.source.contour, d);
   const geometry::SegmentSet drawn_set = geometry::make_segment_set(c.source.contour);
@@ -177,6 +179,7 @@ geometry::OffsetResult offset_with_retries(const NestContour& c, const std::stri
     if (!lost && g.depth >= gouge.depth) continue;
     r = std::move(again);
     gouge = g;
+    if (simplified_by) *simplified_by = deviation(plain, c.source.contour);
     diagnostics.push_back(diagnostic(Severity::warning, "kerf.simplified",
                                      label + ": details shorter than " + format_fixed(chord, 3) + " mm " +
                                          (step == 0 ? "straightened" : "left out") +
@@ -293,6 +296,21 @@ KerfNest offset_for_kerf(const Nest& drawn, double kerf_mm) {
     out.diagnostics.push_back(std::move(d));
   }
   return out;
+}
+
+std::optional<geometry::Contour> kerf_offset_cut(const Nest& nest, ContourId id, double kerf_mm, geometry::Vec2 near,
+                                                 bool clockwise, double extra_mm, double* simplified_by) {
+  const NestContour& c = nest.contours[id];
+  if (!(kerf_mm > 0) || c.role == ContourRole::sheet) return std::nullopt;
+  Diagnostics said;  // the whole-nest offset reports them; here only the path is wanted
+  if (simplified_by) *simplified_by = 0.0;
+  geometry::OffsetResult r =
+      offset_with_retries(c, name(nest, id), scrap_side_distance(c, kerf_mm / 2), kerf_mm, said, simplified_by);
+  if (r.contours.size() != 1) return std::nullopt;
+  geometry::Contour loop = std::move(r.contours.front());
+  if ((geometry::orientation(loop) == geometry::Orientation::cw) != clockwise) loop = geometry::reversed(loop);
+  const double s0 = geometry::closest_point(loop, near).length_along;
+  return detail::sub_path(loop, s0, geometry::length(loop) + std::max(0.0, extra_mm));
 }
 
 }  // namespace cutroute::model

@@ -36,6 +36,7 @@
 #include <cutroute/nc/post_dialect.hpp>
 #include <cutroute/solve/solve.hpp>
 
+#include "compensation_fallback.hpp"
 #include "refine.hpp"
 #include "shop_rules_steps.hpp"
 
@@ -179,6 +180,7 @@ struct Evaluated {
   double objective = 0;  // t_cut_s (time) or cost (cost form)
   nlohmann::json rules;  // shop rules applied to the toolpath (detours, tabs)
   int detours_left = 0;  // shop rules: rapids over freed parts left straight because the run stopped
+  OffsetCuts offset_written;  // controller kerf: cuts written on their offset (compensation_fallback.hpp)
 };
 
 // Is program a better than program b? The lower objective, but first the fewer rapids left over
@@ -198,6 +200,11 @@ nlohmann::json lead_json(const std::string& lead_in, const Evaluated& ev) {
 
 // `detour_stop`: where the shop rules' tip-up detour searches stop (see RunLimit). `planner`:
 // the nest's entry planner (the shop rules plan lead-ins after micro-joint gaps with it).
+// The coordinate step of a dialect's programs [mm].
+double program_resolution_mm(const nc::PostDialect& d) {
+  return std::pow(10.0, -d.decimals) * (d.units == "in" ? units::kMmPerInch : 1.0);
+}
+
 Evaluated evaluate(const model::Nest& nest, const model::EntryPlanner& planner, const std::vector<model::EntryCandidate>& seq,
                    const Setup& s, const OptimizeOptions& o, const StopToken& detour_stop) {
   std::vector<const model::EntryCandidate*> ptrs;
@@ -217,6 +224,9 @@ Evaluated evaluate(const model::Nest& nest, const model::EntryPlanner& planner, 
                                          o.kerf_mode == nc::KerfMode::controller ? s.entries.kerf_mm : 0.0});
     if (ev.rules.contains("tip_up_program")) ev.detours_left = ev.rules["tip_up_program"]["unavoidable_left_at_time_limit"].get<int>();
   }
+  if (o.kerf_mode == nc::KerfMode::controller && o.offset_refused_cuts)
+    ev.offset_written = offset_refused_blocks(ev.toolpath, nest, s.entries.kerf_mm, nc::beam_switches_under_compensation(s.dialect),
+                                              program_resolution_mm(s.dialect));
   ev.program = nc::write_gcode(ev.toolpath, s.dialect, nc::GcodeWriteOptions{o.title, true});
   ev.frames = nc::count_frames(ev.program.text);
   cost::ProgramTotals totals;
@@ -896,8 +906,28 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   if (o.kerf_mode == nc::KerfMode::controller) {
     const nc::CompensationHazards h =
         nc::compensation_hazards(best_ev.toolpath, s.entries.kerf_mm / 2, nc::beam_switches_under_compensation(s.dialect),
-                                 std::pow(10.0, -s.dialect.decimals) * (s.dialect.units == "in" ? units::kMmPerInch : 1.0));
-    compensation = {{"blocks", h.compensated}, {"at_risk", h.at.size()}, {"at_risk_segments", nlohmann::json::array()}};
+                                 program_resolution_mm(s.dialect));
+    compensation = {{"blocks", h.compensated}, {"at_risk", h.at.size()}, {"at_risk_segments", nlohmann::json::array()},
+                    {"written_on_offset", best_ev.offset_written.labels.size()}};
+    const auto& written = best_ev.offset_written.labels;
+    if (!written.empty()) {
+      compensation["offset_deviation_mm"] = best_ev.offset_written.deviation_mm;
+      constexpr std::size_t kNamed = 5;
+      std::string which;
+      for (std::size_t i = 0; i < std::min(kNamed, written.size()); ++i) which += (which.empty() ? "" : ", ") + written[i];
+      const double dev = best_ev.offset_written.deviation_mm;
+      Diagnostic w = make_warning(
+          "cutter compensation: " + std::to_string(written.size()) +
+          " cut(s) with details finer than the kerf, which the controller's offset cannot follow, are written on their kerf "
+          "offset (" + format_fixed(s.entries.kerf_mm, 3) + " mm) without G41/G42 (" + which + (written.size() > kNamed ? ", ..." : "") +
+          "): a kerf changed in the controller's tool table does not apply to them" +
+          (dev > 0 ? "; where details were straightened for the offset, the path deviates by up to " + format_fixed(dev, 3) +
+                         " mm from kerf/2"
+                   : std::string()) +
+          " (--keep-compensation keeps them compensated)");
+      w.code = "kerf.offset_written";
+      result.diagnostics.push_back(std::move(w));
+    }
     for (const std::size_t k : h.at) compensation["at_risk_segments"].push_back(k + 1);  // as the picture numbers them
     if (!h.at.empty()) {
       constexpr std::size_t kNamed = 5;

@@ -1,1 +1,1 @@
-set(CUTROUTE_PIPELINE_SOURCES optimize.cpp refine.cpp)
+set(CUTROUTE_PIPELINE_SOURCES compensation_fallback.cpp optimize.cpp refine.cpp)

@@ -145,7 +145,9 @@ TEST(OptimizeCli, WarnsWhereControllerCompensationCannotFollowTheDrawing) {
   const auto& comp = panel.report["compensation"];
   const int at_risk = comp["at_risk"].get<int>();
   EXPECT_GT(at_risk, 0);
-  EXPECT_EQ(comp["blocks"].get<int>(), panel.report["pierces"].get<int>());  // one G41 .. G40 per cut here
+  // One G41 .. G40 per cut here, but for the cuts written on their offset instead (the others'
+  // details are narrower than the kerf: no offset path exists, and they stay compensated).
+  EXPECT_EQ(comp["blocks"].get<int>() + comp["written_on_offset"].get<int>(), panel.report["pierces"].get<int>());
   EXPECT_EQ(static_cast<int>(comp["at_risk_segments"].size()), at_risk);
   const std::string picture = read_text(svg);
   int rings = 0;
@@ -737,6 +739,45 @@ TEST(OptimizeCli, LeadFallbacksAreTheWrittenPrograms) {
   fs::remove_all(dir);
 }
 
+// Cuts that controller compensation would refuse (details finer than the kerf: LinuxCNC, with the
+// kerf as its tool, stops the program there) are written on their kerf offset without G41/G42, and
+// the re-parsed program cuts each at kerf/2 on its scrap side wherever the tool fits, with leads and
+// bridges in scrap. The jewelry box's 3 (in chains of parts) all go, and LinuxCNC then reads the
+// whole program; of the grille's 12 slots, one whose lead cannot be moved clear of the part stays
+// compensated (and warned of).
+TEST(OptimizeCli, CutsTheCompensationWouldRefuseAreWrittenOnTheirOffset) {
+  const auto dir = temp_dir("comp-offset");
+  const bool rs274 = std::system("command -v rs274 >/dev/null 2>&1") == 0;
+  for (const char* name : {"bryanduxbury_jewelrybox_bottom_and_struts_panelized", "d2g_Lueftergitter_R14"}) {
+    SCOPED_TRACE(name);
+    const std::string dxf = shared(std::string("data/dxf/") + name + ".dxf");
+    const OptRun kept = optimize(dxf, dir, "--work-limit 0.3 --threads 1 --keep-compensation", "0");
+    ASSERT_EQ(kept.cmd.exit_code, 0) << kept.cmd.err;
+    const int at_risk = kept.report["compensation"]["at_risk"].get<int>();
+    EXPECT_GT(at_risk, 0);
+    EXPECT_EQ(kept.report["compensation"]["written_on_offset"], 0);
+    if (rs274) {
+      EXPECT_NE(run_rs274((dir / "out.ngc").string(), kept.report["kerf_mm"].get<double>()).exit_code, 0);
+    }
+    const OptRun run = optimize(dxf, dir, "--work-limit 0.3 --threads 1", "0");
+    ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
+    const auto& comp = run.report["compensation"];
+    const int left = comp["at_risk"].get<int>(), written = comp["written_on_offset"].get<int>();
+    EXPECT_EQ(left + written, at_risk);
+    EXPECT_LE(4 * left, at_risk);
+    int said = 0;
+    for (const auto& d : run.report["diagnostics"]) said += d.value("code", "") == "kerf.offset_written";
+    EXPECT_EQ(said, 1);
+    EXPECT_NE(run.cmd.err.find("without G41/G42"), std::string::npos) << run.cmd.err;
+    if (rs274 && left == 0) {
+      const auto r = run_rs274((dir / "out.ngc").string(), run.report["kerf_mm"].get<double>());
+      EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+    }
+    expect_admissible(dxf, run);
+  }
+  fs::remove_all(dir);
+}
+
 // An option the rest of the command line leaves without effect is said (the run goes on).
 TEST(OptimizeCli, OptionsWithoutEffectAreSaid) {
   const auto dir = temp_dir("idle");
@@ -839,6 +880,8 @@ TEST_P(CorpusOptimize, ChainProgramsWithTabsAreAdmissible) {
     opt.clearance_mm = 1.0;
     opt.tabs = 2;
     opt.tab_width_mm = 1.0;
+    // Holes the compensation would refuse are written on their kerf offset (d2g_DRAAK).
+    if (run.report["compensation"].value("written_on_offset", 0) > 0) opt.uncompensated_offset_mm = run.report["kerf_mm"].get<double>() / 2;
     const auto check = check_program(loaded->nest, run.program, opt);
     for (const auto& f : check.failures) ADD_FAILURE() << f;
     const auto& tabs = run.report["rules"]["tabs"];

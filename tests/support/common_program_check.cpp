@@ -1,8 +1,9 @@
 #include "support/common_program_check.hpp"
 
 #include <algorithm>
-#include <iterator>
 #include <cmath>
+#include <iterator>
+#include <numbers>
 #include <numeric>
 
 #include <cutroute/geometry/contour.hpp>
@@ -27,7 +28,7 @@ struct UnionFind {
 }  // namespace
 
 CommonProgramCheck check_common_program(const model::Nest& nest, const std::string& gcode, double on_mm,
-                                        bool group_rule, double tab_width_mm) {
+                                        bool group_rule, double tab_width_mm, double fit_radius_mm) {
   CommonProgramCheck out;
   out.probe = probe_gcode(gcode);
   const auto& moves = out.probe.moves;
@@ -150,6 +151,17 @@ CommonProgramCheck check_common_program(const model::Nest& nest, const std::stri
         done[k] = std::max(done[k], first);
         open_run = false;
         continue;
+      }
+      // A tool of radius fit_radius_mm cannot reach q from scrap (32 directions; a disc clear of
+      // every contour and out of material): no toolpath on the kerf offset passes there.
+      if (fit_radius_mm > 0) {
+        bool fits = false;
+        for (int a = 0; a < 32 && !fits; ++a) {
+          const double t = 2 * std::numbers::pi * a / 32;
+          const Vec2 c = q + Vec2{std::cos(t), std::sin(t)} * fit_radius_mm;
+          fits = !in_material(c) && near_parts(c, fit_radius_mm - 1e-4).empty();
+        }
+        if (!fits) continue;
       }
       if (!tabbed || near_parts(q, tab_width_mm / 2).size() > 1) {
         out.failures.push_back("contour " + std::to_string(k + 1) + ": boundary point (" + std::to_string(q.x) + ", " +

@@ -40,7 +40,9 @@ struct CommonProgramCheck {
 // on a common line or a hole); the boundary is then sampled every 0.02 mm and the uncut stretches
 // are measured (`uncut`), an uncut stretch elsewhere is a failure. Its parts count as done when
 // the rest of their boundary is.
+// `fit_radius_mm` > 0: a boundary point that a disc of that radius cannot touch from scrap (a
+// feature narrower than the kerf, which a path on the kerf offset passes by) need not be cut.
 CommonProgramCheck check_common_program(const model::Nest& nest, const std::string& gcode, double on_mm,
-                                        bool group_rule = true, double tab_width_mm = 0.0);
+                                        bool group_rule = true, double tab_width_mm = 0.0, double fit_radius_mm = 0.0);
 
 }  // namespace cutroute::test

@@ -16,6 +16,7 @@ ProbeResult probe_gcode(const std::string& program) {
   int lineno = 0;
   double x = 0, y = 0, scale = 1;
   bool beam = false;
+  bool compensated = false;  // G41/G42 until G40
   int motion = 0;  // 0,1,2,3
   const double pi = std::acos(-1.0);
   while (std::getline(in, raw)) {
@@ -53,6 +54,8 @@ ProbeResult probe_gcode(const std::string& program) {
       if (g == 0 || g == 10 || g == 20 || g == 30) motion = g / 10;
       if (g == 200) scale = 25.4;
       if (g == 210) scale = 1;
+      if (g == 410 || g == 420) compensated = true;
+      if (g == 400) compensated = false;
     }
     for (int m : ms) {
       if ((m == 3 || m == 4) && !beam) {
@@ -71,6 +74,7 @@ ProbeResult probe_gcode(const std::string& program) {
     m.y1 = w.count('Y') ? w['Y'] * scale : y;
     m.rapid = motion == 0;
     m.beam_on = beam;
+    m.compensated = compensated;
     if (motion == 2 || motion == 3) {
       m.arc = motion == 3 ? 1 : -1;
       if (w.count('R')) {

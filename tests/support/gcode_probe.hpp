@@ -17,6 +17,7 @@ struct ProbeMove {
   int arc = 0;                            // 0 line, +1 CCW (G3), -1 CW (G2)
   double length = 0;                      // [mm]
   int line = 0;                           // 1-based line in the program
+  bool compensated = false;               // under G41/G42 (controller kerf compensation)
 };
 
 struct ProbeResult {

@@ -65,13 +65,19 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
   // Which contours does a move lie on? All whose distance stays within the tolerance (of the
   // kerf offset, on the contour's scrap side) at five points along it (parts placed edge to edge
   // share a stretch: a move there lies on both).
-  const double off = opt.kerf_offset_mm;
-  auto on_scrap_side = [&](int k, Vec2 q) {
+  // The offset of a cut move from its drawn contour: kerf_offset_mm, or uncompensated_offset_mm
+  // for a move outside G41/G42 in a program that writes some cuts on their offset.
+  const double off_max = std::max(opt.kerf_offset_mm, opt.uncompensated_offset_mm);
+  auto off_of = [&](const ProbeMove& m) {
+    return !m.compensated && opt.uncompensated_offset_mm > 0 ? opt.uncompensated_offset_mm : opt.kerf_offset_mm;
+  };
+  auto on_scrap_side = [&](int k, Vec2 q, double off) {
     if (off <= 0) return true;
     const bool inside = geometry::locate(sets[static_cast<std::size_t>(k)], q, 1e-9) == geometry::Location::inside;
     return cut[static_cast<std::size_t>(k)]->role == model::ContourRole::hole ? inside : !inside;
   };
   auto contours_of = [&](const ProbeMove& m) {
+    const double off = off_of(m);
     std::vector<int> on;
     Vec2 mid;
     probe_point(m, 0.5, mid.x, mid.y);
@@ -82,7 +88,7 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
       for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
         Vec2 q;
         probe_point(m, t, q.x, q.y);
-        if (std::abs(dist_to(k, q, off + 2 * opt.on_contour_mm) - off) > opt.on_contour_mm || !on_scrap_side(k, q)) {
+        if (std::abs(dist_to(k, q, off + 2 * opt.on_contour_mm) - off) > opt.on_contour_mm || !on_scrap_side(k, q, off)) {
           all = false;
           break;
         }
@@ -106,6 +112,7 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
   // Group the beam-on moves into runs (pierce to beam off), then give each move the contour its
   // run cuts when it lies on it (a shared edge belongs to the part being cut), else the lowest.
   std::vector<double> covered(cut.size(), 0.0);
+  std::vector<char> offset_cut(cut.size(), 0);  // cut on its offset outside G41/G42 (uncompensated_offset_mm)
   out.arc_moves.assign(cut.size(), 0);
   std::vector<std::set<int>> runs_of(cut.size());
   bool beam = false;
@@ -124,9 +131,10 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
       const Vec2 pierce{m.x0, m.y0};
       // The last-resort fallback pierces on the contour itself (said in the diagnostics).
       bool on_a_contour = false;
-      index.query(geometry::Box{pierce.x, pierce.y, pierce.x, pierce.y}.inflated(off + opt.on_contour_mm), hits);
-      for (auto h : hits)
-        on_a_contour |= std::abs(dist_to(static_cast<int>(h), pierce, off + 2 * opt.on_contour_mm) - off) < opt.on_contour_mm;
+      index.query(geometry::Box{pierce.x, pierce.y, pierce.x, pierce.y}.inflated(off_max + opt.on_contour_mm), hits);
+      for (const double off : {opt.kerf_offset_mm, opt.uncompensated_offset_mm})
+        for (auto h : hits)
+          on_a_contour |= std::abs(dist_to(static_cast<int>(h), pierce, off + 2 * opt.on_contour_mm) - off) < opt.on_contour_mm;
       if (!on_a_contour && in_material(pierce)) {
         out.failures.push_back(at(m) + ": pierce at (" + format_fixed(m.x0, 3) + ", " + format_fixed(m.y0, 3) +
                                ") inside a part");
@@ -139,6 +147,7 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
     run_moves[r][i].second = k;
     if (k < 0) return;
     covered[static_cast<std::size_t>(k)] += run_moves[r][i].first->length;
+    if (off_of(*run_moves[r][i].first) != opt.kerf_offset_mm) offset_cut[static_cast<std::size_t>(k)] = 1;
     out.arc_moves[static_cast<std::size_t>(k)] += run_moves[r][i].first->arc != 0;
     runs_of[static_cast<std::size_t>(k)].insert(static_cast<int>(r));
   };
@@ -222,6 +231,7 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
     std::vector<const ProbeMove*> run_cut;
     for (std::size_t i = 0; i < run_moves[r].size(); ++i)
       if (!run_on[r][i].empty()) run_cut.push_back(run_moves[r][i].first);
+    const double off = off_max;
     const MoveIndex by_run(run_cut, opt.on_contour_mm + off);
     int k = -1;
     int most = -1;
@@ -242,7 +252,7 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
 
   // With a kerf offset: the run passes within `off` of every drawn point where the tool fits, and
   // is no longer than the offset curve can be.
-  auto check_offset_cover = [&](std::size_t k, const std::string& name, double cut_len, double len) {
+  auto check_offset_cover = [&](std::size_t k, const std::string& name, double cut_len, double len, double off) {
     const bool hole = cut[k]->role == model::ContourRole::hole;
     const auto runs = static_cast<double>(runs_of[k].size());
     const double most = len + (hole ? -1 : 1) * 2 * std::numbers::pi * off + runs * opt.max_overcut_mm + 1e-3;
@@ -264,7 +274,7 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
         const Vec2 n = (hole == ccw) ? left : -left;
         const Vec2 centre = q + n * off;
         // At a micro-zigzag of a fitted spline the local normal can point into the material.
-        bool fits = on_scrap_side(static_cast<int>(k), centre);
+        bool fits = on_scrap_side(static_cast<int>(k), centre, off);
         index.query(geometry::Box{centre.x, centre.y, centre.x, centre.y}.inflated(off), hits);
         for (auto h : hits) fits = fits && dist_to(static_cast<int>(h), centre, off) > off - 1e-4;
         if (!fits) continue;
@@ -318,8 +328,8 @@ ProgramCheck check_program(const model::Nest& nest, const std::string& gcode, co
     out.runs_per_contour[k] = static_cast<int>(runs);
     out.split_contours += pieces;
     const double overcuts = pieces ? static_cast<double>(runs - want_runs + 1) * opt.max_overcut_mm : opt.max_overcut_mm;
-    if (off > 0) {
-      check_offset_cover(k, name, covered[k], len);
+    if (const double off = offset_cut[k] ? opt.uncompensated_offset_mm : opt.kerf_offset_mm; off > 0) {
+      check_offset_cover(k, name, covered[k], len, off);
     } else {
       // Every vertex is rounded to the dialect's resolution (1 µm), so a contour's cut length may
       // differ from the drawing's by a few µm; a real gap would be a tenth of a kerf or more.

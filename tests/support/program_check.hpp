@@ -19,6 +19,10 @@ struct ProgramCheckOptions {
   // (± on_contour_mm) from the drawn contour, on its scrap side (outside an outer contour, inside
   // a hole). 0: on the drawn contour.
   double kerf_offset_mm = 0.0;
+  // --kerf-mode controller with cuts written on their offset (details finer than the kerf): cut
+  // moves made outside G41/G42 lie this far from the drawn contour, as with kerf_offset_mm; those
+  // under G41/G42 on it. 0: every cut move as kerf_offset_mm says.
+  double uncompensated_offset_mm = 0.0;
   // Micro-joints: every outer contour is cut in tabs + 1 runs and left uncut over tabs gaps of
   // tab_width_mm in total tabs * tab_width_mm (0: no tabs, each contour in one run, whole); one
   // shorter than 2 · tabs · tab_width_mm is cut whole.

@@ -1,6 +1,8 @@
 // Kerf offset of a whole nest (--kerf-mode cam): the path the torch centre follows per contour.
 #pragma once
 
+#include <optional>
+
 #include <cutroute/core/diagnostic.hpp>
 #include <cutroute/model/nest.hpp>
 
@@ -38,5 +40,13 @@ struct KerfNest {
 // returns the nest unchanged. Overlaps: at most 100 pairs are listed, one more diagnostic counts
 // the rest. Cost: one offset per contour, then one boundary test per pair of overlapping boxes.
 KerfNest offset_for_kerf(const Nest& nest, double kerf_mm);
+
+// The path the torch centre follows to cut one contour on its kerf offset, as offset_for_kerf()
+// offsets it: from the offset's point nearest `near`, clockwise or not, one loop plus `extra_mm`
+// (an overcut). nullopt when the offset is not one loop (collapsed, split or failed).
+// `simplified_by`: set to how far the drawing was simplified for the offset (kerf.simplified: the
+// path deviates by up to that much from kerf/2 there), 0 when it was not.
+std::optional<geometry::Contour> kerf_offset_cut(const Nest& nest, ContourId id, double kerf_mm, geometry::Vec2 near,
+                                                 bool clockwise, double extra_mm, double* simplified_by = nullptr);
 
 }  // namespace cutroute::model

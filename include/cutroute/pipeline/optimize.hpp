@@ -50,6 +50,10 @@ struct OptimizeOptions {
   // kerf / 2 to the scrap side with exact arcs (model::offset_for_kerf), entries and leads planned
   // on it; none: the drawn contours as they are.
   nc::KerfMode kerf_mode = nc::KerfMode::controller;
+  // With kerf_mode controller: cuts whose drawing has details finer than the kerf, which the
+  // controller's compensation refuses, are written on their kerf offset without compensation
+  // (pipeline/compensation_fallback.hpp); false keeps them compensated (and warned of).
+  bool offset_refused_cuts = true;
   // With kerf_mode cam, toolpaths of neighbouring contours that meet (parts closer than the kerf,
   // code "kerf.overlap") are an input error by default: one cut would cut into the other part.
   // With this set they are cut anyway, with a warning per pair.

@@ -33,6 +33,11 @@ void add_inspect(CLI::App& root, Commands& out) {
       std::cerr << "cutroute: " << load_options.error().message << '\n';
       return kUsageError;
     }
+    if (!opts->svg.empty() && io::same_output(opts->svg, opts->nest)) {
+      std::cerr << "cutroute: error: the output " << opts->svg << " is the input drawing " << opts->nest
+                << ": an output never replaces its input\n";
+      return kUsageError;
+    }
     auto loaded = io::load_nest(opts->nest, *load_options);
     if (!loaded) return fail(loaded.error());
 

@@ -129,6 +129,12 @@ Result<std::vector<Outputs>> output_paths(const Opts& o) {
         if (!named[a].second.empty() && !named[b].second.empty() && io::same_output(named[a].second, named[b].second))
           return make_error(std::string(named[a].first) + " and " + named[b].first + " name the same output: " + named[b].second);
   }
+  // An output never replaces a drawing being read (a slip of -o nest.dxf lost the drawing).
+  for (const auto& out : outs)
+    for (const std::string* path : {&out.program, &out.report, &out.svg, &out.html})
+      for (const auto& nest : o.nests)
+        if (!path->empty() && io::same_output(*path, nest))
+          return make_error("the output " + *path + " is the input drawing " + nest + ": an output never replaces its input");
   return outs;
 }
 

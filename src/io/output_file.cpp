@@ -131,6 +131,9 @@ Status check_output(const std::string& path) {
 
 bool same_output(const std::string& a, const std::string& b) {
   if (a == "-" || b == "-") return a == b;
+  // Two names of one existing file (a hard link, a symbolic link) are one output.
+  std::error_code ee;
+  if (fs::equivalent(a, b, ee) && !ee) return true;
   std::error_code ea, eb;
   const fs::path pa = fs::weakly_canonical(fs::absolute(a, ea), ea), pb = fs::weakly_canonical(fs::absolute(b, eb), eb);
   return ea || eb ? a == b : pa == pb;

@@ -129,6 +129,32 @@ TEST(Cli, OutputsShareNoFileAndStdoutCarriesOnlyTheProgram) {
   fs::remove_all(dir);
 }
 
+// An output that names the drawing being read (itself, another spelling of its path, a symbolic or
+// a hard link to it) is refused before any work, and the drawing stays as it was.
+TEST(Cli, AnOutputNeverReplacesItsInput) {
+  const auto dir = temp_dir("input");
+  const std::string nest = (dir / "n.dxf").string();
+  ASSERT_EQ(run_command(cli_path() + " demo " + nest).exit_code, 0);
+  const std::string drawing = read_text(nest);
+  fs::create_symlink("n.dxf", dir / "soft.ngc");
+  fs::create_hard_link(nest, dir / "hard.ngc");
+  const std::string d = dir.string() + "/";
+  for (const std::string& outputs : {"-o " + nest, "-o " + d + "./n.dxf", "-o " + d + "p.ngc --report " + d + "../" +
+                                    dir.filename().string() + "/n.dxf", "-o " + d + "p.ngc --svg " + nest,
+                                    "-o " + d + "p.ngc --html " + nest, "-o " + d + "soft.ngc", "-o " + d + "hard.ngc",
+                                    "-o - --report " + nest}) {
+    const auto r = run_command(cli_path() + " optimize " + nest + " " + outputs + " --time-limit 0.2 -q");
+    EXPECT_EQ(r.exit_code, 1) << outputs;
+    EXPECT_NE(r.err.find("is the input drawing"), std::string::npos) << outputs << ": " << r.err;
+    EXPECT_EQ(read_text(nest), drawing) << outputs;
+  }
+  const auto r = run_command(cli_path() + " inspect " + nest + " --svg " + nest);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(read_text(nest), drawing);
+  EXPECT_FALSE(fs::exists(dir / "p.ngc"));
+  fs::remove_all(dir);
+}
+
 TEST(Cli, MissingFileIsAnInputErrorNamingTheFile) {
   auto r = run_command(cli_path() + " inspect /nonexistent/nest.dxf");
   EXPECT_EQ(r.exit_code, 2);

@@ -33,7 +33,8 @@ Status write_files_atomic(const std::vector<OutputFile>& files);
 // run instead of after it. "-", devices and FIFOs pass.
 Status check_output(const std::string& path);
 
-// Do two output paths name the same file ("-" only itself; "x.ngc" and "./x.ngc" one file)?
+// Do two paths name the same file ("-" only itself; "x.ngc", "./x.ngc", a symbolic or hard link
+// to it: one file)? For outputs against each other and against the inputs.
 bool same_output(const std::string& a, const std::string& b);
 
 // Reads a whole file; the error names the file.

@@ -73,9 +73,13 @@ Status move_into_place(const std::string& tmp, const fs::path& target, const std
   return Ok{};
 }
 
-void to_stdout(std::string_view content) {
+// A pipe into a full disk or a closed reader must fail the run: the program would be cut short
+// with a success exit.
+Status to_stdout(std::string_view content) {
   std::cout.write(content.data(), static_cast<std::streamsize>(content.size()));
   std::cout.flush();
+  if (!std::cout) return make_error("writing the output to standard output failed (disk full, or the reader closed?)", "-");
+  return Ok{};
 }
 
 }  // namespace
@@ -113,7 +117,8 @@ Status write_files_atomic(const std::vector<OutputFile>& files) {
     }
   }
   for (const auto& f : files)
-    if (f.path == "-") to_stdout(f.content);
+    if (f.path == "-")
+      if (Status st = to_stdout(f.content); !st) return st;
   return Ok{};
 }
 

@@ -126,6 +126,12 @@ TEST(Cli, OutputsShareNoFileAndStdoutCarriesOnlyTheProgram) {
   EXPECT_EQ(r.out.rfind("(cutroute n.dxf)", 0), 0u);
   EXPECT_EQ(r.out.substr(r.out.size() - 4), "M30\n");
   EXPECT_NE(r.err.find(" pierces, cut "), std::string::npos) << r.err;
+  // A program that cannot be written to stdout (a full disk behind the pipe) fails the run.
+  if (fs::exists("/dev/full")) {
+    r = run_command(cli_path() + " optimize " + nest + " -o - --time-limit 0.2 -q > /dev/full");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("writing the output to standard output failed"), std::string::npos) << r.err;
+  }
   fs::remove_all(dir);
 }
 

@@ -155,7 +155,7 @@ std::string printed_warnings(const std::string& nest, const std::vector<Diagnost
   std::string out;
   for (Diagnostic d : route) {
     if (d.code != "tip_up.time_limit" && d.code != "refine.time_limit" && d.code != "technique.time_limit" && d.code != "run.interrupted" &&
-        d.code != "kerf.controller_detail" && d.code != "kerf.offset_written" &&
+        d.code != "kerf.controller_detail" && d.code != "kerf.offset_written" && d.code != "nest.smaller_than_kerf" &&
         d.code != "tabs.resumed_on_path" && d.code != "tabs.part_without_skeleton_edge" && d.code != "tabs.on_a_neighbours_cut")
       continue;
     if (d.file.empty()) d.file = nest;
@@ -175,6 +175,12 @@ std::string printed_warnings(const std::string& nest, const std::vector<Diagnost
       out += "cutroute: " + format(make_warning(std::to_string(on_edge) + " contour(s) pierced on their edge, no lead-in fitting (" + named +
                                                     (on_edge > 5 ? ", ..." : "") + "): a mark on the part there",
                                                 nest)) + "\n";
+  }
+  // A unit the drawing names but cutroute cannot read scales the whole program: said always.
+  for (Diagnostic d : loading) {
+    if (d.code != "dxf.units_ignored") continue;
+    if (d.file.empty()) d.file = nest;
+    out += "cutroute: " + format(d) + "\n";
   }
   // Open contours are not cut, and a part drawn with a gap would be missing from the program:
   // one line for them all (drawings with text or hatching have many), naming the first few places

@@ -278,6 +278,7 @@ class Expander {
   }
   void warn_entity(const std::string& msg, const ScanEntity& e, const std::string& layer) {
     Diagnostic d = make_warning(msg, out_.file, e.line);
+    d.code = "dxf.entity_skipped";
     d.handle = e.handle;
     d.layer = layer;
     out_.diagnostics.push_back(std::move(d));
@@ -451,6 +452,8 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
     double sweep = 2 * kPi;
     double a1 = 0;
     if (e.type == "ARC") {
+      // Beyond a million degrees an angle is no drawing's (1e300 read as some arc of fmod's choosing).
+      if (!(std::abs(p.a1) <= 1e6 && std::abs(p.a2) <= 1e6)) return entity_error("ARC angle beyond ±1e6 degrees", top);
       a1 = p.a1 * kPi / 180;
       // Angles count modulo 360 (AutoCAD, ezdxf): -30..390 is the 60° arc 330..30. An end a whole
       // number of turns from the start (0..360, 0..0) is a full circle.
@@ -501,6 +504,7 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
     const Vec2 m = Vec2{-n.z * M.y, n.z * M.x} * (p.ratio / nl);  // (N x M).xy with M in the XY plane
     // Parameters count modulo 2π, as ARC angles do: an end a whole number of turns from the start
     // is the full ellipse.
+    if (!(std::abs(p.t0) <= 1e6 && std::abs(p.t1) <= 1e6)) return entity_error("ELLIPSE parameter beyond ±1e6", top);
     double span = std::fmod(p.t1 - p.t0, 2 * kPi);
     if (span < 0) span += 2 * kPi;
     const bool full = span <= 1e-9 || span >= 2 * kPi - 1e-9;
@@ -696,6 +700,7 @@ std::optional<Diagnostic> Expander::run() {
     out_.diagnostics.push_back(make_warning(std::to_string(n) + " " + type + " entit" + (n == 1 ? "y" : "ies") +
                                                 " skipped (not cut)",
                                             out_.file));
+    out_.diagnostics.back().code = "dxf.type_skipped";
   }
   return check_layer_filters();
 }
@@ -755,8 +760,11 @@ Result<DxfDrawing> read_dxf_string(const std::string& content, const std::string
   d.mm_per_unit = u.mm_per_unit;
   if (s.insunits && *s.insunits != 0 && !detail::insunits_mm(*s.insunits)) {
     d.diagnostics.push_back(make_warning("$INSUNITS " + std::to_string(*s.insunits) + " (" +
-                                             detail::insunits_name(*s.insunits) + ") is not supported; ignored",
+                                             detail::insunits_name(*s.insunits) + ") is not supported; ignored: its numbers are read as " +
+                                             (d.mm_per_unit == 1.0 ? std::string("millimetres") : d.units_in_file) + " (" +
+                                             d.units_source + "); --units gives the drawing's unit",
                                          name));
+    d.diagnostics.back().code = "dxf.units_ignored";
   }
   for (auto& w : s.warnings) d.diagnostics.push_back(std::move(w));
 

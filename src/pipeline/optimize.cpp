@@ -674,6 +674,21 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   OptimizeResult result;
   for (const auto& w : s.conditions.warnings) result.diagnostics.push_back(make_warning(w));
   for (const auto& d : s.diagnostics) result.diagnostics.push_back(d);
+  // A part no wider than the kerf is burnt away, not cut out (a drawing in the wrong unit, a stray
+  // dot of a few micrometres drawn closed): said, as no compensation or offset check sees it.
+  if (s.entries.kerf_mm > 0)
+    for (const auto& part : nest.parts) {
+      const auto& c = nest.contours[part.outer];
+      if (std::min(c.box.width(), c.box.height()) > s.entries.kerf_mm) continue;
+      Diagnostic w = make_warning("part " + std::to_string(&part - nest.parts.data() + 1) + " is " + format_fixed(c.box.width(), 3) +
+                                      " x " + format_fixed(c.box.height(), 3) + " mm, no wider than the kerf (" +
+                                      format_fixed(s.entries.kerf_mm, 3) + " mm): the beam burns it away",
+                                  loaded.file, c.source.line);
+      w.handle = c.source.handle;
+      w.layer = c.source.layer;
+      w.code = "nest.smaller_than_kerf";
+      result.diagnostics.push_back(std::move(w));
+    }
   if (progress) progress({"entries", -1, {}});
 
   // 2. Cut job, on the path the torch centre follows: with cam kerf the offset contours.

@@ -1,4 +1,5 @@
 // Malformed files of tests/data/dxf/bad/ (one defect each): exact error message and line, no crash.
+#include <map>
 #include <string>
 #include <utility>
 
@@ -219,6 +220,48 @@ TEST(DxfBad, RandomLineMutationsAreHandled) {
     }
   }
   EXPECT_GT(errors, 100);
+}
+
+}  // namespace
+}  // namespace cutroute::test
+
+namespace cutroute::test {
+namespace {
+
+// Angles no drawing has (an ARC to 1e300 degrees, an ELLIPSE to parameter -1e7) are errors naming
+// the entity's line, not an arc of fmod's choosing; a unit the drawing names but cutroute cannot
+// read, and an entity it skips, are warnings with a code (summary.csv counts them by code).
+TEST(DxfBad, AbsurdAnglesAndUnknownUnitsAreSaid) {
+  {
+    DxfBuilder b;
+    b.arc({0, 0}, 5, 0, 1e300);
+    const auto r = io::read_dxf_string(b.str(), "arc.dxf", {});
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().message, "ARC angle beyond ±1e6 degrees");
+    EXPECT_TRUE(r.error().line.has_value());
+  }
+  {
+    DxfBuilder b;
+    b.ellipse({0, 0}, {2, 0}, 0.5, 0, -1e7);
+    const auto r = io::read_dxf_string(b.str(), "ellipse.dxf", {});
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().message, "ELLIPSE parameter beyond ±1e6");
+  }
+  {
+    DxfBuilder b;
+    b.arc({0, 0}, 5, -30, 1e6);  // still a drawing's angle: 1e6 = 2777 turns + 280 degrees
+    EXPECT_TRUE(io::read_dxf_string(b.str(), "ok.dxf", {}).ok());
+  }
+  DxfBuilder b;
+  b.insunits(99).circle({0, 0}, 5).circle({20, 0}, -1);
+  const auto r = io::read_dxf_string(b.str(), "units.dxf", {});
+  ASSERT_TRUE(r.ok());
+  std::map<std::string, int> codes;
+  for (const auto& d : r->diagnostics) ++codes[d.code];
+  EXPECT_EQ(codes["dxf.units_ignored"], 1);
+  EXPECT_EQ(codes["dxf.entity_skipped"], 1);
+  EXPECT_EQ(codes[""], 0);
+  EXPECT_DOUBLE_EQ(r->mm_per_unit, 1.0);
 }
 
 }  // namespace

@@ -778,6 +778,31 @@ TEST(OptimizeCli, CutsTheCompensationWouldRefuseAreWrittenOnTheirOffset) {
   fs::remove_all(dir);
 }
 
+// A part no wider than the kerf (a dot drawn closed, a drawing read in the wrong unit) is burnt
+// away, not cut out: said on stderr and in the report, naming the part and its line; a part a
+// hair wider than the kerf is not.
+TEST(OptimizeCli, PartsNoWiderThanTheKerfAreSaid) {
+  const auto dir = temp_dir("tiny");
+  DxfBuilder b;
+  b.line({10, 10}, {50, 10}).line({50, 10}, {50, 50}).line({50, 50}, {10, 50}).line({10, 50}, {10, 10});
+  b.circle({80, 30}, 0.07);  // 0.14 mm across: the default kerf is 0.15 mm
+  b.circle({100, 30}, 0.08);  // 0.16 mm
+  const auto dxf = (dir / "tiny.dxf").string();
+  std::ofstream(dxf) << b.str();
+  const OptRun run = optimize(dxf, dir, "--technique standard");
+  ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
+  int said = 0;
+  for (const auto& d : run.report["diagnostics"])
+    if (d.value("code", "") == "nest.smaller_than_kerf") {
+      ++said;
+      EXPECT_NE(d["message"].get<std::string>().find("part 2 is 0.14 x 0.14 mm"), std::string::npos) << d;
+      EXPECT_TRUE(d.contains("line"));
+    }
+  EXPECT_EQ(said, 1);
+  EXPECT_NE(run.cmd.err.find("no wider than the kerf (0.15 mm): the beam burns it away"), std::string::npos) << run.cmd.err;
+  fs::remove_all(dir);
+}
+
 // An option the rest of the command line leaves without effect is said (the run goes on).
 TEST(OptimizeCli, OptionsWithoutEffectAreSaid) {
   const auto dir = temp_dir("idle");

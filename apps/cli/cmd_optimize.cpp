@@ -102,7 +102,7 @@ Result<pipeline::OptimizeOptions> optimize_options(const Opts& o) {
 // Each nest's output files. One nest: -o is the program file; several: -o is a folder for all outputs.
 Result<std::vector<Outputs>> output_paths(const Opts& o) {
   const bool batch = o.nests.size() > 1;
-  if (batch && o.out.empty()) return make_error("several nests need -o DIR for their outputs");
+  if (batch && (o.out.empty() || o.out == "-")) return make_error("several nests need -o DIR for their outputs (not stdout)");
   if (batch && (!o.report.empty() || !o.svg.empty() || !o.html.empty()))
     return make_error("with several nests, every output goes to -o DIR (program, .json report, .svg, .html); "
                       "--report/--svg/--html name files of a single nest");
@@ -336,6 +336,16 @@ int run(const Opts& o) {
     if (done[i].code != kOk) {
       std::cerr << "cutroute: " << done[i].message << '\n';
       code = done[i].code;
+      // A batch's outputs for a sheet that failed: a file of that name from an earlier run into the
+      // folder would pass for this sheet's program (another drawing's, or an older one).
+      if (o.nests.size() > 1) {
+        const Outputs& f = (*outs)[i];
+        for (const std::string* path : {&f.program, &f.report, &f.svg, &f.html}) {
+          std::error_code ec;
+          if (std::filesystem::is_regular_file(*path, ec) && std::filesystem::remove(*path, ec))
+            std::cerr << "cutroute: " << *path << ": removed, from an earlier run: no output stands for a sheet that failed\n";
+        }
+      }
     } else if (!o.quiet) {
       // With an output on stdout (-o -), the summary goes to stderr, out of the program's stream.
       const Outputs& f = (*outs)[i];

@@ -548,8 +548,13 @@ TEST(OptimizeCli, BatchSummaryListsEverySheetAndTheirTotals) {
   std::ofstream(b) << text;
   std::ofstream(bad) << "0\nSECTION\nbroken\n";
   const auto out = dir / "out";
+  // An earlier run's outputs under the failing sheet's name would pass for its program.
+  fs::create_directories(out);
+  std::ofstream(out / "bad.ngc") << "(cutroute bad.dxf, an earlier drawing)\nM30\n";
   const auto r = run_command(cli_path() + " optimize " + a + " " + bad + " " + b + " -o " + out.string() + " --time-limit 1");
   EXPECT_EQ(r.exit_code, 2) << "one nest failed";
+  EXPECT_FALSE(fs::exists(out / "bad.ngc"));
+  EXPECT_NE(r.err.find("bad.ngc: removed, from an earlier run"), std::string::npos) << r.err;
   EXPECT_NE(r.out.find("2 of 3 nests cut"), std::string::npos) << r.out;
   // The stray line is named on stderr too: an open contour may be a part drawn with a gap.
   EXPECT_NE(r.err.find(b + ": warning: 1 open contour(s) not cut, their ends not meeting within --snap (line "), std::string::npos)

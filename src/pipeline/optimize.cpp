@@ -827,7 +827,18 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     }
     run.set_post_estimate(post_s);
     auto& alt_timing = timing[to_string(built[k])];
-    auto alt = solve_alternative(cut_nest, jobs[k], planner, s, o, budget, run, evaluate_s, stop, progress, alt_timing);
+    // The progress line: the route's price in seconds (the solver counts integer ticks), under the
+    // technique's name when several are solved one after the other (each search starts afresh).
+    const std::string technique = to_string(built[k]);
+    const bool named = order.size() > 1 && !spent;
+    const ProgressFn shown = !progress ? ProgressFn{} : ProgressFn([&progress, &technique, named](const ProgressEvent& e) {
+      ProgressEvent f = e;
+      const std::string stage = named ? technique + " " + std::string(e.stage) : std::string(e.stage);
+      f.stage = stage;
+      if (f.best) f.best = units::ticks_to_seconds(static_cast<std::int64_t>(*f.best));
+      progress(f);
+    });
+    auto alt = solve_alternative(cut_nest, jobs[k], planner, s, o, budget, run, evaluate_s, stop, shown, alt_timing);
     if (!alt && best) {
       alternatives[slot[k]] = {{"name", to_string(built[k])}, {"available", false}, {"reason", alt.error().message}};
       continue;

@@ -63,6 +63,11 @@ std::size_t estimate_exact_memory(const Problem& p) {
   return subsets * np * sizeof(Cost) + subsets + subsets * sizeof(std::uint32_t);
 }
 
+namespace {
+constexpr std::size_t kDenseMemoryBeforeIdeals = std::size_t{64} << 20;
+constexpr std::size_t kIdealsInsteadOfDense = 1'000'000;
+}  // namespace
+
 Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const StopToken& stop, const Solution* incumbent,
                      const ProgressFn& progress, std::optional<Cost> known_bound) {
   Solution out;
@@ -96,7 +101,9 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
     out.stats.stopped_by_limit = limit;
     return out;
   };
-  if (mp > kMaxDpClusters || estimate_exact_memory(p) > memory_limit_bytes) {
+  if (mp > kMaxDpClusters || estimate_exact_memory(p) > memory_limit_bytes ||
+      (p.has_precedence() && estimate_exact_memory(p) > kDenseMemoryBeforeIdeals &&
+       estimate_ideal_work(p, kIdealsInsteadOfDense) < std::numeric_limits<double>::infinity())) {
     if (!p.has_precedence() || mp > kMaxIdealClusters) return fail_to_run(true);
     Solution s = solve_exact_ideals(p, memory_limit_bytes, stop, out.route.empty() ? nullptr : &out, progress);
     if (s.lower_bound && global_lb) s.lower_bound = std::min(with_global(*s.lower_bound), s.route.empty() ? kInf : s.cost);

@@ -875,6 +875,19 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     for (auto& d : lead_fallback_diagnostics(cut_nest, best->sequence)) said.push_back(std::move(d));
     result.diagnostics.insert(result.diagnostics.begin() + static_cast<std::ptrdiff_t>(job_diagnostics_at), said.begin(), said.end());
   }
+  // Parts drawn edge to edge and cut one by one (not by common lines): each shared stretch is cut
+  // twice, and each cut takes its kerf from the neighbour (TopsNest, --technique standard: 44
+  // stretches, every part a kerf short there). --kerf-mode cam refuses such a nest; here the
+  // program stands, so the loss is said where it cannot be missed.
+  if (best && built[chosen] != Technique::common && !nest.shared_edges.empty() && o.kerf_mode != nc::KerfMode::cam) {
+    Diagnostic w = make_warning(std::to_string(nest.shared_edges.size()) +
+                                " pair(s) of contours share a boundary stretch (nest.common_edge) and are cut one by one (" +
+                                to_string(built[chosen]) + "): each shared stretch is cut twice and both parts lose up to a kerf (" +
+                                format_fixed(s.entries.kerf_mm, 3) + " mm) along it; common-line cutting (--technique common or auto) "
+                                "cuts it once");
+    w.code = "nest.kerf_loss";
+    result.diagnostics.push_back(std::move(w));
+  }
   if (!unsolved.empty()) {
     const std::string names = join(unsolved, ", ");
     Diagnostic w = make_warning("the time limit was spent before the " + names + " alternative" +

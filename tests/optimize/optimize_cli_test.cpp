@@ -699,6 +699,10 @@ TEST(OptimizeCli, PiercesOnThePartsEdgeAreSaid) {
         EXPECT_EQ(d["code"], "leads.on_contour");
       }
     }
+    // Cut one by one, the parts drawn edge to edge each lose a kerf along the shared stretches:
+    // said on stderr; cut by common lines (auto here), not.
+    const bool common = report["chosen"] == "common";
+    EXPECT_EQ(r.err.find("each shared stretch is cut twice") != std::string::npos, !common) << technique << ": " << r.err;
   }
   fs::remove_all(dir);
 }

@@ -198,13 +198,13 @@ nlohmann::json lead_json(const std::string& lead_in, const Evaluated& ev) {
   return j;
 }
 
-// `detour_stop`: where the shop rules' tip-up detour searches stop (see RunLimit). `planner`:
-// the nest's entry planner (the shop rules plan lead-ins after micro-joint gaps with it).
 // The coordinate step of a dialect's programs [mm].
 double program_resolution_mm(const nc::PostDialect& d) {
   return std::pow(10.0, -d.decimals) * (d.units == "in" ? units::kMmPerInch : 1.0);
 }
 
+// `detour_stop`: where the shop rules' tip-up detour searches stop (see RunLimit). `planner`:
+// the nest's entry planner (the shop rules plan lead-ins after micro-joint gaps with it).
 Evaluated evaluate(const model::Nest& nest, const model::EntryPlanner& planner, const std::vector<model::EntryCandidate>& seq,
                    const Setup& s, const OptimizeOptions& o, const StopToken& detour_stop) {
   std::vector<const model::EntryCandidate*> ptrs;

@@ -16,6 +16,7 @@ namespace {
 constexpr double kMaxSpeedMS = 100.0;    // working and rapid speeds [m/s]
 constexpr double kMinRapidMS = 1.0e-3;   // rapid speed [m/s]: 1 mm/s
 constexpr double kMaxTimeS = 3600.0;     // pierce, head lift and lower [s]
+constexpr double kMaxWorkAreaMm = 1e5;   // axis travel: the largest gantry tables are tens of metres [mm]
 constexpr double kMaxKerfMm = 20.0;      // as --kerf
 constexpr double kMaxLeadMm = 1000.0;    // lead-in, lead-out [mm]
 constexpr double kMaxRate = 1.0e9;       // cost rates [unit per m, per pierce]
@@ -125,7 +126,7 @@ Result<CuttingParams> parse_cutting(const json& c, const std::string& path) {
 Result<MachineProfile> parse_profile(const json& j, const std::string& path) {
   if (auto d = unknown_keys(j,
                             {"format", "name", "notes", "sources", "speed_table", "rapid_speed_m_s",
-                             "head_lift_lower_s", "dialect", "costs", "motion", "default_job", "cutting"},
+                             "head_lift_lower_s", "work_area_mm", "dialect", "costs", "motion", "default_job", "cutting"},
                             "");
       !d.message.empty())
     return d;
@@ -145,6 +146,14 @@ Result<MachineProfile> parse_profile(const json& j, const std::string& path) {
   auto head = detail::non_negative(j, "head_lift_lower_s", "", false, 0.0, kMaxTimeS);
   if (!head) return head.error();
   p.head_lift_lower_s = *head;
+  if (const auto w = j.find("work_area_mm"); w != j.end() && !w->is_null()) {
+    if (!w->is_array() || w->size() != 2 || !(*w)[0].is_number() || !(*w)[1].is_number())
+      return make_error("field work_area_mm must be two numbers [X, Y] (mm)");
+    const double x = (*w)[0].get<double>(), y = (*w)[1].get<double>();
+    if (!(x > 0 && y > 0 && x <= kMaxWorkAreaMm && y <= kMaxWorkAreaMm))
+      return make_error("field work_area_mm must hold two lengths in (0, 100000] mm");
+    p.work_area_mm = std::array<double, 2>{x, y};
+  }
   auto dialect = parse_dialect(j);
   if (!dialect) return dialect.error();
   p.dialect = *dialect;

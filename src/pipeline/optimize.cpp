@@ -986,6 +986,27 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     }
   }
 
+  // What the beam cuts, leads included: a program whose cuts span more than the machine's axes
+  // travel cannot run, wherever its zero is set (a drawing read in the wrong unit is 25.4 times too
+  // big). The start and park are left out: they are program coordinates, and where the drawing lies
+  // far from its origin the table's zero is set elsewhere.
+  geometry::Box extent;
+  {
+    const nc::Toolpath& tp = best_ev.toolpath;
+    for (const auto& seg : tp.segments) {
+      extent.add(seg.pierce);
+      for (const auto& piece : seg.pieces) extent.add(geometry::bounding_box(piece.path));
+    }
+  }
+  if (const auto& area = s.profile.work_area_mm; area && ((*area)[0] < extent.width() - 1e-6 || (*area)[1] < extent.height() - 1e-6)) {
+    Diagnostic w = make_warning("the program spans " + format_fixed(extent.width(), 1) + " x " + format_fixed(extent.height(), 1) +
+                                " mm, more than the machine's work area of " + format_fixed((*area)[0], 1) +
+                                " x " + format_fixed((*area)[1], 1) + " mm (" + s.profile.name +
+                                "): is the drawing's unit right (--units), or the sheet meant for this machine?");
+    w.code = "machine.work_area";
+    result.diagnostics.push_back(std::move(w));
+  }
+
   // The written program read back as `estimate` reads it: the report's time breakdown is the
   // estimate's (a dwell the dialect writes for the pierce is counted as `estimate` counts it), and
   // a program that cutroute's own reader refuses or measures otherwise (a writer's fault) is said.
@@ -1025,6 +1046,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   r["kerf_mm"] = s.entries.kerf_mm;
   if (!compensation.is_null()) r["compensation"] = compensation;  // controller kerf: blocks at risk
   r["objective_kind"] = o.objective == cost::Objective::time ? "time" : "cost";
+  r["extent_mm"] = {extent.width(), extent.height()};  // what the beam cuts, leads included
   r["pierces"] = best_ev.program.pierces;
   r["cut_length_mm"] = best_ev.program.cut_length_mm;
   r["rapid_length_mm"] = best_ev.program.rapid_length_mm;

@@ -91,6 +91,8 @@ TEST(MachineProfile, InvalidProfilesNameTheField) {
        "field cutting[2].pierce_time_s must be at most 3600, got 1e+308"},
       {"huge_head", [](json& j) { j["head_lift_lower_s"] = 1e308; }, "field head_lift_lower_s must be at most 3600"},
       {"creeping_rapid", [](json& j) { j["rapid_speed_m_s"] = 1e-300; }, "field rapid_speed_m_s must be at least 0.001"},
+      {"work_area_one", [](json& j) { j["work_area_mm"] = {3000}; }, "field work_area_mm must be two numbers"},
+      {"work_area_zero", [](json& j) { j["work_area_mm"] = {0, 1500}; }, "field work_area_mm must hold two lengths"},
   };
   for (const auto& c : cases) {
     json j = default_json();

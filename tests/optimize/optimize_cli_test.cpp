@@ -15,10 +15,12 @@
 
 #include <cutroute/core/number_format.hpp>
 #include <cutroute/core/text.hpp>
+#include <cutroute/cost/machine_profile.hpp>
 #include <cutroute/geometry/contour.hpp>
 #include <cutroute/io/nest_loader.hpp>
 
 #include "optimize_run.hpp"
+
 #include "support/dxf_builder.hpp"
 #include "support/paths.hpp"
 #include "support/program_check.hpp"
@@ -809,6 +811,37 @@ TEST(OptimizeCli, PartsNoWiderThanTheKerfAreSaid) {
     }
   EXPECT_EQ(said, 1);
   EXPECT_NE(run.cmd.err.find("no wider than the kerf (0.15 mm): the beam burns it away"), std::string::npos) << run.cmd.err;
+  fs::remove_all(dir);
+}
+
+// A program whose cuts span more than the machine's work area cannot run there (a drawing read in
+// the wrong unit is 25.4 times too big): said on stderr and in the report, which gives the span.
+// The demo sheet's parts (about 1 970 x 970 mm) fit the default 3 000 x 1 500 mm table, not a
+// 1 500 x 1 500 mm one.
+TEST(OptimizeCli, ProgramsLargerThanTheWorkAreaAreSaid) {
+  const auto dir = temp_dir("work-area");
+  const auto dxf = (dir / "demo.dxf").string();
+  ASSERT_EQ(run_command(cli_path() + " demo " + dxf).exit_code, 0);
+  auto profile = nlohmann::json::parse(read_text(cost::default_machine_profile_path()));
+  profile["speed_table"] = (fs::path(cost::default_machine_profile_path()).parent_path() / profile["speed_table"].get<std::string>())
+                               .lexically_normal()
+                               .string();
+  profile["work_area_mm"] = {1500, 1500};
+  const auto small = (dir / "small.json").string();
+  std::ofstream(small) << profile.dump(1);
+  const OptRun fits = optimize(dxf, dir, "--work-limit 0.2 --threads 1", "0");
+  ASSERT_EQ(fits.cmd.exit_code, 0) << fits.cmd.err;
+  EXPECT_EQ(fits.cmd.err.find("work area"), std::string::npos) << fits.cmd.err;
+  const double w = fits.report["extent_mm"][0].get<double>(), h = fits.report["extent_mm"][1].get<double>();
+  EXPECT_GT(w, 1500);
+  EXPECT_LT(w, 2000);
+  EXPECT_LT(h, 1000);
+  const OptRun too_big = optimize(dxf, dir, "--work-limit 0.2 --threads 1 --machine " + small, "0");
+  ASSERT_EQ(too_big.cmd.exit_code, 0) << too_big.cmd.err;
+  EXPECT_NE(too_big.cmd.err.find("more than the machine's work area of 1500 x 1500 mm"), std::string::npos) << too_big.cmd.err;
+  int said = 0;
+  for (const auto& d : too_big.report["diagnostics"]) said += d.value("code", "") == "machine.work_area";
+  EXPECT_EQ(said, 1);
   fs::remove_all(dir);
 }
 

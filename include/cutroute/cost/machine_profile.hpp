@@ -2,6 +2,7 @@
 // dialect, read from JSON (every field and unit in docs/MACHINE-PROFILE.md).
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -53,6 +54,9 @@ struct MachineProfile {
   std::string speed_table;         // absolute path of the Table 1 data file
   double rapid_speed_m_s = 0.0;    // V_off [m/s]
   double head_lift_lower_s = 0.0;  // per pierce: lift after the cut + lower before the pierce [s]
+  // The travel of the X and Y axes: a program whose moves span more cannot run on the machine (a
+  // drawing read in the wrong unit, a sheet bigger than the table) [mm]; absent: not checked.
+  std::optional<std::array<double, 2>> work_area_mm;
   DialectSpec dialect;
   std::optional<Costs> costs;
   MotionLimits motion;

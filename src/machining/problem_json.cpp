@@ -324,6 +324,65 @@ Problem read(const json& root) {
 
 namespace {
 
+constexpr std::string_view kMissing = ": missing required field";
+
+// The JSON pointer of a field path as the reader names it ("tool_life.sets[0].Cv").
+json::json_pointer pointer_of(const std::string& path) {
+  std::string out;
+  std::size_t at = 0;
+  while (at < path.size()) {
+    const std::size_t dot = path.find('.', at);
+    std::string part = path.substr(at, dot == std::string::npos ? std::string::npos : dot - at);
+    std::string index;
+    if (const std::size_t b = part.find('['); b != std::string::npos && part.back() == ']') {
+      index = part.substr(b + 1, part.size() - b - 2);
+      part.resize(b);
+    }
+    out += "/" + part;
+    if (!index.empty()) out += "/" + index;
+    if (dot == std::string::npos) break;
+    at = dot + 1;
+  }
+  return json::json_pointer(out);
+}
+
+// The other required fields missing after `first` (the reader stops at the first): each missing
+// one is filled in a copy with a stand-in (a number, else an object or a string, as the reader
+// asks) and the copy read again, so that one message names every field to add. Stops at any
+// other error, which the fields given already cause or the stand-in does.
+std::vector<std::string> more_missing(const json& root, std::string first) {
+  std::vector<std::string> out;
+  json copy = root;
+  for (int round = 0; round < 64; ++round) {
+    const std::size_t cut = first.find(kMissing);  // "operation.ap: missing required field (or give ...)"
+    if (cut == std::string::npos || cut == 0) break;
+    const std::string path = first.substr(0, cut);
+    if (round > 0) out.push_back(path);
+    bool read_past = false;
+    for (const json& stand_in : {json(1.0), json::object(), json("x")}) {
+      try {
+        copy[pointer_of(path)] = stand_in;
+      } catch (const json::exception&) {
+        return out;
+      }
+      try {
+        (void)read(copy);
+        return out;
+      } catch (const FieldError& e) {
+        const std::string what = e.what();
+        if (what.rfind(path + ":", 0) == 0 && what.find(kMissing) == std::string::npos) continue;  // another stand-in
+        first = what;
+        read_past = true;
+      } catch (const json::exception&) {
+        return out;
+      }
+      break;
+    }
+    if (!read_past) break;
+  }
+  return out;
+}
+
 // One problem object (already parsed) -> Problem, with `prefix` in front of every path.
 Result<Problem> read_one(const json& root, const std::string& file, const std::string& prefix) {
   try {
@@ -339,7 +398,14 @@ Result<Problem> read_one(const json& root, const std::string& file, const std::s
     }
     return p;
   } catch (const FieldError& e) {
-    return make_error(prefix + e.what(), file);
+    std::string msg = prefix + e.what();
+    const auto more = more_missing(root, e.what());
+    if (!more.empty()) {
+      msg += " (and " + std::to_string(more.size()) + " more:";
+      for (std::size_t i = 0; i < more.size(); ++i) msg += (i ? ", " : " ") + prefix + more[i];
+      msg += ")";
+    }
+    return make_error(msg, file);
   } catch (const json::exception& e) {
     return make_error(prefix + "invalid problem: " + e.what(), file);
   }

@@ -147,6 +147,30 @@ TEST(MachiningJson, BadInputNamesTheField) {
   }
 }
 
+// Every missing required field in one message (the reader stops at the first; each is filled with
+// a stand-in and the file read again), a missing section with the fields it needs; nothing more
+// when only one is missing.
+TEST(MachiningJson, EveryMissingFieldIsNamedAtOnce) {
+  json j = example_json(test::kE1);
+  j["operation"].erase("D");
+  j["tool"].erase("r_eps");
+  j["search"].erase("vc_min");
+  auto r = read_problem_json(j.dump(), "three.json");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().message, "operation.D: missing required field (and 2 more: tool.r_eps, search.vc_min)");
+  j = example_json(test::kE1);
+  j.erase("operation");
+  r = read_problem_json(j.dump(), "section.json");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().message.rfind("operation: missing required field (and ", 0), 0u) << r.error().message;
+  EXPECT_NE(r.error().message.find("operation.D"), std::string::npos) << r.error().message;
+  j = example_json(test::kE1);
+  j["tool"].erase("r_eps");
+  r = read_problem_json(j.dump(), "one.json");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().message, "tool.r_eps: missing required field");
+}
+
 TEST(MachiningJson, SyntaxErrorHasALine) {
   std::ifstream in(test::test_data("machining/bad-syntax.json"));
   std::stringstream ss;

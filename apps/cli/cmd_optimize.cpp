@@ -294,6 +294,15 @@ int run(const Opts& o) {
     std::cerr << "cutroute: " << outs.error().message << '\n';
     return kUsageError;
   }
+  // A batch's folder that cannot be made: its own reason (permission denied), not the missing
+  // file's that each output would report.
+  if (o.nests.size() > 1) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(o.out, ec) && !std::filesystem::create_directories(o.out, ec) && ec) {
+      std::cerr << "cutroute: " << o.out << ": error: cannot make the output folder: " << ec.message() << '\n';
+      return kInputError;
+    }
+  }
   // Where the outputs cannot go is said before the solving, not after it (10 s at the default limit).
   for (const Outputs& out : *outs)
     for (const std::string* path : {&out.program, &out.report, &out.svg, &out.html})

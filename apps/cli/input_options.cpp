@@ -57,7 +57,9 @@ Result<io::NestLoadOptions> to_load_options(const InputOptions& o) {
            std::isfinite(w) && std::isfinite(h) && w > 0 && h > 0 && w <= units::kMaxCoordinateMm &&
            h <= units::kMaxCoordinateMm;
     }
-    if (!ok) return make_error("--sheet wants W,H in mm, two positive numbers (got '" + o.sheet + "')");
+    if (!ok)
+      return make_error("--sheet wants W,H in mm, two positive numbers of at most " + format_fixed(units::kMaxCoordinateMm, 0) +
+                        " (got '" + o.sheet + "')");
     lo.nest.sheet_size = geometry::Vec2{w, h};
   }
   return lo;

@@ -161,6 +161,18 @@ TEST(Cli, AnOutputNeverReplacesItsInput) {
   fs::remove_all(dir);
 }
 
+// A batch's output folder that cannot be made is said with its own reason, before any work.
+TEST(Cli, BatchFolderThatCannotBeMadeIsSaid) {
+  const auto dir = temp_dir("no-folder");
+  const std::string nest = (dir / "n.dxf").string();
+  ASSERT_EQ(run_command(cli_path() + " demo " + nest).exit_code, 0);
+  std::ofstream(dir / "file") << "not a folder";
+  const auto r = run_command(cli_path() + " optimize " + nest + " " + nest + " -o " + (dir / "file" / "out").string() + " -q");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("cannot make the output folder: Not a directory"), std::string::npos) << r.err;
+  fs::remove_all(dir);
+}
+
 TEST(Cli, MissingFileIsAnInputErrorNamingTheFile) {
   auto r = run_command(cli_path() + " inspect /nonexistent/nest.dxf");
   EXPECT_EQ(r.exit_code, 2);

@@ -298,19 +298,41 @@ KerfNest offset_for_kerf(const Nest& drawn, double kerf_mm) {
   return out;
 }
 
-std::optional<geometry::Contour> kerf_offset_cut(const Nest& nest, ContourId id, double kerf_mm, geometry::Vec2 near,
-                                                 bool clockwise, double extra_mm, double* simplified_by) {
+namespace {
+
+// Contour `id`'s kerf offset as one loop, clockwise or not; nullopt when it is not one loop.
+std::optional<geometry::Contour> offset_loop(const Nest& nest, ContourId id, double kerf_mm, bool clockwise, double* simplified_by) {
   const NestContour& c = nest.contours[id];
+  if (simplified_by) *simplified_by = 0.0;
   if (!(kerf_mm > 0) || c.role == ContourRole::sheet) return std::nullopt;
   Diagnostics said;  // the whole-nest offset reports them; here only the path is wanted
-  if (simplified_by) *simplified_by = 0.0;
   geometry::OffsetResult r =
       offset_with_retries(c, name(nest, id), scrap_side_distance(c, kerf_mm / 2), kerf_mm, said, simplified_by);
   if (r.contours.size() != 1) return std::nullopt;
   geometry::Contour loop = std::move(r.contours.front());
   if ((geometry::orientation(loop) == geometry::Orientation::cw) != clockwise) loop = geometry::reversed(loop);
-  const double s0 = geometry::closest_point(loop, near).length_along;
-  return detail::sub_path(loop, s0, geometry::length(loop) + std::max(0.0, extra_mm));
+  return loop;
+}
+
+}  // namespace
+
+std::optional<geometry::Contour> kerf_offset_cut(const Nest& nest, ContourId id, double kerf_mm, geometry::Vec2 near,
+                                                 bool clockwise, double extra_mm, double* simplified_by) {
+  auto loop = offset_loop(nest, id, kerf_mm, clockwise, simplified_by);
+  if (!loop) return std::nullopt;
+  const double s0 = geometry::closest_point(*loop, near).length_along;
+  return detail::sub_path(*loop, s0, geometry::length(*loop) + std::max(0.0, extra_mm));
+}
+
+std::optional<geometry::Contour> kerf_offset_piece(const Nest& nest, ContourId id, double kerf_mm, geometry::Vec2 from,
+                                                   geometry::Vec2 to, bool clockwise, double* simplified_by) {
+  auto loop = offset_loop(nest, id, kerf_mm, clockwise, simplified_by);
+  if (!loop) return std::nullopt;
+  const double total = geometry::length(*loop);
+  const double s0 = geometry::closest_point(*loop, from).length_along, s1 = geometry::closest_point(*loop, to).length_along;
+  double along = std::fmod(s1 - s0, total);
+  if (along <= 0) along += total;
+  return detail::sub_path(*loop, s0, along);
 }
 
 }  // namespace cutroute::model

@@ -63,16 +63,16 @@ bool clear_of(const model::Nest& nest, model::ContourId id, const geometry::Cont
 }  // namespace
 
 OffsetCuts offset_refused_blocks(nc::Toolpath& path, const model::Nest& nest, double kerf_mm, bool held_over_tabs,
-                                 double resolution_mm) {
+                                 double resolution_mm, bool pieces) {
   OffsetCuts rewritten;
   if (!(kerf_mm > 0)) return rewritten;
   const nc::CompensationHazards h = nc::compensation_hazards(path, kerf_mm / 2, held_over_tabs, resolution_mm);
   for (const std::size_t k : h.at) {
     nc::CutSegment& seg = path.segments[k];
     if (seg.after_tab || (k + 1 < path.segments.size() && path.segments[k + 1].after_tab)) continue;
-    // Every contour piece must cut one whole contour (a chain's parts, joined by bridges, are
-    // rewritten together: one segment is one compensated block), and no two may follow each other
-    // without a lead or bridge between them to take up the move of their ends.
+    // Every contour piece must cut one contour, whole or a piece of it (a chain's parts, joined by
+    // bridges, are rewritten together: one segment is one compensated block), and no two may
+    // follow each other without a lead or bridge between them to take up the move of their ends.
     std::vector<std::pair<std::size_t, geometry::Contour>> offsets;
     double deviation = 0.0;
     bool whole = true;
@@ -83,17 +83,28 @@ OffsetCuts offset_refused_blocks(nc::Toolpath& path, const model::Nest& nest, do
               (i == 0 || seg.pieces[i - 1].role != nc::PieceRole::contour);
       if (!whole) break;
       const model::ContourId id(piece.contour);
-      const double drawn_mm = geometry::length(nest.contours[id].source.contour), piece_mm = geometry::length(piece.path);
-      whole = piece_mm >= drawn_mm - 1e-6 * std::max(1.0, drawn_mm);  // not a piece of the contour (multi-segment)
-      if (!whole) break;
-      // The direction of travel: the piece, closed, has the contour's orientation or the reverse
-      // (an overcut retraces a few millimetres of the loop, which keeps the sign).
-      geometry::Contour loop = piece.path;
-      loop.closed = true;
-      const bool clockwise = geometry::orientation(loop) == geometry::Orientation::cw;
+      const geometry::Contour& drawn = nest.contours[id].source.contour;
+      const double drawn_mm = geometry::length(drawn), piece_mm = geometry::length(piece.path);
+      const geometry::Vec2 from = piece.path.vertices.front().p;
       double simplified_by = 0.0;
-      auto offset =
-          model::kerf_offset_cut(nest, id, kerf_mm, piece.path.vertices.front().p, clockwise, piece_mm - drawn_mm, &simplified_by);
+      std::optional<geometry::Contour> offset;
+      if (piece_mm >= drawn_mm - 1e-6 * std::max(1.0, drawn_mm)) {
+        // The whole contour: the piece, closed, has the contour's orientation or the reverse (an
+        // overcut retraces a few millimetres of the loop, which keeps the sign).
+        geometry::Contour loop = piece.path;
+        loop.closed = true;
+        const bool clockwise = geometry::orientation(loop) == geometry::Orientation::cw;
+        offset = model::kerf_offset_cut(nest, id, kerf_mm, from, clockwise, piece_mm - drawn_mm, &simplified_by);
+      } else if (pieces) {
+        // A piece of it (multi-segment cutting): its direction from how it runs along the drawing.
+        const double total = drawn_mm, s0 = geometry::closest_point(drawn, from).length_along;
+        const double ahead = std::fmod(geometry::closest_point(drawn, geometry::point_at_length(piece.path, 0.5 * piece_mm)).length_along -
+                                           s0 + total,
+                                       total);
+        const bool along_drawing = ahead < 0.5 * total;
+        const bool clockwise = (geometry::orientation(drawn) == geometry::Orientation::cw) == along_drawing;
+        offset = model::kerf_offset_piece(nest, id, kerf_mm, from, piece.path.vertices.back().p, clockwise, &simplified_by);
+      }
       whole = offset && offset->vertices.size() >= 2;
       deviation = std::max(deviation, simplified_by);
       if (whole) offsets.emplace_back(i, std::move(*offset));

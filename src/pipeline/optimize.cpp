@@ -226,7 +226,7 @@ Evaluated evaluate(const model::Nest& nest, const model::EntryPlanner& planner, 
   }
   if (o.kerf_mode == nc::KerfMode::controller && o.offset_refused_cuts)
     ev.offset_written = offset_refused_blocks(ev.toolpath, nest, s.entries.kerf_mm, nc::beam_switches_under_compensation(s.dialect),
-                                              program_resolution_mm(s.dialect));
+                                              program_resolution_mm(s.dialect), o.rules.tabs == 0);
   ev.program = nc::write_gcode(ev.toolpath, s.dialect, nc::GcodeWriteOptions{o.title, true});
   ev.frames = nc::count_frames(ev.program.text);
   cost::ProgramTotals totals;

@@ -755,7 +755,7 @@ TEST(OptimizeCli, LeadFallbacksAreTheWrittenPrograms) {
 // the re-parsed program cuts each at kerf/2 on its scrap side wherever the tool fits, with leads and
 // bridges in scrap. The jewelry box's 3 (in chains of parts) all go, and LinuxCNC then reads the
 // whole program; of the grille's 12 slots, one whose lead cannot be moved clear of the part stays
-// compensated (and warned of).
+// compensated (and warned of). Pieces of contours (multi-segment cutting) likewise.
 TEST(OptimizeCli, CutsTheCompensationWouldRefuseAreWrittenOnTheirOffset) {
   const auto dir = temp_dir("comp-offset");
   const bool rs274 = std::system("command -v rs274 >/dev/null 2>&1") == 0;
@@ -786,6 +786,17 @@ TEST(OptimizeCli, CutsTheCompensationWouldRefuseAreWrittenOnTheirOffset) {
     }
     expect_admissible(dxf, run);
   }
+  // Multi-segment cutting's pieces of a contour too: the jewelry box's 6 refused pieces all go.
+  const std::string box = shared("data/dxf/bryanduxbury_jewelrybox_bottom_and_struts_panelized.dxf");
+  const OptRun multi = optimize(box, dir, "--work-limit 0.5 --threads 1 --technique multi", "0");
+  ASSERT_EQ(multi.cmd.exit_code, 0) << multi.cmd.err;
+  EXPECT_EQ(multi.report["compensation"]["at_risk"], 0);
+  EXPECT_GT(multi.report["compensation"]["written_on_offset"].get<int>(), 0);
+  if (rs274) {
+    const auto r = run_rs274((dir / "out.ngc").string(), multi.report["kerf_mm"].get<double>());
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  }
+  expect_admissible(box, multi);
   fs::remove_all(dir);
 }
 

@@ -48,5 +48,9 @@ KerfNest offset_for_kerf(const Nest& nest, double kerf_mm);
 // path deviates by up to that much from kerf/2 there), 0 when it was not.
 std::optional<geometry::Contour> kerf_offset_cut(const Nest& nest, ContourId id, double kerf_mm, geometry::Vec2 near,
                                                  bool clockwise, double extra_mm, double* simplified_by = nullptr);
+// A piece of that path: from the offset's point nearest `from` to the one nearest `to`, clockwise
+// or not (multi-segment cutting's pieces of a contour).
+std::optional<geometry::Contour> kerf_offset_piece(const Nest& nest, ContourId id, double kerf_mm, geometry::Vec2 from,
+                                                   geometry::Vec2 to, bool clockwise, double* simplified_by = nullptr);
 
 }  // namespace cutroute::model

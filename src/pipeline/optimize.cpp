@@ -862,7 +862,15 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     if (o.rules.orders()) j["rules_penalty"] = alt->rules_penalty;
     if (alt->best.detours_left > 0) j["tip_up_left_at_time_limit"] = alt->best.detours_left;  // why it lost (better())
     alternatives[slot[k]] = std::move(j);
-    if (!best || better(alt->best, best->best, alt->rules_penalty, best->rules_penalty)) {
+    // Parts drawn edge to edge: common-line cutting cuts each shared stretch once, taking half a
+    // kerf from each part; cut one by one, each loses a whole kerf there (nest.kerf_loss). The
+    // common-line program is kept whatever the times: a faster program that cuts the parts short
+    // is not a better one.
+    const auto spares_parts = [&](std::size_t i) { return !nest.shared_edges.empty() && built[i] == Technique::common; };
+    const bool wins = !best || (spares_parts(k) != spares_parts(chosen)
+                                    ? spares_parts(k)
+                                    : better(alt->best, best->best, alt->rules_penalty, best->rules_penalty));
+    if (wins) {
       best = std::move(alt).value();
       chosen = k;
     }

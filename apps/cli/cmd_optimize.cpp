@@ -114,9 +114,7 @@ Result<std::vector<Outputs>> output_paths(const Opts& o) {
       // Sheets of the same name from different folders (job1/sheet.dxf, job2/sheet.dxf) get
       // sheet.ngc, sheet-2.ngc, ... in the order given; summary.csv says which is which.
       for (int k = 2; !stems.insert(stem).second; ++k) stem = std::filesystem::path(o.nests[i]).stem().string() + "-" + std::to_string(k);
-      std::error_code ec;
-      std::filesystem::create_directories(o.out, ec);
-      const auto base = (std::filesystem::path(o.out) / stem).string();
+      const auto base = (std::filesystem::path(o.out) / stem).string();  // the folder is made by run()
       outs[i] = {base + ".ngc", base + ".json", base + ".svg", base + ".html"};
       continue;
     }

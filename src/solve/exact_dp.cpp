@@ -101,8 +101,9 @@ Solution solve_exact(const Problem& p, std::size_t memory_limit_bytes, const Sto
     out.stats.stopped_by_limit = limit;
     return out;
   };
-  if (mp > kMaxDpClusters || estimate_exact_memory(p) > memory_limit_bytes ||
-      (p.has_precedence() && estimate_exact_memory(p) > kDenseMemoryBeforeIdeals &&
+  const std::size_t dense_bytes = estimate_exact_memory(p);
+  if (mp > kMaxDpClusters || dense_bytes > memory_limit_bytes ||
+      (p.has_precedence() && dense_bytes > kDenseMemoryBeforeIdeals &&
        estimate_ideal_work(p, kIdealsInsteadOfDense) < std::numeric_limits<double>::infinity())) {
     if (!p.has_precedence() || mp > kMaxIdealClusters) return fail_to_run(true);
     Solution s = solve_exact_ideals(p, memory_limit_bytes, stop, out.route.empty() ? nullptr : &out, progress);

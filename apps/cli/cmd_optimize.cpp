@@ -180,6 +180,22 @@ std::string printed_warnings(const std::string& nest, const std::vector<Diagnost
     if (d.file.empty()) d.file = nest;
     out += "cutroute: " + format(d) + "\n";
   }
+  // A closed gap changes the drawing (ends moved to meet): one line for them all, naming the first.
+  {
+    int gaps = 0;
+    const Diagnostic* first = nullptr;
+    for (const Diagnostic& d : loading) {
+      if (d.code != "chain.gap_closed") continue;
+      if (gaps++ == 0) first = &d;
+    }
+    if (first != nullptr) {
+      Diagnostic d = *first;
+      if (d.file.empty()) d.file = nest;
+      d.message = std::to_string(gaps) + " gap(s) in the drawing closed, each end moved by half the gap (first: " + d.message +
+                  "); --close-gaps 0 leaves them open";
+      out += "cutroute: " + format(d) + "\n";
+    }
+  }
   // Open contours are not cut, and a part drawn with a gap would be missing from the program:
   // one line for them all (drawings with text or hatching have many), naming the first few places
   // with their layer. A block of text inserted once yields dozens from one INSERT line: each place
@@ -207,7 +223,7 @@ std::string printed_warnings(const std::string& nest, const std::vector<Diagnost
     for (const Place& p : places)
       named += (named.empty() ? "" : "; ") + (p.count > 1 ? std::to_string(p.count) + " at " : std::string()) + p.where;
     out += "cutroute: " + format(make_warning(std::to_string(open) + " open contour(s) not cut, their ends not meeting within " +
-                                                  "--snap (" + named + (more ? "; ..." : "") +
+                                                  "--snap and --close-gaps (" + named + (more ? "; ..." : "") +
                                                   "): a part drawn with a gap among them is missing from the program",
                                               nest)) + "\n";
   }

@@ -32,6 +32,10 @@ void add_input_options(CLI::App* app, InputOptions& o) {
   app->add_option("--snap", o.snap_mm, "End-point snapping distance when chaining entities [mm]")
       ->check(finite_range(0.0, 10.0))
       ->capture_default_str();
+  app->add_option("--close-gaps", o.close_gaps_mm,
+                  "Chain ends still apart after --snap are joined, with a warning, when closer than this [mm] (0: off)")
+      ->check(finite_range(0.0, 1.0))
+      ->capture_default_str();
   app->add_option("--units", o.units, "Drawing units, overriding the file's header")
       ->check(CLI::IsMember({"mm", "cm", "m", "in", "ft"}));
   app->add_option("--layers", o.layers, "Read only these layers (comma-separated)")->delimiter(',');
@@ -42,6 +46,7 @@ void add_input_options(CLI::App* app, InputOptions& o) {
 Result<io::NestLoadOptions> to_load_options(const InputOptions& o) {
   io::NestLoadOptions lo;
   lo.snap_mm = o.snap_mm;
+  lo.close_gaps_mm = o.close_gaps_mm;
   if (!o.units.empty()) lo.dxf.units = o.units;
   lo.dxf.layers = o.layers;
   lo.dxf.ignore_layers = o.ignore_layers;

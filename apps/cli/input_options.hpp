@@ -19,6 +19,7 @@ CLI::Validator finite_range(double lo, double hi);
 
 struct InputOptions {
   double snap_mm = tol::kSnapMm;
+  double close_gaps_mm = tol::kCloseGapMm;
   std::string units;
   std::vector<std::string> layers;
   std::vector<std::string> ignore_layers;

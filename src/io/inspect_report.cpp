@@ -46,6 +46,7 @@ nlohmann::json inspect_report(const LoadedNest& loaded) {
   j["skipped"] = loaded.skipped;
   j["contours_closed"] = nest.contours.size();
   j["contours_open"] = loaded.open_paths.size();
+  j["gaps_closed"] = loaded.gaps_closed;
   j["parts"] = nest.parts.size();
   j["holes"] = holes;
   j["max_depth"] = nest.max_depth;
@@ -81,7 +82,9 @@ std::string inspect_text(const nlohmann::json& r) {
     for (const auto& [layer, n] : r["layers"].items()) s += " " + (layer.empty() ? std::string("(no name)") : layer) + " " + std::to_string(n.get<std::size_t>());
     s += "\n";
   }
-  s += "  contours: " + std::to_string(r["contours_closed"].get<std::size_t>()) + " closed, " +
+  const std::size_t gaps = r.value("gaps_closed", std::size_t{0});
+  s += "  contours: " + std::to_string(r["contours_closed"].get<std::size_t>()) + " closed" +
+       (gaps > 0 ? " (" + std::to_string(gaps) + " gap(s) in the drawing closed)" : std::string()) + ", " +
        std::to_string(r["contours_open"].get<std::size_t>()) + " open\n";
   s += "  parts: " + std::to_string(r["parts"].get<std::size_t>()) + ", holes: " +
        std::to_string(r["holes"].get<std::size_t>()) + ", max depth: " + std::to_string(r["max_depth"].get<int>()) +

@@ -43,9 +43,10 @@ LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
     auto [it, inserted] = layer_group.try_emplace(e.layer, static_cast<std::int32_t>(layer_group.size()));
     pieces.push_back({std::move(e.path), static_cast<std::int32_t>(i), it->second});
   }
-  geometry::ChainResult chained = geometry::chain_contours(pieces, options.snap_mm);
+  geometry::ChainResult chained = geometry::chain_contours(pieces, options.snap_mm, options.close_gaps_mm);
   out.dropped_zero_length = chained.dropped_zero_length;
   out.dropped_duplicates = chained.dropped_duplicates;
+  out.gaps_closed = chained.gaps_closed.size();
 
   const auto& ents = drawing.entities;
   std::vector<model::SourceContour> closed;
@@ -56,6 +57,22 @@ LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
     sc.sources = std::move(c.sources);
     take_origin(ents, sc.sources, sc.layer, sc.handle, sc.line);
     closed.push_back(std::move(sc));
+  }
+  for (const geometry::ClosedGap& g : chained.gaps_closed) {
+    const auto& a = ents[static_cast<std::size_t>(g.source_a)];
+    const auto& b = ents[static_cast<std::size_t>(g.source_b)];
+    auto name = [](const DxfEntity& e) {
+      if (!e.handle.empty()) return "entity " + e.handle;
+      return e.line ? "the entity at line " + std::to_string(*e.line) : std::string("an entity");
+    };
+    const std::string between = g.source_a == g.source_b ? "the ends of " + name(a) : name(a) + " and " + name(b);
+    Diagnostic d = make_warning("gap of " + format_fixed(g.width_mm, 3) + " mm between " + between + " closed at (" +
+                                    format_fixed(g.at.x, 3) + ", " + format_fixed(g.at.y, 3) + ")",
+                                out.file, a.line);
+    d.handle = a.handle;
+    d.layer = a.layer;
+    d.code = "chain.gap_closed";
+    out.diagnostics.push_back(std::move(d));
   }
   for (auto& c : chained.open) {
     OpenPath p;

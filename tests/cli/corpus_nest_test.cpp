@@ -39,9 +39,10 @@ const Row kRows[] = {
   {"d2g_DRAAK", 1186, 0, 7, 1179, 25242, 1186, 0, 4, 1182, false, 10,
    "splines that touch: containment of touching contours is decided from boundary samples (3 contours"
    " change parity); length +0.03 %: the README measured splines as chords, we as fitted arcs"},
-  {"d2g_Fluegel_Rippen_sp2", 37, 4, 27, 7, 3501, 39, 1, 11, 28, false, 1,
+  {"d2g_Fluegel_Rippen_sp2", 37, 4, 27, 7, 3501, 40, 0, 8, 32, false, 1,
    "an open polyline whose two ends meet closes itself here (README closes only pairs of pieces): +2 closed,"
-   " -2 open; one zero-length piece dropped: -1 open; outer/holes agree with the even/odd test"},
+   " -2 open; one zero-length piece dropped: -1 open; an outline of 22 entities whose ends are 0.015 mm apart"
+   " closed by --close-gaps: +1 closed, -1 open; outer/holes agree with the even/odd test"},
   {"d2g_Frontplatte", 19, 39, 3, 15, 3156, 18, 39, 3, 15, false, 140,
    "one closed contour has no length (a hatch line there and back, layer Schraffuren) and is left out with a"
    " warning; 2 duplicated entities dropped: their length (138 mm) is missing from ours"},
@@ -49,16 +50,15 @@ const Row kRows[] = {
   {"d2g_Schluessel_Andi", 12, 13, 3, 9, 4113, 12, 16, 3, 9, false, 1,
    "open strokes meeting three at a point: we pair each end with its nearest partner, the README pairs"
    " otherwise: 3 more open chains"},
-  {"d2g_Teile", 20, 0, 8, 12, 2348, 16, 8, 12, 4, false, 1,
-   "inch file: our snap is 0.01 mm, the README's 0.01 in = 0.254 mm; ELLIPSE arc ends meet within 0.254 mm"
-   " but not 0.01 mm. With --snap 0.254 we get exactly the README (SnapInDrawingUnits below)"},
+  {"d2g_Teile", 20, 0, 8, 12, 2348, 20, 0, 8, 12, false, 1, ""},
   {"d2g_fraesen_test_02_2004", 7, 0, 3, 4, 2250, 7, 0, 3, 4, false, 1, ""},
   {"d2g_pumpenteile", 59, 2, 29, 29, 6043, 60, 2, 29, 31, false, 142,
    "a milling drawing: a circle drawn twice on layer MILL: 2 counts once (its 141 mm are missing); three"
    " squares drawn edge to edge on MILL: 3 close each from its own lines, where the README pairs ends that"
    " meet three and four to a point; pockets cross rings (error diagnostics), so parity differs"},
-  {"deepnestsharp_ReadMeExampleSmall", 29, 4, 19, 10, 7821, 30, 1, 11, 18, true, 10,
-   "the README's fallback read lost the file's last entity (its L is ours minus that entity); parts that"
+  {"deepnestsharp_ReadMeExampleSmall", 29, 4, 19, 10, 7821, 31, 0, 12, 18, true, 10,
+   "an outline of 388 entities whose ends are 0.014 mm apart closed by --close-gaps: +1 closed, -1 open;"
+   " the README's fallback read lost the file's last entity (its L is ours minus that entity); parts that"
    " overlap by ~0.2 mm change parity; sheet 'Plate H200 W600' recognised (README outer 19 = sheet + 18)"},
   {"deepnestsharp_TopsNest", 205, 1, 1, 203, 18438, 228, 0, 23, 204, true, 10,
    "the README read ENTITIES only (malformed TABLES) and lost the last entity; its 23 parts are drawn edge to"
@@ -168,17 +168,49 @@ TEST(CorpusNestParity, EvenOddAgreesWithOurRoles) {
   }
 }
 
-TEST(CorpusNestSnap, SnapInDrawingUnitsGivesTheReadmeCounts) {
+// d2g_Teile's ELLIPSE arcs end 0.011 mm from the lines they meet (an inch drawing; the README
+// snaps at 0.01 in = 0.254 mm). Our snap (0.01 mm) leaves those 8 joints open and its 4 parts uncut;
+// the gap pass closes them, names each, and gives the README's counts, as the wider snap does.
+TEST(CorpusNestSnap, GapsClosedGiveTheReadmeCountsAndAreNamed) {
+  struct Counts {
+    std::size_t closed, open, parts;
+    int holes, gaps;
+  };
+  auto load = [](const io::NestLoadOptions& o) {
+    auto loaded = io::load_nest(shared("data/dxf/d2g_Teile.dxf"), o);
+    EXPECT_TRUE(loaded.ok());
+    Counts c{loaded->nest.contours.size(), loaded->open_paths.size(), loaded->nest.parts.size(), 0, 0};
+    for (const auto& k : loaded->nest.contours) c.holes += k.role == model::ContourRole::hole;
+    for (const auto& d : loaded->diagnostics) {
+      if (d.code != "chain.gap_closed") continue;
+      ++c.gaps;
+      EXPECT_EQ(d.severity, Severity::warning);
+      EXPECT_TRUE(d.line.has_value());
+      EXPECT_FALSE(d.handle.empty());
+      EXPECT_NE(d.message.find("gap of 0.011 mm between entity "), std::string::npos) << d.message;
+    }
+    return c;
+  };
   io::NestLoadOptions o;
-  o.snap_mm = 0.01 * 25.4;  // the README's 0.01 drawing units of this inch file
-  auto loaded = io::load_nest(shared("data/dxf/d2g_Teile.dxf"), o);
-  ASSERT_TRUE(loaded.ok());
-  int holes = 0;
-  for (const auto& c : loaded->nest.contours) holes += c.role == model::ContourRole::hole;
-  EXPECT_EQ(loaded->nest.contours.size(), 20u);
-  EXPECT_EQ(loaded->open_paths.size(), 0u);
-  EXPECT_EQ(loaded->nest.parts.size(), 8u);
-  EXPECT_EQ(holes, 12);
+  const Counts by_default = load(o);
+  EXPECT_EQ(by_default.closed, 20u);
+  EXPECT_EQ(by_default.open, 0u);
+  EXPECT_EQ(by_default.parts, 8u);
+  EXPECT_EQ(by_default.holes, 12);
+  EXPECT_EQ(by_default.gaps, 8);
+  o.close_gaps_mm = 0;
+  const Counts off = load(o);
+  EXPECT_EQ(off.closed, 16u);
+  EXPECT_EQ(off.open, 8u);
+  EXPECT_EQ(off.gaps, 0);
+  o.close_gaps_mm = 0.01;  // below the gaps
+  EXPECT_EQ(load(o).open, 8u);
+  o.snap_mm = 0.01 * 25.4;  // the README's 0.01 drawing units: joined by the snap, so no gap named
+  const Counts wide = load(o);
+  EXPECT_EQ(wide.closed, 20u);
+  EXPECT_EQ(wide.parts, 8u);
+  EXPECT_EQ(wide.holes, 12);
+  EXPECT_EQ(wide.gaps, 0);
 }
 
 }  // namespace

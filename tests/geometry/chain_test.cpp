@@ -132,6 +132,54 @@ TEST(Chain, GapsWithinSnapCloseExactlyAtMidpoints) {
   ASSERT_EQ(tight.open.size(), 2u);
 }
 
+TEST(Chain, GapsBeyondTheSnapCloseInASecondPassAndAreListed) {
+  // A square whose corners (10,0) and (0,0) miss by 0.03 and 0.02 mm, and two strokes 0.2 mm apart.
+  std::vector<ChainPiece> pieces{line({0, 0}, {10, 0}, 0), line({10.03, 0}, {10, 10}, 1), line({10, 10}, {0, 10}, 2),
+                                 line({0, 10}, {0, 0.02}, 3), line({50, 0}, {60, 0}, 4), line({60.2, 0}, {70, 0}, 5)};
+  const ChainResult off = chain_contours(pieces, 0.01);
+  EXPECT_TRUE(off.closed.empty());
+  EXPECT_EQ(off.open.size(), 4u);
+  EXPECT_TRUE(off.gaps_closed.empty());
+
+  const ChainResult r = chain_contours(pieces, 0.01, 0.05);
+  ASSERT_EQ(r.closed.size(), 1u);
+  const ChainedContour& sq = r.closed[0];
+  EXPECT_TRUE(sq.contour.closed);
+  std::vector<std::int32_t> sources = sq.sources;
+  std::sort(sources.begin(), sources.end());
+  EXPECT_EQ(sources, (std::vector<std::int32_t>{0, 1, 2, 3}));
+  // The corners at the midpoints of the gaps' ends; the exact corners where they were.
+  std::vector<Vec2> corners;
+  for (const Vertex& v : sq.contour.vertices) corners.push_back(v.p);
+  ASSERT_EQ(corners.size(), 4u);
+  for (Vec2 want : {Vec2{10.015, 0}, Vec2{0, 0.01}, Vec2{10, 10}, Vec2{0, 10}})
+    EXPECT_EQ(std::count_if(corners.begin(), corners.end(), [&](Vec2 p) { return distance(p, want) < 1e-12; }), 1)
+        << want.x << "," << want.y;
+  EXPECT_NEAR(std::abs(signed_area(sq.contour)), 100.0, 0.2);
+  // Each closed gap listed once, with its width, midpoint and the pieces whose ends met.
+  ASSERT_EQ(r.gaps_closed.size(), 2u);
+  std::vector<ClosedGap> gaps = r.gaps_closed;
+  std::sort(gaps.begin(), gaps.end(), [](const ClosedGap& a, const ClosedGap& b) { return a.width_mm < b.width_mm; });
+  EXPECT_NEAR(gaps[0].width_mm, 0.02, 1e-12);
+  EXPECT_NEAR(distance(gaps[0].at, {0, 0.01}), 0, 1e-12);
+  EXPECT_EQ(std::min(gaps[0].source_a, gaps[0].source_b), 0);
+  EXPECT_EQ(std::max(gaps[0].source_a, gaps[0].source_b), 3);
+  EXPECT_NEAR(gaps[1].width_mm, 0.03, 1e-12);
+  EXPECT_NEAR(distance(gaps[1].at, {10.015, 0}), 0, 1e-12);
+  EXPECT_EQ(std::min(gaps[1].source_a, gaps[1].source_b), 0);
+  EXPECT_EQ(std::max(gaps[1].source_a, gaps[1].source_b), 1);
+  // Strokes farther apart than the gap stay open, one chain each.
+  ASSERT_EQ(r.open.size(), 2u);
+  EXPECT_EQ(r.open[0].sources, (std::vector<std::int32_t>{4}));
+  EXPECT_EQ(r.open[1].sources, (std::vector<std::int32_t>{5}));
+  // Groups stay apart across gaps too.
+  std::vector<ChainPiece> grouped = pieces;
+  grouped[0].group = 3;
+  const ChainResult g = chain_contours(grouped, 0.01, 0.05);
+  EXPECT_TRUE(g.closed.empty());
+  EXPECT_TRUE(g.gaps_closed.empty());
+}
+
 TEST(Chain, DuplicatesAndZeroLengthDroppedAndCounted) {
   std::vector<ChainPiece> pieces{line({0, 0}, {1, 0}, 0), line({1, 0}, {1, 1}, 1), line({1, 1}, {0, 0}, 2),
                                  line({1, 0}, {0, 0}, 3),  // reversed copy of 0

@@ -559,7 +559,7 @@ TEST(OptimizeCli, BatchSummaryListsEverySheetAndTheirTotals) {
   EXPECT_NE(r.err.find("bad.ngc: removed, from an earlier run"), std::string::npos) << r.err;
   EXPECT_NE(r.out.find("2 of 3 nests cut"), std::string::npos) << r.out;
   // The stray line is named on stderr too: an open contour may be a part drawn with a gap.
-  EXPECT_NE(r.err.find(b + ": warning: 1 open contour(s) not cut, their ends not meeting within --snap (line "), std::string::npos)
+  EXPECT_NE(r.err.find(b + ": warning: 1 open contour(s) not cut, their ends not meeting within --snap and --close-gaps (line "), std::string::npos)
       << r.err;
   const auto rows = parse_csv(read_text(out / "summary.csv"));
   ASSERT_EQ(rows.size(), 5u);
@@ -628,10 +628,55 @@ TEST(OptimizeCli, OpenContoursAreNamedOncePerPlaceWithTheirCount) {
   std::ofstream(b) << text;
   const auto r = run_command(cli_path() + " optimize " + b + " -o " + (dir / "b.ngc").string() + " --time-limit 1");
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.err.find("warning: 4 open contour(s) not cut, their ends not meeting within --snap (3 at line " + insert_line +
+  EXPECT_NE(r.err.find("warning: 4 open contour(s) not cut, their ends not meeting within --snap and --close-gaps (3 at line " + insert_line +
                        ", layer TEXT; line " + stray_line + ", layer CUT): "),
             std::string::npos)
       << r.err;
+  fs::remove_all(dir);
+}
+
+// A part drawn with its corner 0.03 mm open is cut, the gap named; with --close-gaps 0 it is an
+// open contour, not cut.
+TEST(OptimizeCli, APartDrawnWithATinyGapIsCutAndTheGapNamed) {
+  const auto dir = temp_dir("gap-closed");
+  const auto a = (dir / "a.dxf").string(), b = (dir / "b.dxf").string();
+  ASSERT_EQ(run_command(cli_path() + " demo " + a).exit_code, 0);
+  std::string text = read_text(a);
+  const auto end = text.rfind("0\nENDSEC");
+  auto line = [](const char* x1, const char* y1, const char* x2, const char* y2) {
+    return std::string("0\nLINE\n8\nCUT\n10\n") + x1 + "\n20\n" + y1 + "\n11\n" + x2 + "\n21\n" + y2 + "\n";
+  };
+  text.insert(end, line("5", "5", "15", "5") + line("15.03", "5", "15", "15") + line("15", "15", "5", "15") + line("5", "15", "5", "5"));
+  const std::string first_line = std::to_string(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(end), '\n') + 1);
+  std::ofstream(b) << text;
+  auto contours_cut = [&](const std::string& extra, CommandOutput* out) {
+    const auto report = dir / "b.json";
+    *out = run_command(cli_path() + " optimize " + b + " -o " + (dir / "b.ngc").string() + " --report " + report.string() +
+                       " --time-limit 1 --technique standard" + extra);
+    EXPECT_EQ(out->exit_code, 0) << out->err;
+    std::set<int> cut;
+    const auto rep = nlohmann::json::parse(read_text(report));
+    for (const auto& e : rep["sequence"]) cut.insert(e["contour"].get<int>());
+    return cut.size();
+  };
+  CommandOutput closed, open, demo;
+  const std::size_t with_gap_closed = contours_cut("", &closed), left_open = contours_cut(" --close-gaps 0", &open);
+  std::ofstream(b) << read_text(a);
+  const std::size_t demo_contours = contours_cut("", &demo);
+  EXPECT_EQ(with_gap_closed, demo_contours + 1);
+  EXPECT_EQ(left_open, demo_contours);
+  // The lines of the two LINEs whose ends missed at (15, 5), in either order.
+  const std::string second_line = std::to_string(std::stoi(first_line) + 12);
+  const std::string named = "1 gap(s) in the drawing closed, each end moved by half the gap (first: gap of 0.03 mm between ";
+  EXPECT_TRUE(closed.err.find(named + "the entity at line " + first_line + " and the entity at line " + second_line + " closed at (15.015, 5))") !=
+                  std::string::npos ||
+              closed.err.find(named + "the entity at line " + second_line + " and the entity at line " + first_line + " closed at (15.015, 5))") !=
+                  std::string::npos)
+      << closed.err;
+  EXPECT_NE(closed.err.find(b + ":"), std::string::npos);
+  EXPECT_EQ(closed.err.find("open contour(s) not cut"), std::string::npos) << closed.err;
+  EXPECT_EQ(open.err.find("gap(s) in the drawing closed"), std::string::npos) << open.err;
+  EXPECT_NE(open.err.find("1 open contour(s) not cut"), std::string::npos) << open.err;
   fs::remove_all(dir);
 }
 

@@ -8,6 +8,12 @@ namespace cutroute::tol {
 // nests are not, and 0.01 mm is well below any laser's kerf (~0.1 mm).
 inline constexpr double kSnapMm = 0.01;
 
+// Chain ends still apart after snapping are joined, with a warning, when closer than this [mm].
+// Default of `--close-gaps`: a third of the narrowest laser kerf (~0.15 mm), so the cut across
+// such a gap removes it anyway, and above the 0.011-0.015 mm gaps that unit conversion and
+// hand-drawn joints leave in the corpus (dxf2gcode closes them too).
+inline constexpr double kCloseGapMm = 0.05;
+
 // Two points are the same point (duplicate vertices, zero-length segments) [mm].
 inline constexpr double kSamePointMm = 1e-6;
 

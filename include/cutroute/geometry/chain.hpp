@@ -24,6 +24,14 @@ struct ChainedContour {
   std::int32_t group = 0;
 };
 
+// A gap between two chain ends that step 7 closed (the ends moved to `at`, its midpoint).
+struct ClosedGap {
+  Vec2 at;
+  double width_mm = 0;                // the distance the ends were apart
+  std::int32_t source_a = -1, source_b = -1;  // the pieces whose ends met there
+  std::int32_t group = 0;
+};
+
 struct ChainResult {
   std::vector<ChainedContour> closed;   // closed contours (closed inputs pass through)
   std::vector<ChainedContour> open;     // chains whose ends found no partner
@@ -32,6 +40,7 @@ struct ChainResult {
                                         // the copies kept as the edge of a second part (step 3),
                                         // and pieces of open chains repeating closed ones (step 6)
   std::size_t dropped_invalid = 0;      // pieces with a NaN or infinite coordinate or bulge
+  std::vector<ClosedGap> gaps_closed;   // step 7, in order of the chain ends' indices
 };
 
 // Joins pieces whose end points lie within snap_mm, in any input order and direction.
@@ -59,12 +68,17 @@ struct ChainResult {
 //     joint is moved to the midpoint of its two ends.
 //  6. an open chain lying wholly on closed contours of its group (within tol::kCollinearMm: a
 //     LINE drawn again over an edge of a closed polyline) is dropped, counted as duplicates.
+//  7. gaps: when gap_mm > snap_mm, the ends of the chains still open are matched again as in 3
+//     within gap_mm and walked as in 5 (their joints moved to the midpoints), and each such joint
+//     is listed in gaps_closed; contours closed there follow the others, in order of their lowest
+//     open chain. Drawings made by hand or converted between units often leave such gaps
+//     (0.011-0.015 mm in three files of the corpus), and a part left open is not cut at all.
 // Output is deterministic: contours in input order of their lowest piece; a cycle starts at its
 // lowest-index piece, travelled in that piece's direction; an open chain starts at its free end
 // reached by walking backwards from its lowest-index piece.
 // Cost: O(n log n) for n pieces (plus k² distance checks, not memory, for k ends crowded
 // within one snap distance: each end offers only its 8 nearest partners).
 // snap_mm below tol::kSamePointMm (or NaN) is raised to it.
-ChainResult chain_contours(const std::vector<ChainPiece>& pieces, double snap_mm);
+ChainResult chain_contours(const std::vector<ChainPiece>& pieces, double snap_mm, double gap_mm = 0.0);
 
 }  // namespace cutroute::geometry

@@ -24,6 +24,7 @@ struct OpenPath {
 struct NestLoadOptions {
   DxfOptions dxf;
   double snap_mm = tol::kSnapMm;   // end-point snapping when chaining [mm]
+  double close_gaps_mm = tol::kCloseGapMm;  // ends still apart joined within this, with a warning [mm]
   model::NestOptions nest;
 };
 
@@ -37,6 +38,7 @@ struct LoadedNest {
   std::map<std::string, std::size_t> layers;         // entities per layer, filters not applied
   std::size_t dropped_zero_length = 0;
   std::size_t dropped_duplicates = 0;
+  std::size_t gaps_closed = 0;   // joints made across a gap (--close-gaps), each warned "chain.gap_closed"
   model::Nest nest;
   std::vector<OpenPath> open_paths;
   Diagnostics diagnostics;   // reader, chaining and nest diagnostics, in that order

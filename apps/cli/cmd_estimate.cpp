@@ -163,8 +163,9 @@ int run_estimate(const EstimateOptions& o) {
     j["frames"] = stats->frames;
     j["v_on_set_m_s"] = e.v_on_set_m_s;
     j["v_on_m_s"] = e.v_on_m_s;
-    j["regime"] = cost::to_string(e.regime);
-    j["measured"] = measured;
+    // The names of optimize's report, so one reader takes both.
+    j["v_on_regime"] = cost::to_string(e.regime);
+    j["measured_speed_row"] = measured;
     j["t_cut_const_speed_s"] = e.t_cut_const_speed_s;
     j["t_cut_s"] = e.t_cut_s;
     j["cost"] = e.cost;

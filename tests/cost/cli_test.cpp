@@ -268,6 +268,14 @@ TEST(CliEstimate, StartPointAsOptimizeUsedIt) {
     ASSERT_TRUE(r["breakdown"].contains(key)) << key;
     EXPECT_NEAR(r["breakdown"][key].get<double>(), value.get<double>(), 1e-9) << key;
   }
+  // The program-level fields an integrator reads from either output have the same names and values.
+  for (const char* key : {"pierces", "cut_length_mm", "frames", "v_on_set_m_s", "v_on_m_s", "v_on_regime", "measured_speed_row",
+                          "t_cut_const_speed_s", "cost", "cost_unit", "material", "thickness_mm"}) {
+    ASSERT_TRUE(at.contains(key)) << key;
+    ASSERT_TRUE(r.contains(key)) << key;
+    if (at[key].is_number_float()) EXPECT_NEAR(at[key].get<double>(), r[key].get<double>(), 1e-6) << key;
+    else EXPECT_EQ(at[key], r[key]) << key;
+  }
   // From the origin the first rapid is longer.
   EXPECT_GT(cli_json("estimate " + prog + " --json")["rapid_length_mm"].get<double>(), r["rapid_length_mm"].get<double>() + 100);
   EXPECT_EQ(cli("estimate " + prog + " --start 1,x").exit_code, 1);

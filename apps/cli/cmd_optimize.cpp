@@ -268,6 +268,7 @@ NestOutcome cut_nest(const std::string& nest, const Outputs& out, const pipeline
   for (const auto& o : loaded->open_paths)
     pic.not_cut.emplace_back(o.path, "not cut: open contour" + (o.line ? " (line " + std::to_string(*o.line) + ", layer " + o.layer + ")"
                                                                       : std::string(" (layer ") + o.layer + ")"));
+  pic.gaps_closed = loaded->gaps_closed;
   std::vector<io::OutputFile> files;
   if (!out.report.empty()) files.push_back({out.report, json_text(res->report) + "\n"});
   if (!out.svg.empty()) files.push_back({out.svg, io::route_to_svg(loaded->nest, res->toolpath, pic)});

@@ -46,7 +46,7 @@ nlohmann::json inspect_report(const LoadedNest& loaded) {
   j["skipped"] = loaded.skipped;
   j["contours_closed"] = nest.contours.size();
   j["contours_open"] = loaded.open_paths.size();
-  j["gaps_closed"] = loaded.gaps_closed;
+  j["gaps_closed"] = loaded.gaps_closed.size();
   j["parts"] = nest.parts.size();
   j["holes"] = holes;
   j["max_depth"] = nest.max_depth;

@@ -46,7 +46,6 @@ LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
   geometry::ChainResult chained = geometry::chain_contours(pieces, options.snap_mm, options.close_gaps_mm);
   out.dropped_zero_length = chained.dropped_zero_length;
   out.dropped_duplicates = chained.dropped_duplicates;
-  out.gaps_closed = chained.gaps_closed.size();
 
   const auto& ents = drawing.entities;
   std::vector<model::SourceContour> closed;
@@ -72,6 +71,7 @@ LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
     d.handle = a.handle;
     d.layer = a.layer;
     d.code = "chain.gap_closed";
+    out.gaps_closed.emplace_back(g.at, d.message);
     out.diagnostics.push_back(std::move(d));
   }
   for (auto& c : chained.open) {

@@ -56,9 +56,23 @@ std::string nest_to_svg(const LoadedNest& loaded, const NestSvgOptions& options)
     svg.end_group();
   }
 
+  // A gap closed in the drawing changed it: a magenta ring each, its warning as the tooltip, sized
+  // for the picture so that a 0.01 mm gap can be found on a 3 m sheet.
+  if (!loaded.gaps_closed.empty()) {
+    svg.begin_group("class=\"gaps\" fill=\"none\" stroke=\"#c2188b\" stroke-width=\"2\" vector-effect=\"non-scaling-stroke\"");
+    for (const auto& [at, why] : loaded.gaps_closed) {
+      svg.begin_group("");
+      svg.add_raw("<title>" + xml_escape(why) + "</title>\n");
+      svg.add_circle(at, label_mm * 0.6, "vector-effect=\"non-scaling-stroke\"");
+      svg.end_group();
+    }
+    svg.end_group();
+  }
+
   std::string caption = loaded.file + ": " + std::to_string(nest.parts.size()) + " parts, " +
                         std::to_string(nest.contours.size()) + " closed contours, " +
-                        std::to_string(loaded.open_paths.size()) + " open paths";
+                        std::to_string(loaded.open_paths.size()) + " open paths" +
+                        (loaded.gaps_closed.empty() ? std::string() : ", " + std::to_string(loaded.gaps_closed.size()) + " gaps closed (magenta rings)");
   svg.add_text({world.xmin, world.ymax + margin * 0.35}, caption, margin * 0.4,
                "fill=\"#333333\" font-family=\"sans-serif\"");
   return svg.str();

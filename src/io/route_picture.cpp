@@ -148,7 +148,8 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
   if (!options.title.empty()) svg.add_raw("<title>" + xml_escape(options.title) + "</title>\n");
   svg.add_raw("<desc>cut: red (pieces of one contour cut in several segments: orange and ochre); lead-in and lead-out: green; "
               "bridge: violet; rapid: dashed blue; tab (material left, the head moves over it with the beam off): teal; "
-              "pierce: orange dot with its number; compensation may be refused: red ring; not cut: dashed orange</desc>\n");
+              "pierce: orange dot with its number; compensation may be refused: red ring; not cut: dashed orange; "
+              "gap closed in the drawing: magenta ring</desc>\n");
   svg.add_raw("<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n");
   if (nest.sheet) {
     svg.add_contour(nest.contours[*nest.sheet].source.contour,
@@ -167,6 +168,17 @@ std::string route_to_svg(const model::Nest& nest, const nc::Toolpath& path, cons
       svg.begin_group("");
       svg.add_raw("<title>" + xml_escape(why) + "</title>\n");
       svg.add_contour(c, kNs);
+      svg.end_group();
+    }
+    svg.end_group();
+  }
+
+  if (!options.gaps_closed.empty()) {
+    svg.begin_group("class=\"gaps\" fill=\"none\" stroke=\"#c2188b\" stroke-width=\"2\" " + std::string(kNs));
+    for (const auto& [p, why] : options.gaps_closed) {
+      svg.begin_group("");
+      svg.add_raw("<title>" + xml_escape(why) + "</title>\n");
+      svg.add_circle(p, mark_mm * 3, kNs);
       svg.end_group();
     }
     svg.end_group();
@@ -333,6 +345,12 @@ std::vector<std::pair<std::string, std::string>> report_summary(const nlohmann::
     rows.emplace_back("compensation at risk", std::to_string(r["compensation"].value("at_risk", 0)) + " of " +
                                                   std::to_string(r["compensation"].value("blocks", 0)) +
                                                   " cuts have details finer than the kerf (red rings)");
+  if (r.contains("diagnostics")) {
+    const auto gaps = std::count_if(r["diagnostics"].begin(), r["diagnostics"].end(),
+                                    [](const nlohmann::json& d) { return d.value("code", "") == "chain.gap_closed"; });
+    if (gaps > 0)
+      rows.emplace_back("gaps closed in the drawing", std::to_string(gaps) + ", each end moved by half the gap (magenta rings)");
+  }
   if (r.contains("kerf_mode")) {
     const std::string mode = str("kerf_mode");
     rows.emplace_back("kerf", num("kerf_mm", 3) + " mm, " +
@@ -417,7 +435,8 @@ std::string route_to_html(const model::Nest& nest, const nc::Toolpath& path,
           "<span style=\"color:#16a085\">&#9644; tab (material left)</span> &nbsp; "
           "<span style=\"color:#f39c12\">&#9679; pierce</span> &nbsp; "
           "<span style=\"color:#e00000\">&#9711; compensation may be refused</span> &nbsp; "
-          "<span style=\"color:#e67e22\">- - not cut (open contour)</span></p>\n";
+          "<span style=\"color:#e67e22\">- - not cut (open contour)</span> &nbsp; "
+          "<span style=\"color:#c2188b\">&#9711; gap closed in the drawing</span></p>\n";
   RoutePictureOptions in_page = options;
   in_page.caption.clear();  // the table below says it all
   html += route_to_svg(nest, path, in_page).substr(std::string("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n").size());

@@ -652,7 +652,7 @@ TEST(OptimizeCli, APartDrawnWithATinyGapIsCutAndTheGapNamed) {
   auto contours_cut = [&](const std::string& extra, CommandOutput* out) {
     const auto report = dir / "b.json";
     *out = run_command(cli_path() + " optimize " + b + " -o " + (dir / "b.ngc").string() + " --report " + report.string() +
-                       " --time-limit 1 --technique standard" + extra);
+                       " --svg " + (dir / "b.svg").string() + " --time-limit 1 --technique standard" + extra);
     EXPECT_EQ(out->exit_code, 0) << out->err;
     std::set<int> cut;
     const auto rep = nlohmann::json::parse(read_text(report));
@@ -660,7 +660,17 @@ TEST(OptimizeCli, APartDrawnWithATinyGapIsCutAndTheGapNamed) {
     return cut.size();
   };
   CommandOutput closed, open, demo;
-  const std::size_t with_gap_closed = contours_cut("", &closed), left_open = contours_cut(" --close-gaps 0", &open);
+  const std::size_t with_gap_closed = contours_cut("", &closed);
+  // The picture marks the gap, its warning as the tooltip.
+  const std::string picture = read_text(dir / "b.svg");
+  EXPECT_NE(picture.find("<g class=\"gaps\""), std::string::npos);
+  EXPECT_NE(picture.find("<title>gap of 0.03 mm between "), std::string::npos);
+  const std::size_t left_open = contours_cut(" --close-gaps 0", &open);
+  EXPECT_EQ(read_text(dir / "b.svg").find("class=\"gaps\""), std::string::npos);
+  // inspect's picture and counts say it too.
+  const auto shown = run_command(cli_path() + " inspect " + b + " --svg " + (dir / "i.svg").string());
+  EXPECT_NE(shown.out.find("(1 gap(s) in the drawing closed)"), std::string::npos) << shown.out;
+  EXPECT_NE(read_text(dir / "i.svg").find("<title>gap of 0.03 mm between "), std::string::npos);
   std::ofstream(b) << read_text(a);
   const std::size_t demo_contours = contours_cut("", &demo);
   EXPECT_EQ(with_gap_closed, demo_contours + 1);

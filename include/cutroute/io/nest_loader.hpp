@@ -2,6 +2,7 @@
 #pragma once
 
 #include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -38,7 +39,9 @@ struct LoadedNest {
   std::map<std::string, std::size_t> layers;         // entities per layer, filters not applied
   std::size_t dropped_zero_length = 0;
   std::size_t dropped_duplicates = 0;
-  std::size_t gaps_closed = 0;   // joints made across a gap (--close-gaps), each warned "chain.gap_closed"
+  // Joints made across a gap (--close-gaps), each warned "chain.gap_closed": where, and that warning's
+  // message, for the pictures' marks.
+  std::vector<std::pair<geometry::Vec2, std::string>> gaps_closed;
   model::Nest nest;
   std::vector<OpenPath> open_paths;
   Diagnostics diagnostics;   // reader, chaining and nest diagnostics, in that order

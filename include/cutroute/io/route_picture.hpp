@@ -21,6 +21,8 @@ struct RoutePictureOptions {
   // Drawn paths the program does not cut (open contours), each with what to say of it: dashed
   // orange, so that a part missing from the program shows (its holes would look like parts).
   std::vector<std::pair<geometry::Contour, std::string>> not_cut;
+  // Gaps closed in the drawing (io::LoadedNest::gaps_closed), each with its warning: magenta rings.
+  std::vector<std::pair<geometry::Vec2, std::string>> gaps_closed;
   // One line of figures written under the picture (report_caption()), so that a standalone SVG
   // says what it shows; empty: none (the HTML page has its table).
   std::string caption;

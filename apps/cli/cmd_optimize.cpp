@@ -148,8 +148,9 @@ struct NestOutcome {
 // The warnings of a cut nest that reach stderr: rapids left over freed parts, cuts the controller's
 // compensation may refuse, cuts after a tab that resume on the part's edge although lead-ins were
 // asked for, parts or tabs that hold nothing, and the open contours not cut.
-std::string printed_warnings(const std::string& nest, const std::vector<Diagnostic>& route, const std::vector<Diagnostic>& loading,
+std::string printed_warnings(const std::string& nest, const std::vector<Diagnostic>& route, const io::LoadedNest& loaded,
                              const nlohmann::json& report) {
+  const std::vector<Diagnostic>& loading = loaded.diagnostics;
   std::string out;
   for (Diagnostic d : route) {
     if (d.code != "tip_up.time_limit" && d.code != "refine.time_limit" && d.code != "technique.time_limit" && d.code != "run.interrupted" &&
@@ -219,12 +220,19 @@ std::string printed_warnings(const std::string& nest, const std::vector<Diagnost
     else more = true;
   }
   if (open > 0) {
+    // The narrowest gap among them, when a wider --close-gaps would close it.
+    double narrowest = -1;
+    for (const auto& p : loaded.open_paths)
+      if (p.nearest_end_mm > 0 && (narrowest < 0 || p.nearest_end_mm < narrowest)) narrowest = p.nearest_end_mm;
+    const std::string nearest = narrowest > 0 ? " (the nearest free ends lie " + format_fixed(narrowest, 3) + " mm apart: --close-gaps " +
+                                                    format_fixed(io::gap_to_close(narrowest), 3) + " joins them)"
+                                              : std::string();
     std::string named;
     for (const Place& p : places)
       named += (named.empty() ? "" : "; ") + (p.count > 1 ? std::to_string(p.count) + " at " : std::string()) + p.where;
     out += "cutroute: " + format(make_warning(std::to_string(open) + " open contour(s) not cut, their ends not meeting within " +
                                                   "--snap and --close-gaps (" + named + (more ? "; ..." : "") +
-                                                  "): a part drawn with a gap among them is missing from the program",
+                                                  "): a part drawn with a gap among them is missing from the program" + nearest,
                                               nest)) + "\n";
   }
   return out;
@@ -276,7 +284,7 @@ NestOutcome cut_nest(const std::string& nest, const Outputs& out, const pipeline
     files.push_back({out.html, io::route_to_html(loaded->nest, res->toolpath, io::report_summary(res->report), pic)});
   files.push_back({out.program, res->program.text});
   if (const Status st = io::write_files_atomic(files); !st) return {kInputError, format(st.error()), {}, {}};
-  return {kOk, summary_line(nest, res->report, out.program), printed_warnings(nest, res->diagnostics, loaded->diagnostics, res->report),
+  return {kOk, summary_line(nest, res->report, out.program), printed_warnings(nest, res->diagnostics, *loaded, res->report),
           res->report};
 }
 

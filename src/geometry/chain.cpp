@@ -429,6 +429,31 @@ void close_gaps(ChainResult& result, double gap_mm) {
   });
 }
 
+// --- step 8: how near the chains left open are to closing ---
+
+void measure_open_ends(ChainResult& result) {
+  const std::size_t n_ends = 2 * result.open.size();
+  if (n_ends == 0) return;
+  std::vector<Vec2> pos(n_ends);
+  for (std::size_t e = 0; e < n_ends; ++e) pos[e] = end_point(result.open[e / 2].contour, e);
+  const detail::EndGrid grid = detail::make_grid(n_ends, kGapHintMm, [&](std::size_t e) { return pos[e]; });
+  for (std::size_t k = 0; k < result.open.size(); ++k) {
+    ChainedContour& chain = result.open[k];
+    const bool may_close_alone = segment_count(chain.contour) >= 2 || segment(chain.contour, 0).is_arc();
+    double best = -1;
+    for (const std::size_t e : {2 * k, 2 * k + 1}) {
+      // A crowded cell (a fan of strokes) gives no hint rather than a slow one.
+      grid.for_near(pos[e], [&](std::uint32_t f) {
+        if (f == e || result.open[f / 2].group != chain.group) return;
+        if (f / 2 == k && !may_close_alone) return;
+        const double d = distance(pos[e], pos[f]);
+        if (d <= kGapHintMm && (best < 0 || d < best)) best = d;
+      });
+    }
+    chain.nearest_end_mm = best;
+  }
+}
+
 }  // namespace
 
 ChainResult chain_contours(const std::vector<ChainPiece>& pieces, double snap_mm, double gap_mm) {
@@ -488,6 +513,7 @@ ChainResult chain_contours(const std::vector<ChainPiece>& pieces, double snap_mm
   }
   drop_repeated_strokes(result);
   if (gap_mm > snap_mm && std::isfinite(gap_mm)) close_gaps(result, gap_mm);
+  measure_open_ends(result);
   return result;
 }
 

@@ -1,6 +1,7 @@
 #include <cutroute/io/nest_loader.hpp>
 
 #include <algorithm>
+#include <cmath>
 
 #include <map>
 
@@ -22,6 +23,14 @@ void take_origin(const std::vector<DxfEntity>& ents, const std::vector<std::int3
 }
 
 }  // namespace
+
+double gap_to_close(double gap_mm) {
+  // The figure as printed (3 decimals) must join the ends when typed back: ends 0.3 mm apart in the
+  // drawing may lie 0.30000000000000004 apart, which --close-gaps 0.3 does not reach.
+  double g = std::ceil(gap_mm * 1000) / 1000;
+  while (g < gap_mm) g += 0.001;
+  return std::min(g, geometry::kGapHintMm);
+}
 
 LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
   LoadedNest out;
@@ -77,6 +86,7 @@ LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
   for (auto& c : chained.open) {
     OpenPath p;
     p.path = std::move(c.contour);
+    p.nearest_end_mm = c.nearest_end_mm;
     take_origin(ents, c.sources, p.layer, p.handle, p.line);
     if (!p.path.vertices.empty()) {
       const auto a = p.path.vertices.front().p;
@@ -84,7 +94,12 @@ LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
       Diagnostic d = make_warning("open contour from " + std::to_string(c.sources.size()) +
                                       " entities, ends at (" + format_fixed(a.x, 3) + ", " + format_fixed(a.y, 3) +
                                       ") and (" + format_fixed(b.x, 3) + ", " + format_fixed(b.y, 3) +
-                                      "); kept as an open path, not cut",
+                                      "); kept as an open path, not cut" +
+                                      (p.nearest_end_mm > options.close_gaps_mm ? "; an end lies " + format_fixed(p.nearest_end_mm, 3) +
+                                                                                    " mm from another free end (--close-gaps " +
+                                                                                    format_fixed(gap_to_close(p.nearest_end_mm), 3) +
+                                                                                    " would join them)"
+                                                                              : std::string()),
                                   out.file, p.line);
       d.handle = p.handle;
       d.layer = p.layer;

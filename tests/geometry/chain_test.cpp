@@ -168,10 +168,20 @@ TEST(Chain, GapsBeyondTheSnapCloseInASecondPassAndAreListed) {
   EXPECT_NEAR(distance(gaps[1].at, {10.015, 0}), 0, 1e-12);
   EXPECT_EQ(std::min(gaps[1].source_a, gaps[1].source_b), 0);
   EXPECT_EQ(std::max(gaps[1].source_a, gaps[1].source_b), 1);
-  // Strokes farther apart than the gap stay open, one chain each.
+  // Strokes farther apart than the gap stay open, one chain each, with the distance that would join them.
   ASSERT_EQ(r.open.size(), 2u);
   EXPECT_EQ(r.open[0].sources, (std::vector<std::int32_t>{4}));
   EXPECT_EQ(r.open[1].sources, (std::vector<std::int32_t>{5}));
+  EXPECT_NEAR(r.open[0].nearest_end_mm, 0.2, 1e-9);
+  EXPECT_NEAR(r.open[1].nearest_end_mm, 0.2, 1e-9);
+  // Beyond kGapHintMm, or alone, there is nothing to say; a single line never closes on itself.
+  std::vector<ChainPiece> apart{line({0, 0}, {10, 0}, 0), line({11.5, 0}, {20, 0}, 1), line({30, 0}, {30, 0.5}, 2)};
+  for (const ChainedContour& c : chain_contours(apart, 0.01, 0.05).open) EXPECT_LT(c.nearest_end_mm, 0) << c.sources[0];
+  // A polyline whose own ends are 0.4 mm apart could close by itself.
+  std::vector<ChainPiece> hook{{polygon({{0, 0}, {5, 0}, {5, 5}, {0, 0.4}}, false), 0, 0}};
+  const ChainResult h = chain_contours(hook, 0.01, 0.05);
+  ASSERT_EQ(h.open.size(), 1u);
+  EXPECT_NEAR(h.open[0].nearest_end_mm, 0.4, 1e-9);
   // Groups stay apart across gaps too.
   std::vector<ChainPiece> grouped = pieces;
   grouped[0].group = 3;

@@ -687,6 +687,17 @@ TEST(OptimizeCli, APartDrawnWithATinyGapIsCutAndTheGapNamed) {
   EXPECT_EQ(closed.err.find("open contour(s) not cut"), std::string::npos) << closed.err;
   EXPECT_EQ(open.err.find("gap(s) in the drawing closed"), std::string::npos) << open.err;
   EXPECT_NE(open.err.find("1 open contour(s) not cut"), std::string::npos) << open.err;
+  // Too narrow a --close-gaps: the warning says which one joins the ends, and that one does.
+  std::ofstream(b) << text;
+  CommandOutput narrow;
+  EXPECT_EQ(contours_cut(" --close-gaps 0.02", &narrow), demo_contours);
+  const std::string hint = "the nearest free ends lie 0.03 mm apart: --close-gaps ";
+  const auto at = narrow.err.find(hint);
+  ASSERT_NE(at, std::string::npos) << narrow.err;
+  const std::string suggested = narrow.err.substr(at + hint.size(), narrow.err.find(' ', at + hint.size()) - at - hint.size());
+  CommandOutput again;
+  EXPECT_EQ(contours_cut(" --close-gaps " + suggested, &again), demo_contours + 1) << suggested;
+  EXPECT_NE(again.err.find("1 gap(s) in the drawing closed"), std::string::npos) << again.err;
   fs::remove_all(dir);
 }
 

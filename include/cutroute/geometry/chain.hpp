@@ -22,7 +22,13 @@ struct ChainedContour {
   Contour contour;                    // closed, or open when it could not be closed
   std::vector<std::int32_t> sources;  // the pieces it was made of, in order of travel
   std::int32_t group = 0;
+  // Open chains: how far an end of it lies from the nearest end it could join (another free end of
+  // its group, or its own other end), when within kGapHintMm; else < 0 (step 8).
+  double nearest_end_mm = -1;
 };
+
+// Step 8 looks this far for an open chain's nearest free end [mm]: the largest --close-gaps.
+inline constexpr double kGapHintMm = 1.0;
 
 // A gap between two chain ends that step 7 closed (the ends moved to `at`, its midpoint).
 struct ClosedGap {
@@ -73,6 +79,7 @@ struct ChainResult {
 //     is listed in gaps_closed; contours closed there follow the others, in order of their lowest
 //     open chain. Drawings made by hand or converted between units often leave such gaps
 //     (0.011-0.015 mm in three files of the corpus), and a part left open is not cut at all.
+//  8. each chain still open gets nearest_end_mm, so that a warning can say what would close it.
 // Output is deterministic: contours in input order of their lowest piece; a cycle starts at its
 // lowest-index piece, travelled in that piece's direction; an open chain starts at its free end
 // reached by walking backwards from its lowest-index piece.

@@ -20,6 +20,7 @@ struct OpenPath {
   std::string layer;
   std::string handle;          // first entity of the chain
   std::optional<long> line;
+  double nearest_end_mm = -1;  // its end nearest another free end (or its own other end), if within 1 mm
 };
 
 struct NestLoadOptions {
@@ -53,5 +54,8 @@ struct LoadedNest {
 // result (the caller decides whether they stop the job).
 Result<LoadedNest> load_nest(const std::string& path, const NestLoadOptions& options);
 LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options);
+
+// The smallest --close-gaps of three decimals that joins ends gap_mm apart (at most 1 mm).
+double gap_to_close(double gap_mm);
 
 }  // namespace cutroute::io

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <numbers>
 #include <numeric>
 #include <tuple>
 #include <utility>
@@ -309,6 +310,17 @@ struct Walker {
       e_in = static_cast<std::size_t>(next);
     }
     out.contour.closed = cycle;
+    const Segment arc = segment(pieces[open[first_piece]].path, 0);
+    if (cycle && out.contour.vertices.size() == 1 && std::abs(arc.sweep()) > std::numbers::pi) {
+      // One arc that closes on itself (an ARC of 359.9°, a one-bulge polyline): as one vertex it
+      // would be a loop of no length, and the hole it draws would be left out of the nest. It is
+      // the circle round the arc's centre through the joint, in two halves. An arc whose ends meet
+      // because it is tiny (r = 0.003 mm, 110°, in a hatch of d2g_Frontplatte) stays a loop of no
+      // length, left out.
+      const Vec2 p = out.contour.vertices[0].p, c = arc.center();
+      const double turn = arc.bulge < 0 ? -1.0 : 1.0;
+      out.contour.vertices = {{p, turn}, {c * 2.0 - p, turn}};
+    }
     return out;
   }
 };
@@ -397,6 +409,8 @@ void drop_repeated_strokes(ChainResult& result) {
 // the others, in order of their lowest chain). A second pass rather than a wider snap: parts drawn
 // edge to edge (step 4) and repeated strokes (step 6) are still told at the snap, and every joint
 // made across a gap is listed for a warning, where a wider snap would move ends unsaid.
+constexpr double kSliverGaps = 2.0;
+
 void close_gaps(ChainResult& result, double gap_mm) {
   if (result.open.empty()) return;
   std::vector<ChainPiece> chains;
@@ -410,7 +424,27 @@ void close_gaps(ChainResult& result, double gap_mm) {
   }
   std::vector<std::uint32_t> ids(chains.size());
   std::iota(ids.begin(), ids.end(), std::uint32_t{0});
-  const std::vector<std::int32_t> partner = match_ends(chains, ids, gap_mm);
+  std::vector<std::int32_t> partner = match_ends(chains, ids, gap_mm);
+  // A mark drawn as a V or there and back, whose open ends lie close, would close into a sliver
+  // and be cut as a slit through the part it marks: a loop whose mean width (2 area / length) is
+  // within a few gap widths is no drawn outline, and its joints are undone.
+  std::vector<std::size_t> slivers;
+  {
+    Walker probe{chains, ids, partner};
+    walk_chains(probe, [&](std::size_t k, bool cycle, const ChainedContour& chain) {
+      if (cycle && 2 * std::abs(signed_area(chain.contour)) < kSliverGaps * gap_mm * length(chain.contour)) slivers.push_back(k);
+    });
+  }
+  for (const std::size_t k : slivers) {
+    std::size_t e_in = 2 * k;
+    for (;;) {
+      const std::int32_t next = partner[e_in ^ 1];
+      partner[e_in ^ 1] = kNone;
+      partner[static_cast<std::size_t>(next)] = kNone;
+      if (static_cast<std::size_t>(next) / 2 == k) break;
+      e_in = static_cast<std::size_t>(next);
+    }
+  }
   for (std::size_t e = 0; e < partner.size(); ++e) {
     const std::int32_t f = partner[e];
     if (f == kNone || static_cast<std::size_t>(f) < e) continue;
@@ -439,7 +473,15 @@ void measure_open_ends(ChainResult& result) {
   const detail::EndGrid grid = detail::make_grid(n_ends, kGapHintMm, [&](std::size_t e) { return pos[e]; });
   for (std::size_t k = 0; k < result.open.size(); ++k) {
     ChainedContour& chain = result.open[k];
-    const bool may_close_alone = segment_count(chain.contour) >= 2 || segment(chain.contour, 0).is_arc();
+    bool may_close_alone = segment_count(chain.contour) >= 2 || segment(chain.contour, 0).is_arc();
+    if (may_close_alone) {
+      // Not when step 7 would refuse that loop as a sliver (a V-shaped mark).
+      Contour loop = chain.contour;
+      loop.closed = true;
+      loop.vertices.back().bulge = 0;
+      const double gap = distance(loop.vertices.front().p, loop.vertices.back().p);
+      may_close_alone = !(2 * std::abs(signed_area(loop)) < kSliverGaps * gap * length(loop));
+    }
     double best = -1;
     for (const std::size_t e : {2 * k, 2 * k + 1}) {
       // A crowded cell (a fan of strokes) gives no hint rather than a slow one.

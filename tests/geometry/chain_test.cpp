@@ -190,6 +190,43 @@ TEST(Chain, GapsBeyondTheSnapCloseInASecondPassAndAreListed) {
   EXPECT_TRUE(g.gaps_closed.empty());
 }
 
+TEST(Chain, MarksWhoseEndsMeetAcrossAGapStayOpen) {
+  // A V of two lines whose open ends lie 0.04 mm apart, and a polyline there and back ending
+  // 0.03 mm from its start: closed, each would be a sliver cut as a slit through the part it marks.
+  std::vector<ChainPiece> v{line({50, 20}, {65, 25}, 0), line({65, 25}, {50.04, 20}, 1),
+                            {polygon({{0, 0}, {20, 0}, {20, 0.001}, {0.03, 0.0}}, false), 2, 0}};
+  const ChainResult r = chain_contours(v, 0.01, 0.05);
+  EXPECT_TRUE(r.closed.empty());
+  EXPECT_TRUE(r.gaps_closed.empty());
+  ASSERT_EQ(r.open.size(), 2u);
+  // Nor does a warning offer a --close-gaps that would close them.
+  for (const ChainedContour& c : r.open) EXPECT_LT(c.nearest_end_mm, 0) << c.sources[0];
+  // A triangle of the same size drawn with its corner 0.04 mm open is an outline: closed.
+  std::vector<ChainPiece> tri{line({50, 20}, {65, 25}, 0), line({65, 25}, {60, 35}, 1), line({60, 35}, {50.04, 20}, 2)};
+  const ChainResult t = chain_contours(tri, 0.01, 0.05);
+  EXPECT_EQ(t.closed.size(), 1u);
+  EXPECT_EQ(t.gaps_closed.size(), 1u);
+}
+
+TEST(Chain, OneArcClosingOnItselfIsItsCircle) {
+  // An ARC of r = 4 round (10, 20) from 0° to 359.6° (ends 0.028 mm apart, closed across the gap)
+  // and one of 359.99999° (within the snap), each way round: as one vertex either was a loop of no
+  // length, and a hole drawn so was left out of the nest.
+  for (const double sweep_deg : {359.6, 359.99999, -359.6}) {
+    const double sweep = sweep_deg * kPi / 180, r = 4;
+    const Vec2 c{10, 20}, a = c + Vec2{r, 0}, b = c + Vec2{std::cos(sweep), std::sin(sweep)} * r;
+    const std::vector<ChainPiece> arc{{Contour{{{a, std::tan(sweep / 4)}, {b, 0}}, false}, 7, 0}};
+    const ChainResult res = chain_contours(arc, 0.01, 0.05);
+    ASSERT_EQ(res.closed.size(), 1u) << sweep_deg;
+    const Contour& k = res.closed[0].contour;
+    ASSERT_EQ(k.vertices.size(), 2u);
+    EXPECT_EQ(res.closed[0].sources, (std::vector<std::int32_t>{7}));
+    EXPECT_NEAR(length(k), 2 * kPi * r, 1e-3) << sweep_deg;
+    EXPECT_NEAR(signed_area(k), (sweep > 0 ? 1 : -1) * kPi * r * r, 1e-2) << sweep_deg;
+    for (std::size_t i = 0; i < 2; ++i) EXPECT_NEAR(distance(segment(k, i).center(), c), 0, 1e-6);
+  }
+}
+
 TEST(Chain, DuplicatesAndZeroLengthDroppedAndCounted) {
   std::vector<ChainPiece> pieces{line({0, 0}, {1, 0}, 0), line({1, 0}, {1, 1}, 1), line({1, 1}, {0, 0}, 2),
                                  line({1, 0}, {0, 0}, 3),  // reversed copy of 0

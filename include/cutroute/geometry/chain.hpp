@@ -77,7 +77,8 @@ struct ChainResult {
 //  7. gaps: when gap_mm > snap_mm, the ends of the chains still open are matched again as in 3
 //     within gap_mm and walked as in 5 (their joints moved to the midpoints), and each such joint
 //     is listed in gaps_closed; contours closed there follow the others, in order of their lowest
-//     open chain. Drawings made by hand or converted between units often leave such gaps
+//     open chain. A loop it would close whose mean width (2 area / length) is under 2 gap_mm (a
+//     V-shaped or there-and-back mark) is left open: cut, it would be a slit through a part. Drawings made by hand or converted between units often leave such gaps
 //     (0.011-0.015 mm in three files of the corpus), and a part left open is not cut at all.
 //  8. each chain still open gets nearest_end_mm, so that a warning can say what would close it.
 // Output is deterministic: contours in input order of their lowest piece; a cycle starts at its

@@ -26,7 +26,8 @@ class Emitter {
  public:
   Emitter(const PostDialect& d, WrittenProgram& out)
       : d_(d), out_(out), scale_(d.units == "in" ? 1.0 / units::kMmPerInch : 1.0),
-        res_mm_(std::pow(10.0, -d.decimals) / scale_) {}
+        res_mm_(std::pow(10.0, -d.decimals) / scale_),
+        arc_tol_mm_(d.units == "in" ? tol::kGcodeArcRadiusInch * units::kMmPerInch : tol::kGcodeArcRadiusMm) {}
 
   void start_numbers() { next_n_ = d_.line_number_start; }
   void set_position(Vec2 p) {
@@ -62,6 +63,10 @@ class Emitter {
         clean += (c < 0x20 || c == 0x7F || c == '(' || c == ')') ? ' ' : static_cast<char>(c);
       }
     }
+    // LinuxCNC refuses a line of more than 255 characters ("Command too long"): a title naming a
+    // long file path is cut short.
+    constexpr std::size_t kMaxComment = 200;
+    if (clean.size() > kMaxComment) clean = clean.substr(0, kMaxComment - 3) + "...";
     if (d_.comments == CommentStyle::paren) {
       out_.text += "(" + clean + ")\n";
     } else {
@@ -71,7 +76,8 @@ class Emitter {
 
   void codes(const std::vector<std::string>& lines, double pierce_s, double feed) {
     for (const std::string& line : lines)
-      block(fill_placeholders(line, format_fixed(pierce_s, 3), format_fixed(feed * scale_, d_.feed_decimals)));
+      block(fill_placeholders(line, format_fixed(pierce_s, 3), format_fixed(feed * scale_, d_.feed_decimals),
+                              format_fixed(std::round(pierce_s * 1000), 0)));
   }
 
   // Rounds a point to the output resolution (in mm).
@@ -143,12 +149,12 @@ class Emitter {
     if (d_.arc_format == ArcFormat::ij) {
       const Vec2 exact = c;
       c = pos_ + quantise_delta(c - pos_);
-      // On a coarse grid (2 decimals: 0.01 mm) the rounded centre can lie 0.014 mm nearer one end
+      // On a coarse grid (2 decimals: 0.01 mm, or 0.001 in) the rounded centre can lie 0.014 mm nearer one end
       // than the other, an arc the controller (and our reader, at 0.01 mm) refuses: the grid
       // point next to it with the least difference is taken instead. At the default 1 µm the
       // difference stays below a third of the tolerance, and the centre as rounded is kept.
       auto mismatch = [&](Vec2 cc) { return std::abs(geometry::distance(cc, pos_) - geometry::distance(cc, q)); };
-      if (mismatch(c) > 0.5 * tol::kGcodeArcRadiusMm) {
+      if (mismatch(c) > 0.5 * arc_tol_mm_) {
         const Vec2 rounded = c;
         for (int i = -1; i <= 1; ++i)
           for (int j = -1; j <= 1; ++j) {
@@ -158,7 +164,7 @@ class Emitter {
           }
         // A grid coarser still (1 decimal) has no such point: the arc goes as chords whose
         // sagitta stays within the grid step.
-        if (mismatch(c) > 0.9 * tol::kGcodeArcRadiusMm) {
+        if (mismatch(c) > 0.9 * arc_tol_mm_) {
           const double r = geometry::distance(exact, pos_);
           const double step = 2 * std::acos(std::clamp(1 - res_mm_ / std::max(r, res_mm_), -1.0, 1.0));
           const int k = std::clamp(static_cast<int>(std::ceil(std::abs(sweep) / std::max(step, 1e-3))), 2, 720);
@@ -224,6 +230,9 @@ class Emitter {
   WrittenProgram& out_;
   double scale_;
   double res_mm_;
+  // How far apart the written start and end radii may lie: the reader's (and LinuxCNC's, which
+  // takes 0.0019 in at r = 1 in) tolerance in the program's unit.
+  double arc_tol_mm_;
   long long next_n_ = 0;  // a long program from a high start can pass 2^31
   Vec2 pos_{};
   bool have_pos_ = false;

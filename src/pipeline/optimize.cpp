@@ -1027,14 +1027,22 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     const auto back = nc::read_gcode(best_ev.program.text, "the written program", ro);
     const auto differs = [](double a, double b) { return std::abs(a - b) > 1e-6 * std::max(1.0, std::abs(b)); };
     std::string fault;
+    // A park move in the dialect's footer (or a move in its header) is travel the route does not
+    // know: the program's rapid length is then the one read back, and so is the quote.
+    const bool parks = nc::moves_outside_the_path(s.dialect);
     if (!back) fault = "is refused by cutroute's own reader: " + format(back.error());
     else if (back->pierces != best_ev.program.pierces || differs(back->cut_length_mm, best_ev.program.cut_length_mm) ||
-             differs(back->rapid_length_mm, best_ev.program.rapid_length_mm))
+             (!parks && differs(back->rapid_length_mm, best_ev.program.rapid_length_mm)))
       fault = "reads back as " + std::to_string(back->pierces) + " pierces, " + format_fixed(back->cut_length_mm, 3) + " mm cut, " +
               format_fixed(back->rapid_length_mm, 3) + " mm rapid, where it was written with " + std::to_string(best_ev.program.pierces) +
               ", " + format_fixed(best_ev.program.cut_length_mm, 3) + " and " + format_fixed(best_ev.program.rapid_length_mm, 3);
-    else
+    else {
       quoted = cost::estimate_time(cost::program_totals(*back), s.conditions);
+      if (parks) {
+        best_ev.program.rapid_length_mm = back->rapid_length_mm;
+        best_ev.estimate = quoted;
+      }
+    }
     if (!fault.empty()) {
       Diagnostic w = make_warning("the written program " + fault + " (a fault of cutroute's writer: please report it)");
       w.code = "program.readback";

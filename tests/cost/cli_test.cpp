@@ -7,6 +7,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <sstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -246,6 +248,61 @@ TEST(CliData, ACopiedBinaryReadsTheDataBesideIt) {
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_NE(missing.err.find("the built-in machine profile, in the data folder " + (dir / "nowhere").string()), std::string::npos)
       << missing.err;
+  std::filesystem::remove_all(dir);
+}
+
+// Post dialects a shop writes: Fanuc-style millisecond dwells, a park move in the footer, inch
+// coordinates to 3 decimals. Each program's report is what `estimate` reads from it with the same
+// dialect; the park move is in the quote, the inch arcs stay arcs, and no line passes LinuxCNC's
+// 255 characters even under a long file name.
+TEST(CliEstimate, ShopDialectsAreQuotedAsEstimateReadsThem) {
+  const auto dir = std::filesystem::temp_directory_path() / ("cutroute-dialects-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string dxf = (dir / (std::string(230, 'n') + ".dxf")).string();
+  ASSERT_EQ(cli("demo " + dxf).exit_code, 0);
+  const std::pair<const char*, const char*> dialects[] = {
+      {"plain", R"({"name": "plain"})"},
+      {"ms", R"({"pierce": ["G4 P{pierce_ms}"]})"},
+      {"park", R"({"footer": ["G0 X0 Y1200"]})"},
+      {"in3", R"({"units": "in", "decimals": 3})"},
+  };
+  std::map<std::string, json> report;
+  std::map<std::string, std::string> program;
+  for (const auto& [name, text] : dialects) {
+    const std::string dialect = (dir / (std::string(name) + ".json")).string(), prog = (dir / (std::string(name) + ".ngc")).string(),
+                      rep = (dir / (std::string(name) + ".rep.json")).string();
+    std::ofstream(dialect) << text;
+    const auto r = cli("optimize " + dxf + " -o " + prog + " --report " + rep + " --dialect " + dialect +
+                       " --technique standard --kerf-mode none --time-limit 0 --work-limit 1 --threads 1");
+    ASSERT_EQ(r.exit_code, 0) << name << ": " << r.err;
+    EXPECT_EQ(r.err.find("warning"), std::string::npos) << name << ": " << r.err;
+    report[name] = json::parse(std::ifstream(rep));
+    std::ifstream in(prog);
+    program[name].assign(std::istreambuf_iterator<char>(in), {});
+    const auto back = cli_json("estimate " + prog + " --dialect " + dialect + " --json");
+    for (const char* key : {"pierces", "cut_length_mm", "rapid_length_mm", "frames", "t_cut_s", "total_s"}) {
+      const double want = report[name][key].get<double>();
+      const double got = key == std::string("total_s") ? back["breakdown"]["total_s"].get<double>() : back[key].get<double>();
+      EXPECT_NEAR(got, want, 1e-6 * std::max(1.0, want)) << name << " " << key;
+    }
+    std::istringstream lines(program[name]);
+    for (std::string line; std::getline(lines, line);) EXPECT_LE(line.size(), 255u) << name << ": " << line.substr(0, 60);
+  }
+  // 18 pierces of 0.3 s (AMg3M 1 mm) written as G4 P300, quoted as 0.3 s each, as the plain dialect.
+  EXPECT_NE(program["ms"].find("G4 P300\n"), std::string::npos);
+  EXPECT_NEAR(report["ms"]["total_s"].get<double>(), report["plain"]["total_s"].get<double>(), 1e-9);
+  // The park move: the rapid back from the last cut to (0, 1200) instead of the origin, quoted.
+  EXPECT_GT(report["park"]["rapid_length_mm"].get<double>(), report["plain"]["rapid_length_mm"].get<double>() + 500);
+  EXPECT_GT(report["park"]["t_cut_s"].get<double>(), report["plain"]["t_cut_s"].get<double>());
+  // As many arcs in inches to 0.001 in as in millimetres to 1 µm (they were cut into chords).
+  auto arcs = [](const std::string& p) {
+    std::size_t n = 0;
+    for (std::size_t at = p.find("\nG"); at != std::string::npos; at = p.find("\nG", at + 1)) n += p[at + 2] == '2' || p[at + 2] == '3';
+    return n;
+  };
+  EXPECT_GT(arcs(program["plain"]), 10u);
+  EXPECT_EQ(arcs(program["in3"]), arcs(program["plain"]));
+  EXPECT_EQ(report["in3"]["frames"], report["plain"]["frames"]);
   std::filesystem::remove_all(dir);
 }
 

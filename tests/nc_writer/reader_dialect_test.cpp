@@ -156,13 +156,52 @@ TEST(ReaderDialect, ErrorsNameTheFileAndTheField) {
   r = derive(R"({"thc_on": ["M65 P{output}"]})");
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.error().file, path.string());
-  EXPECT_NE(r.error().message.find("field 'thc_on': line 'M65 P{output}' cannot be read back"),
-            std::string::npos)
+  EXPECT_NE(r.error().message.find("field 'thc_on': line 'M65 P{output}' is no G-code block"), std::string::npos)
       << r.error().message;
   r = derive(R"({"header": ["M62.5"]})");
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().message.find("field 'header'"), std::string::npos) << r.error().message;
+
+  // Each line the writer cannot rely on is refused when the file is read, naming the field.
+  const std::pair<const char*, const char*> refused[] = {
+      {R"({"units": "in", "header": ["G21 G17"]})", "field 'header': line 'G21 G17' switches to millimetres (G21)"},
+      {R"({"header": ["G20"]})", "switches to inches (G20) where the dialect's units are mm"},
+      {R"({"footer": ["G91"]})", "field 'footer': line 'G91' switches to incremental coordinates"},
+      {R"({"header": ["G90.1"]})", "makes arc centres absolute (G90.1)"},
+      {R"({"header": ["G41"]})", "switches cutter compensation on, which only 'kerf_left' and 'kerf_right' may"},
+      {R"({"beam_on": ["M3 S1 G1 X0"]})", "field 'beam_on': line 'M3 S1 G1 X0' moves the head in the plane"},
+      {R"({"pierce": ["G4 Y{pierce_s}"]})", "field 'pierce': line 'G4 Y{pierce_s}' moves the head"},
+      {R"({"kerf_left": ""})", "'kerf_left' must write G41"},
+      {R"({"kerf_right": "M3 S1"})", "'kerf_right' must write G42"},
+      {R"({"kerf_off": "G49"})", "'kerf_off' must write G40"},
+      {R"({"program_end": "G0 X0"})", "'program_end' must write M2 or M30"},
+      {R"({"header": ["G17\nG90"]})", "field 'header': a line holds printable ASCII only"},
+      {"{\"header\": [\"(F\xC3\xBC" "r)\"]}", "field 'header': a line holds printable ASCII only"},
+      {R"({"pierce": ["G4 P{pierce_s}", "G4 P{pierce_ms}"]})", "G4 P{pierce_s} (seconds) beside {pierce_ms}"},
+  };
+  for (const auto& [json, message] : refused) {
+    r = derive(json);
+    ASSERT_FALSE(r.ok()) << json;
+    EXPECT_EQ(r.error().file, path.string());
+    EXPECT_NE(r.error().message.find(message), std::string::npos) << json << ": " << r.error().message;
+  }
+  r = derive(R"({"header": [")" + std::string(201, 'G') + R"("]})");
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("longer than 200 characters"), std::string::npos) << r.error().message;
+  // Accepted: a tab between words, a torch Z move with the beam, a park move in the footer, and
+  // Fanuc-style dwells (G4 X seconds, or {pierce_ms}), which make the reader count G4 P in ms.
+  for (const char* json : {R"({"header": ["G17\tG90"], "beam_on": ["M3 S1 G0 Z1"], "footer": ["G0 X0 Y1200"]})",
+                           R"({"pierce": ["G04 X{pierce_s}"]})", R"({"pierce": ["G4 P{pierce_ms}"]})"}) {
+    r = derive(json);
+    ASSERT_TRUE(r.ok()) << json << ": " << r.error().message;
+    EXPECT_EQ(r->dwell_p_unit, std::string(json).find("pierce") != std::string::npos ? DwellUnit::milliseconds : DwellUnit::seconds)
+        << json;
+  }
   std::filesystem::remove(path);
+  // A dialect file that is not there is said so, not taken for an unknown name.
+  const auto missing = find_post_dialect("no/such/dialect.json");
+  ASSERT_FALSE(missing.ok());
+  EXPECT_NE(missing.error().message.find("dialect file 'no/such/dialect.json' not found"), std::string::npos) << missing.error().message;
 
   PostDialect in_code;
   in_code.name = "mine";

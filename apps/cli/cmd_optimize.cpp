@@ -181,21 +181,26 @@ std::string printed_warnings(const std::string& nest, const std::vector<Diagnost
     if (d.file.empty()) d.file = nest;
     out += "cutroute: " + format(d) + "\n";
   }
-  // A closed gap changes the drawing (ends moved to meet): one line for them all, naming the first.
-  {
-    int gaps = 0;
+  // What reading changed in the drawing: gaps closed (ends moved to meet), outlines drawn twice
+  // (cut once), loops that enclose nothing (cut as a slit): one line for each kind, naming the first.
+  const std::pair<const char*, const char*> changed[] = {
+      {"chain.gap_closed", " gap(s) in the drawing closed, each end moved by half the gap (first: %); --close-gaps 0 leaves them open"},
+      {"nest.duplicate", " contour(s) drawn twice, cut once (first: %)"},
+      {"nest.no_area", " contour(s) enclosing no area, cut as a slit (first: %)"}};
+  for (const auto& [code, text] : changed) {
+    int count = 0;
     const Diagnostic* first = nullptr;
     for (const Diagnostic& d : loading) {
-      if (d.code != "chain.gap_closed") continue;
-      if (gaps++ == 0) first = &d;
+      if (d.code != code) continue;
+      if (count++ == 0) first = &d;
     }
-    if (first != nullptr) {
-      Diagnostic d = *first;
-      if (d.file.empty()) d.file = nest;
-      d.message = std::to_string(gaps) + " gap(s) in the drawing closed, each end moved by half the gap (first: " + d.message +
-                  "); --close-gaps 0 leaves them open";
-      out += "cutroute: " + format(d) + "\n";
-    }
+    if (first == nullptr) continue;
+    Diagnostic d = *first;
+    if (d.file.empty()) d.file = nest;
+    const std::string pattern = text;
+    const auto at = pattern.find('%');
+    d.message = std::to_string(count) + pattern.substr(0, at) + d.message + pattern.substr(at + 1);
+    out += "cutroute: " + format(d) + "\n";
   }
   // Open contours are not cut, and a part drawn with a gap would be missing from the program:
   // one line for them all (drawings with text or hatching have many), naming the first few places

@@ -11,6 +11,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include <cutroute/core/number_format.hpp>
 #include <cutroute/core/tolerances.hpp>
 #include <cutroute/geometry/segment_set.hpp>
 #include <cutroute/geometry/spatial_index.hpp>
@@ -156,9 +157,45 @@ struct Prepared {
   std::vector<geometry::SegmentSet> segments;  // ContourId -> indexed segments
 };
 
+// Kept contours by the 1 mm cell of their box's lower left corner: a copy nudged by less than
+// kNearDuplicateMm has its corner in the same or a neighbouring cell.
+struct CornerGrid {
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells;
+  static std::int64_t cell(double v) { return static_cast<std::int64_t>(std::floor(std::clamp(v, -1e15, 1e15))); }
+  static std::uint64_t key(std::int64_t x, std::int64_t y) {
+    return static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(y);
+  }
+  void add(const Box& b, std::size_t kept) { cells[key(cell(b.xmin), cell(b.ymin))].push_back(kept); }
+  template <class F>
+  void near(const Box& b, F&& f) const {
+    const std::int64_t x = cell(b.xmin), y = cell(b.ymin);
+    for (std::int64_t dx = -1; dx <= 1; ++dx)
+      for (std::int64_t dy = -1; dy <= 1; ++dy)
+        if (const auto it = cells.find(key(x + dx, y + dy)); it != cells.end())
+          for (const std::size_t k : it->second) f(k);
+  }
+};
+
+// Is the outline `s` (box b, area a) drawn again, within kNearDuplicateMm, as kept contour k?
+// Every sample of each boundary (vertices, quarter points) lies that close to the other's.
+bool near_duplicate(const geometry::SegmentSet& s, const Box& b, double a, const NestContour& kept, const geometry::SegmentSet& ks) {
+  const double tol = tol::kNearDuplicateMm;
+  const Box& kb = kept.box;
+  if (std::abs(b.xmin - kb.xmin) > tol || std::abs(b.ymin - kb.ymin) > tol || std::abs(b.xmax - kb.xmax) > tol ||
+      std::abs(b.ymax - kb.ymax) > tol)
+    return false;
+  if (std::abs(std::abs(a) - kept.area_mm2) > tol * 2 * (b.width() + b.height())) return false;
+  const auto one_way = [tol](const geometry::SegmentSet& x, const geometry::SegmentSet& y) {
+    const geometry::BoundarySides sides = geometry::boundary_sides(x, y, tol);
+    return sides.inside == 0 && sides.outside == 0;
+  };
+  return one_way(s, ks) && one_way(ks, s);
+}
+
 Prepared prepare(std::vector<SourceContour> contours, Nest& nest) {
   Prepared prep;
   std::unordered_multimap<std::uint64_t, std::size_t> kept_by_hash;  // hash -> position in nest.contours
+  CornerGrid corners;
   std::vector<std::vector<Vertex>> cycles;
   for (std::size_t i = 0; i < contours.size(); ++i) {
     SourceContour& s = contours[i];
@@ -193,18 +230,34 @@ Prepared prepare(std::vector<SourceContour> contours, Nest& nest) {
       }
     }
     if (duplicate) continue;
+    // The same outline drawn again a few micrometres off (exact copies are caught above).
+    geometry::SegmentSet segments = geometry::make_segment_set(c);
+    const Box box = geometry::bounding_box(c);
+    corners.near(box, [&](std::size_t kept) {
+      if (duplicate || !near_duplicate(segments, box, a, nest.contours[cid(kept)], prep.segments[kept])) return;
+      nest.diagnostics.push_back(diagnostic_for(Severity::warning,
+                                                describe(s, i) + " duplicates " +
+                                                    describe(nest.contours[cid(kept)].source, prep.input_index[kept]) +
+                                                    " within " + format_fixed(tol::kNearDuplicateMm, 2) +
+                                                    " mm everywhere (cut, both would run along one kerf); the copy is left out",
+                                                s, "nest.duplicate"));
+      ++nest.dropped_duplicates;
+      duplicate = true;
+    });
+    if (duplicate) continue;
     if (geometry::orientation(c) == geometry::Orientation::degenerate) {
       // Still cut (a slot traced there and back, a figure 8), but it can hold nothing.
       nest.diagnostics.push_back(diagnostic_for(Severity::warning, describe(s, i) + " encloses no area", s, "nest.no_area"));
     }
     NestContour nc;
     nc.area_mm2 = std::abs(a);
-    nc.box = geometry::bounding_box(c);
+    nc.box = box;
     nc.source = std::move(s);
     kept_by_hash.emplace(h, nest.contours.size());
+    corners.add(box, nest.contours.size());
     cycles.push_back(std::move(cycle));
     prep.input_index.push_back(i);
-    prep.segments.push_back(geometry::make_segment_set(nc.source.contour));
+    prep.segments.push_back(std::move(segments));
     nest.contours.push_back(std::move(nc));
   }
   return prep;

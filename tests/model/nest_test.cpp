@@ -295,7 +295,9 @@ TEST(Nest, ContourCrossingItselfIsAnError) {
 
 // The same outline drawn twice, once with an extra point on a straight side (a polyline and an
 // exploded copy of LINEs): one contour, the copy left out with a warning, in either order and
-// direction. A point off the side by 0.01 mm makes another outline (then the pair crosses).
+// direction. A point off the side by 0.01 mm, or the whole copy nudged by 0.005 mm, is the same
+// outline drawn again within kNearDuplicateMm: cut, both would run along one kerf. A point 0.2 mm
+// off makes another outline (then the pair crosses).
 TEST(Nest, DuplicateOutlineWithAPointOnAStraightSideIsOneContour) {
   const Contour plain = polygon({{0, 0}, {100, 0}, {100, 50}, {0, 50}});
   const Contour split = polygon({{0, 50}, {0, 0}, {50, 0}, {100, 0}, {100, 50}});
@@ -308,9 +310,23 @@ TEST(Nest, DuplicateOutlineWithAPointOnAStraightSideIsOneContour) {
     EXPECT_EQ(nest.diagnostics[0].code, "nest.duplicate");
     EXPECT_NE(nest.diagnostics[0].message.find("duplicates contour 0"), std::string::npos) << nest.diagnostics[0].message;
   }
-  const Nest off = build_nest({src(plain), src(polygon({{0, 50}, {0, 0}, {50, 0.01}, {100, 0}, {100, 50}}))}, NestOptions{});
+  for (const Contour& near : {polygon({{0, 50}, {0, 0}, {50, 0.01}, {100, 0}, {100, 50}}),
+                              polygon({{0.005, 0}, {100.005, 0}, {100.005, 50}, {0.005, 50}})}) {
+    const Nest nest = build_nest({src(plain, "0", "P", 5), src(near, "0", "L", 33)}, NestOptions{});
+    ASSERT_EQ(nest.contours.size(), 1u);
+    EXPECT_EQ(nest.dropped_duplicates, 1u);
+    ASSERT_EQ(nest.diagnostics.size(), 1u);
+    EXPECT_EQ(nest.diagnostics[0].code, "nest.duplicate");
+    EXPECT_NE(nest.diagnostics[0].message.find("duplicates contour 0 (entity P, line 5, layer 0) within 0.05 mm everywhere"),
+              std::string::npos)
+        << nest.diagnostics[0].message;
+  }
+  const Nest off = build_nest({src(plain), src(polygon({{0, 50}, {0, 0}, {50, 0.2}, {100, 0}, {100, 50}}))}, NestOptions{});
   EXPECT_EQ(off.contours.size(), 2u);
   EXPECT_EQ(off.dropped_duplicates, 0u);
+  // A hole 0.1 mm inside a part's outline all round is no copy of it: the boxes differ by more.
+  const Nest ring = build_nest({src(plain), src(polygon({{0.1, 0.1}, {99.9, 0.1}, {99.9, 49.9}, {0.1, 49.9}}))}, NestOptions{});
+  EXPECT_EQ(ring.contours.size(), 2u);
 }
 
 TEST(Nest, ThousandsOfOverlapsAreCountedNotListed) {

@@ -701,6 +701,26 @@ TEST(OptimizeCli, APartDrawnWithATinyGapIsCutAndTheGapNamed) {
   fs::remove_all(dir);
 }
 
+// An outline drawn a second time 0.005 mm off (a CAD snap) is cut once, and stderr says so: the
+// program re-parsed cuts that outline's length once.
+TEST(OptimizeCli, AnOutlineDrawnTwiceSlightlyOffIsCutOnce) {
+  const auto dir = temp_dir("near-duplicate");
+  const auto nest = (dir / "n.dxf").string(), prog = (dir / "n.ngc").string(), rep = (dir / "n.json").string();
+  std::vector<geometry::Vertex> square{{{10, 10}, 0}, {{110, 10}, 0}, {{110, 60}, 0}, {{10, 60}, 0}};
+  std::vector<geometry::Vertex> nudged = square;
+  for (auto& v : nudged) v.p.x += 0.005;
+  std::ofstream(nest) << DxfBuilder().insunits(4).lwpolyline(square, true, "CUT").lwpolyline(nudged, true, "CUT").circle({60, 35}, 5, "CUT").str();
+  const auto r = run_command(cli_path() + " optimize " + nest + " -o " + prog + " --report " + rep + " --time-limit 1 --kerf-mode none");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: 1 contour(s) drawn twice, cut once (first: contour 1 "), std::string::npos) << r.err;
+  const auto report = nlohmann::json::parse(read_text(rep));
+  EXPECT_EQ(report["pierces"], 2);
+  // Square (300 mm) and circle (31.4 mm) once each, with their leads: far below a second square.
+  EXPECT_LT(report["cut_length_mm"].get<double>(), 300 + 2 * 3.1416 * 5 + 20);
+  EXPECT_GT(report["cut_length_mm"].get<double>(), 300 + 2 * 3.1416 * 5);
+  fs::remove_all(dir);
+}
+
 // Ctrl-C or SIGTERM: the best program found so far is written, with a warning that says so (a
 // supervisor's SIGTERM must not pass the program off as a full run's).
 TEST(OptimizeCli, AnInterruptedRunSaysSo) {

@@ -14,6 +14,11 @@ inline constexpr double kSnapMm = 0.01;
 // hand-drawn joints leave in the corpus (dxf2gcode closes them too).
 inline constexpr double kCloseGapMm = 0.05;
 
+// Two closed contours whose boundaries lie this close to each other everywhere are one outline drawn
+// twice (a copy nudged by a CAD snap, or redrawn over the first) [mm]: cutting both would run the
+// beam twice along one kerf. A third of the narrowest laser kerf, like kCloseGapMm.
+inline constexpr double kNearDuplicateMm = 0.05;
+
 // Two points are the same point (duplicate vertices, zero-length segments) [mm].
 inline constexpr double kSamePointMm = 1e-6;
 

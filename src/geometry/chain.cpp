@@ -411,6 +411,14 @@ void drop_repeated_strokes(ChainResult& result) {
 // made across a gap is listed for a warning, where a wider snap would move ends unsaid.
 constexpr double kSliverGaps = 2.0;
 
+// Would the open path c, closed by a straight joint, be a loop thinner than kSliverGaps gaps?
+bool sliver_if_closed(const Contour& c, double gap_mm) {
+  Contour loop = c;
+  loop.closed = true;
+  loop.vertices.back().bulge = 0;
+  return 2 * std::abs(signed_area(loop)) < kSliverGaps * gap_mm * length(loop);
+}
+
 void close_gaps(ChainResult& result, double gap_mm) {
   if (result.open.empty()) return;
   std::vector<ChainPiece> chains;
@@ -424,7 +432,27 @@ void close_gaps(ChainResult& result, double gap_mm) {
   }
   std::vector<std::uint32_t> ids(chains.size());
   std::iota(ids.begin(), ids.end(), std::uint32_t{0});
-  std::vector<std::int32_t> partner = match_ends(chains, ids, gap_mm);
+  // A chain whose own ends lie within the gap closes on itself first: the end of a bend line or of
+  // a neighbour's gap that happens to lie nearer must not take one of them, leaving the outline
+  // open (or joining two outlines into one figure).
+  std::vector<std::int32_t> partner(2 * chains.size(), kNone);
+  std::vector<std::uint32_t> rest;
+  for (std::uint32_t k = 0; k < chains.size(); ++k) {
+    const Contour& c = chains[k].path;
+    const bool alone = segment_count(c) >= 2 || segment(c, 0).is_arc();
+    if (alone && distance(c.vertices.front().p, c.vertices.back().p) <= gap_mm && !sliver_if_closed(c, gap_mm)) {
+      partner[2 * k] = static_cast<std::int32_t>(2 * k + 1);
+      partner[2 * k + 1] = static_cast<std::int32_t>(2 * k);
+    } else {
+      rest.push_back(k);
+    }
+  }
+  const std::vector<std::int32_t> among_rest = match_ends(chains, rest, gap_mm);
+  for (std::size_t e = 0; e < among_rest.size(); ++e) {
+    if (among_rest[e] == kNone) continue;
+    const auto f = static_cast<std::size_t>(among_rest[e]);
+    partner[2 * rest[e / 2] + (e & 1)] = static_cast<std::int32_t>(2 * rest[f / 2] + (f & 1));
+  }
   // A mark drawn as a V or there and back, whose open ends lie close, would close into a sliver
   // and be cut as a slit through the part it marks: a loop whose mean width (2 area / length) is
   // within a few gap widths is no drawn outline, and its joints are undone.
@@ -474,14 +502,9 @@ void measure_open_ends(ChainResult& result) {
   for (std::size_t k = 0; k < result.open.size(); ++k) {
     ChainedContour& chain = result.open[k];
     bool may_close_alone = segment_count(chain.contour) >= 2 || segment(chain.contour, 0).is_arc();
-    if (may_close_alone) {
-      // Not when step 7 would refuse that loop as a sliver (a V-shaped mark).
-      Contour loop = chain.contour;
-      loop.closed = true;
-      loop.vertices.back().bulge = 0;
-      const double gap = distance(loop.vertices.front().p, loop.vertices.back().p);
-      may_close_alone = !(2 * std::abs(signed_area(loop)) < kSliverGaps * gap * length(loop));
-    }
+    // Not when step 7 would refuse that loop as a sliver (a V-shaped mark).
+    if (may_close_alone)
+      may_close_alone = !sliver_if_closed(chain.contour, distance(chain.contour.vertices.front().p, chain.contour.vertices.back().p));
     double best = -1;
     for (const std::size_t e : {2 * k, 2 * k + 1}) {
       // A crowded cell (a fan of strokes) gives no hint rather than a slow one.

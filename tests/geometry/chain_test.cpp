@@ -190,6 +190,26 @@ TEST(Chain, GapsBeyondTheSnapCloseInASecondPassAndAreListed) {
   EXPECT_TRUE(g.gaps_closed.empty());
 }
 
+TEST(Chain, AnOutlineClosesItsOwnGapBeforeANearerStrangerEnd) {
+  // A polyline outline open by 0.04 mm at (10, 5) and a bend line ending 0.036 mm from both ends
+  // (the nearest pair): the outline closes on itself, the bend line stays a stroke.
+  const std::vector<ChainPiece> bend{
+      {polygon({{10, 5.02}, {10, 10}, {0, 10}, {0, 0}, {10, 0}, {10, 4.98}}, false), 0, 0},
+      line({10.03, 5}, {30, 5}, 1)};
+  const ChainResult r = chain_contours(bend, 0.01, 0.05);
+  ASSERT_EQ(r.closed.size(), 1u);
+  EXPECT_EQ(r.closed[0].sources, (std::vector<std::int32_t>{0}));
+  ASSERT_EQ(r.open.size(), 1u);
+  EXPECT_EQ(r.open[0].sources, (std::vector<std::int32_t>{1}));
+  // Two outlines 0.03 mm apart whose 0.04 mm gaps face each other: two parts, not one figure.
+  const std::vector<ChainPiece> pair{
+      {polygon({{10, 5.02}, {10, 10}, {0, 10}, {0, 0}, {10, 0}, {10, 4.98}}, false), 0, 0},
+      {polygon({{10.03, 4.98}, {10.03, 0}, {20, 0}, {20, 10}, {10.03, 10}, {10.03, 5.02}}, false), 1, 0}};
+  const ChainResult two = chain_contours(pair, 0.01, 0.05);
+  ASSERT_EQ(two.closed.size(), 2u);
+  for (const ChainedContour& c : two.closed) EXPECT_NEAR(std::abs(signed_area(c.contour)), 100, 0.5);
+}
+
 TEST(Chain, MarksWhoseEndsMeetAcrossAGapStayOpen) {
   // A V of two lines whose open ends lie 0.04 mm apart, and a polyline there and back ending
   // 0.03 mm from its start: closed, each would be a sliver cut as a slit through the part it marks.

@@ -74,8 +74,8 @@ struct ChainResult {
 //     joint is moved to the midpoint of its two ends.
 //  6. an open chain lying wholly on closed contours of its group (within tol::kCollinearMm: a
 //     LINE drawn again over an edge of a closed polyline) is dropped, counted as duplicates.
-//  7. gaps: when gap_mm > snap_mm, the ends of the chains still open are matched again as in 3
-//     within gap_mm and walked as in 5 (their joints moved to the midpoints), and each such joint
+//  7. gaps: when gap_mm > snap_mm, a chain still open whose own ends lie within gap_mm closes on
+//     itself, the ends of the others are matched again as in 3 within gap_mm, and all are walked as in 5 (their joints moved to the midpoints), and each such joint
 //     is listed in gaps_closed; contours closed there follow the others, in order of their lowest
 //     open chain. A loop it would close whose mean width (2 area / length) is under 2 gap_mm (a
 //     V-shaped or there-and-back mark) is left open: cut, it would be a slit through a part. Drawings made by hand or converted between units often leave such gaps

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <memory>
 #include <numbers>
 #include <numeric>
@@ -262,6 +263,18 @@ std::vector<std::int32_t> match_ends(const std::vector<ChainPiece>& pieces, cons
 
 // --- step 5: walk the matched ends into chains, snapping each joint to its midpoint ---
 
+// One arc that closes on itself (an ARC of 359.9°, a one-bulge polyline): as one vertex it would be
+// a loop of no length, and the hole it draws would be left out of the nest. It is the circle round
+// the arc's centre through the joint, in two halves. An arc whose ends meet because it is tiny
+// (r = 0.003 mm, 110°, in a hatch of d2g_Frontplatte) stays a loop of no length, left out.
+bool closes_round(const Segment& arc) { return arc.is_arc() && std::abs(arc.sweep()) > std::numbers::pi; }
+
+Contour circle_through(const Segment& arc, Vec2 joint) {
+  const Vec2 c = arc.center();
+  const double turn = arc.bulge < 0 ? -1.0 : 1.0;
+  return Contour{{{joint, turn}, {c * 2.0 - joint, turn}}, true};
+}
+
 struct Walker {
   const std::vector<ChainPiece>& pieces;
   const std::vector<std::uint32_t>& open;
@@ -311,16 +324,8 @@ struct Walker {
     }
     out.contour.closed = cycle;
     const Segment arc = segment(pieces[open[first_piece]].path, 0);
-    if (cycle && out.contour.vertices.size() == 1 && std::abs(arc.sweep()) > std::numbers::pi) {
-      // One arc that closes on itself (an ARC of 359.9°, a one-bulge polyline): as one vertex it
-      // would be a loop of no length, and the hole it draws would be left out of the nest. It is
-      // the circle round the arc's centre through the joint, in two halves. An arc whose ends meet
-      // because it is tiny (r = 0.003 mm, 110°, in a hatch of d2g_Frontplatte) stays a loop of no
-      // length, left out.
-      const Vec2 p = out.contour.vertices[0].p, c = arc.center();
-      const double turn = arc.bulge < 0 ? -1.0 : 1.0;
-      out.contour.vertices = {{p, turn}, {c * 2.0 - p, turn}};
-    }
+    if (cycle && out.contour.vertices.size() == 1 && closes_round(arc))
+      out.contour.vertices = circle_through(arc, out.contour.vertices[0].p).vertices;
     return out;
   }
 };
@@ -481,7 +486,7 @@ void close_gaps(ChainResult& result, double gap_mm) {
       const auto& list = lists[end / 2];
       return (end & 1) ? list.back() : list.front();
     };
-    result.gaps_closed.push_back({(a + b) * 0.5, distance(a, b), end_source(e), end_source(static_cast<std::size_t>(f)), chains[e / 2].group});
+    result.gaps_closed.push_back({(a + b) * 0.5, distance(a, b), end_source(e), end_source(static_cast<std::size_t>(f)), chains[e / 2].group, a, b});
   }
   result.open.clear();
   Walker walker{chains, ids, partner};
@@ -519,10 +524,7 @@ void measure_open_ends(ChainResult& result) {
   }
 }
 
-}  // namespace
-
-ChainResult chain_contours(const std::vector<ChainPiece>& pieces, double snap_mm, double gap_mm) {
-  if (!(snap_mm >= tol::kSamePointMm) || !std::isfinite(snap_mm)) snap_mm = tol::kSamePointMm;
+ChainResult chain_once(const std::vector<ChainPiece>& pieces, double snap_mm, double gap_mm) {
   ChainResult result;
   Sorted sorted = classify(pieces, result);
   result.dropped_duplicates += drop_duplicates(pieces, sorted.closed);
@@ -580,6 +582,41 @@ ChainResult chain_contours(const std::vector<ChainPiece>& pieces, double snap_mm
   if (gap_mm > snap_mm && std::isfinite(gap_mm)) close_gaps(result, gap_mm);
   measure_open_ends(result);
   return result;
+}
+
+}  // namespace
+
+ChainResult chain_contours(const std::vector<ChainPiece>& pieces, double snap_mm, double gap_mm) {
+  if (!(snap_mm >= tol::kSamePointMm) || !std::isfinite(snap_mm)) snap_mm = tol::kSamePointMm;
+  ChainResult result = chain_once(pieces, snap_mm, gap_mm);
+  if (result.gaps_closed.empty()) return result;
+  // The joints made across gaps decided, the drawing is chained again with their ends moved to
+  // meet, as if drawn so: parts drawn edge to edge (step 4) are traced only where every end meets
+  // another within the snap, and a gap in one of them left its neighbour, whose copy of the shared
+  // edge had been dropped, open. A free end keeps its exact coordinates through the steps, so the
+  // ends to move are found by position.
+  std::map<std::pair<double, double>, Vec2> moved;
+  for (const ClosedGap& g : result.gaps_closed) {
+    moved[{g.end_a.x, g.end_a.y}] = g.at;
+    moved[{g.end_b.x, g.end_b.y}] = g.at;
+  }
+  std::vector<ChainPiece> met = pieces;
+  for (ChainPiece& p : met) {
+    if (p.path.closed || p.path.vertices.empty()) continue;
+    const auto front = moved.find({p.path.vertices.front().p.x, p.path.vertices.front().p.y});
+    const auto back = moved.find({p.path.vertices.back().p.x, p.path.vertices.back().p.y});
+    // One arc across its own gap: its ends cannot move without changing its bulge's meaning.
+    if (segment_count(p.path) == 1 && front != moved.end() && back != moved.end() && front->second == back->second &&
+        closes_round(segment(p.path, 0))) {
+      p.path = circle_through(segment(p.path, 0), front->second);
+      continue;
+    }
+    if (front != moved.end()) p.path.vertices.front().p = front->second;
+    if (back != moved.end()) p.path.vertices.back().p = back->second;
+  }
+  ChainResult again = chain_once(met, snap_mm, 0.0);
+  again.gaps_closed = std::move(result.gaps_closed);
+  return again;
 }
 
 }  // namespace cutroute::geometry

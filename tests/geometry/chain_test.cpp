@@ -210,6 +210,25 @@ TEST(Chain, AnOutlineClosesItsOwnGapBeforeANearerStrangerEnd) {
   for (const ChainedContour& c : two.closed) EXPECT_NEAR(std::abs(signed_area(c.contour)), 100, 0.5);
 }
 
+TEST(Chain, PartsDrawnEdgeToEdgeWithAGapInOneAreBothClosed) {
+  // Two 100 x 50 parts side by side, each drawn with its own lines (the shared edge twice), the
+  // left one open by 0.04 mm on its outer side: both close. Before, the gap kept the pair from being
+  // traced as faces, the right part's copy of the shared edge was dropped, and it stayed open.
+  const std::vector<ChainPiece> pieces{
+      line({10, 10}, {110, 10}, 0),  line({110, 10}, {110, 60}, 1), line({110, 60}, {10, 60}, 2),
+      line({10, 60}, {10, 30.04}, 3), line({10, 30}, {10, 10}, 4),   line({110, 10}, {210, 10}, 5),
+      line({210, 10}, {210, 60}, 6), line({210, 60}, {110, 60}, 7), line({110, 60}, {110, 10}, 8)};
+  const ChainResult r = chain_contours(pieces, 0.01, 0.05);
+  ASSERT_EQ(r.closed.size(), 2u);
+  EXPECT_TRUE(r.open.empty());
+  for (const ChainedContour& c : r.closed) {
+    EXPECT_NEAR(std::abs(signed_area(c.contour)), 5000, 1);
+    EXPECT_EQ(c.sources.size(), c.sources.front() < 5 ? 5u : 4u);
+  }
+  ASSERT_EQ(r.gaps_closed.size(), 1u);
+  EXPECT_NEAR(distance(r.gaps_closed[0].at, {10, 30.02}), 0, 1e-12);
+}
+
 TEST(Chain, MarksWhoseEndsMeetAcrossAGapStayOpen) {
   // A V of two lines whose open ends lie 0.04 mm apart, and a polyline there and back ending
   // 0.03 mm from its start: closed, each would be a sliver cut as a slit through the part it marks.

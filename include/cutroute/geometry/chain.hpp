@@ -36,6 +36,7 @@ struct ClosedGap {
   double width_mm = 0;                // the distance the ends were apart
   std::int32_t source_a = -1, source_b = -1;  // the pieces whose ends met there
   std::int32_t group = 0;
+  Vec2 end_a, end_b;                  // the two ends as drawn
 };
 
 struct ChainResult {
@@ -81,6 +82,9 @@ struct ChainResult {
 //     V-shaped or there-and-back mark) is left open: cut, it would be a slit through a part. Drawings made by hand or converted between units often leave such gaps
 //     (0.011-0.015 mm in three files of the corpus), and a part left open is not cut at all.
 //  8. each chain still open gets nearest_end_mm, so that a warning can say what would close it.
+// When step 7 closed gaps, steps 1-8 run again on the pieces with the ends of those gaps moved to
+// their midpoints (no step 7 then): parts drawn edge to edge are traced as faces only where every
+// end meets another within the snap, and a gap in one of them left its neighbour open.
 // Output is deterministic: contours in input order of their lowest piece; a cycle starts at its
 // lowest-index piece, travelled in that piece's direction; an open chain starts at its free end
 // reached by walking backwards from its lowest-index piece.

@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cutroute/core/json_duplicates.hpp>
+
 #include <cutroute/core/result.hpp>
 
 namespace cutroute::cost::detail {
@@ -31,8 +33,10 @@ inline Result<json> parse_json_file(const std::string& path) {
   if (!in) return make_error("cannot open file", path);
   std::stringstream ss;
   ss << in.rdbuf();
-  json j = json::parse(ss.str(), nullptr, false);
+  const std::string text = ss.str();
+  json j = json::parse(text, nullptr, false);
   if (j.is_discarded()) return make_error("not valid JSON", path);
+  if (const auto key = duplicate_json_key(text)) return make_error("key \"" + *key + "\" appears twice in one object", path);
   if (!j.is_object()) return make_error("the top level must be a JSON object", path);
   return j;
 }

@@ -249,8 +249,12 @@ void apply_spindle_steps(const Problem& p, OptimizeResult& r, int n_f) {
     const double vc = kPi * p.op.D * n_step / 1000.0;
     std::optional<PointEval> at;
     int at_set = 0;
-    for (int set = 0; set < life_set_count(p); ++set)
+    for (int set = 0; set < life_set_count(p); ++set) {
+      // A step outside the search box (search.vc_min / vc_max) is as unavailable as a missing one.
+      const SearchBox box = search_box(p, set);
+      if (vc < box.vc[0] * (1.0 - 1e-12) || vc > box.vc[1] * (1.0 + 1e-12)) continue;
       if (auto e = best_feed_at_vc(p, set, vc, n_f, r.evaluations); e && (!at || e->cost.total < at->cost.total)) at = e, at_set = set;
+    }
     if (!at) continue;
     const bool up = n_step > n_opt * (1.0 + 1e-12);
     r.warnings.push_back("stepped spindle: n " + std::string(up ? "raised" : "rounded down") + " from " + fmt(n_opt) + " to " +
@@ -265,8 +269,8 @@ void apply_spindle_steps(const Problem& p, OptimizeResult& r, int n_f) {
   inf.constraint = "spindle_steps";
   inf.vc = r.solution->vc;  // where the continuous optimum lies
   inf.f = r.solution->f;
-  inf.message = "no available spindle speed (machine.spindle_steps) has a feed that meets every limit; the continuous optimum is n = " +
-                fmt(n_opt) + " rpm";
+  inf.message = "no available spindle speed (machine.spindle_steps) within the search box (search.vc_min, vc_max) has a feed that "
+                "meets every limit; the continuous optimum is n = " + fmt(n_opt) + " rpm";
   inf.suggestions = {"add a spindle speed near " + fmt(n_opt) + " rpm, or relax the limit that binds there"};
   r.infeasible = std::move(inf);
   r.solution.reset();
@@ -398,20 +402,22 @@ OptimizeResult optimize(const Problem& p, const OptimizeParams& params) {
 
   r.solution = best;
   r.active = active_names(*best);
-  if (p.accuracy && params.cubature_at_optimum) {
-    const PointEval cub = evaluate(p, best->vc, best->f, r.set, AccuracyMethod::cubature);
-    r.V_rho_cubature = cub.acc->V_rho;
-  }
   if (!box_reasons.empty()) r.warnings.push_back("skipped tool-life sets: " + box_reasons);
   if (std::find(sliver_sets.begin(), sliver_sets.end(), r.set) != sliver_sets.end())
     r.warnings.push_back("no grid point meets every limit: the feasible region is narrower than a grid cell and was found by "
                          "line searches along the grid lines; the answer has almost no margin on the limits that bound it");
-  add_solution_warnings(p, r, r.warnings);
+  // The steps first: the warnings (tool life, cubature) speak of the answer given, not of the
+  // continuous optimum it replaced.
   apply_spindle_steps(p, r, ny);
   if (!r.solution) {
     r.status = Status::infeasible;
     return r;
   }
+  if (p.accuracy && params.cubature_at_optimum) {
+    const PointEval cub = evaluate(p, r.solution->vc, r.solution->f, r.set, AccuracyMethod::cubature);
+    r.V_rho_cubature = cub.acc->V_rho;
+  }
+  add_solution_warnings(p, r, r.warnings);
   // Valley vc*(f) across the feed range of the solution's set.
   if (params.valley_points > 0) {
     const SearchBox box{r.vc_bounds, r.f_bounds};

@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cutroute/core/json_duplicates.hpp>
+
 #include <cutroute/machining/optimize.hpp>
 
 namespace cutroute::machining {
@@ -413,7 +415,9 @@ Result<Problem> read_one(const json& root, const std::string& file, const std::s
 
 Result<json> parse(std::string_view text, const std::string& file) {
   try {
-    return json::parse(text.begin(), text.end());
+    json j = json::parse(text.begin(), text.end());
+    if (const auto key = duplicate_json_key(text)) return make_error("key \"" + *key + "\" appears twice in one object", file);
+    return j;
   } catch (const json::parse_error& e) {
     // Byte offset -> 1-based line for the diagnostic.
     const std::size_t upto = std::min<std::size_t>(e.byte, text.size());

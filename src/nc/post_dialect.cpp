@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cutroute/core/json_duplicates.hpp>
 #include <cutroute/core/text.hpp>
 #include <cutroute/core/version.hpp>
 #include <cutroute/io/output_file.hpp>
@@ -147,6 +148,7 @@ Result<PostDialect> load_post_dialect(const std::string& path) {
   } catch (const json::parse_error& e) {
     return make_error(std::string("not valid JSON: ") + e.what(), path);
   }
+  if (const auto key = duplicate_json_key(*text)) return make_error("dialect field '" + *key + "' appears twice", path);
   if (!j.is_object()) return make_error("a dialect file holds one JSON object", path);
   PostDialect d;
   d.file = path;

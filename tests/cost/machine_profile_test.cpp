@@ -136,6 +136,10 @@ TEST(MachineProfile, MissingFileAndBadJson) {
   auto b = load_machine_profile(path);
   ASSERT_FALSE(b.ok());
   EXPECT_NE(b.error().message.find("not valid JSON"), std::string::npos);
+  std::ofstream(path) << R"({"name": "a", "rapid_speed_m_s": 1.0, "rapid_speed_m_s": 100.0})";
+  auto c = load_machine_profile(path);
+  ASSERT_FALSE(c.ok());
+  EXPECT_NE(c.error().message.find("key \"rapid_speed_m_s\" appears twice in one object"), std::string::npos) << c.error().message;
   std::filesystem::remove(path);
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <iomanip>
 
+#include <cutroute/core/number_format.hpp>
 #include <cutroute/core/random.hpp>
 #include <cutroute/machining/optimize.hpp>
 #include <cutroute/machining/report.hpp>
@@ -280,6 +281,36 @@ TEST(MachiningOptimizer, StepSpindleChoosesTheFeedAgainWithinEveryLimit) {
   EXPECT_FALSE(r.solution);
   ASSERT_TRUE(r.infeasible);
   EXPECT_EQ(r.infeasible->constraint, "spindle_steps");
+}
+
+// The stepped answer is checked as the answer: a step below search.vc_min is not available (E1
+// with one step at 100 rpm gave vc = 12.6 m/min under vc_min = 30), and the tool-life and cubature
+// warnings speak of the stepped point, not of the continuous optimum it replaced (session 49 audit).
+TEST(MachiningOptimizer, StepSpindleKeepsTheSearchBoxAndWarnsOfItsOwnPoint) {
+  Problem p = test::load_machining_example(test::kE1);
+  p.machine.spindle_steps = {100};
+  p.search.vc_min = 30;
+  OptimizeResult r = optimize(p);
+  EXPECT_EQ(r.status, Status::infeasible);
+  ASSERT_TRUE(r.infeasible);
+  EXPECT_EQ(r.infeasible->constraint, "spindle_steps");
+  // E1 at 1000 rpm: T = 2894 min, beyond the 120-min window; the warning gives that T.
+  p.machine.spindle_steps = {1000};
+  p.search.vc_min = 0;
+  r = optimize(p);
+  ASSERT_TRUE(r.solution);
+  EXPECT_NEAR(r.solution->n, 1000.0, 1e-9);
+  const std::string life = "tool life T = " + format_fixed(r.solution->T, 2);
+  EXPECT_TRUE(std::any_of(r.warnings.begin(), r.warnings.end(), [&](const std::string& w) { return w.rfind(life, 0) == 0; }))
+      << life;
+  // E2 (accuracy) rounded down: the cubature is taken at the stepped point, so it agrees.
+  Problem q = test::load_machining_example(test::kE2);
+  q.machine.spindle_steps = {1000};
+  r = optimize(q);
+  ASSERT_TRUE(r.solution);
+  for (const std::string& w : r.warnings) EXPECT_EQ(w.find("cubature"), std::string::npos) << w;
+  ASSERT_TRUE(r.V_rho_cubature);
+  EXPECT_REL(*r.V_rho_cubature, r.solution->acc->V_rho, 1e-4);
 }
 
 TEST(MachiningOptimizer, KienzleWithRatioRadialForce) {

@@ -2,10 +2,12 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include <cutroute/core/json_duplicates.hpp>
 #include <cutroute/machining/problem_json.hpp>
 
 #include "examples.hpp"
@@ -150,6 +152,18 @@ TEST(MachiningJson, BadInputNamesTheField) {
 // Every missing required field in one message (the reader stops at the first; each is filled with
 // a stand-in and the file read again), a missing section with the fields it needs; nothing more
 // when only one is missing.
+// JSON lets a parser keep either value of a repeated key; nlohmann kept the last without a word,
+// and {"D": 40, "D": 400} was solved for D = 400 (session 49 audit).
+TEST(MachiningJson, ARepeatedKeyIsAnError) {
+  const auto r = read_problem_json(R"({"operation": {"D": 40, "L": 60, "D": 400}})", "dup.json");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().file, "dup.json");
+  EXPECT_NE(r.error().message.find("key \"D\" appears twice in one object"), std::string::npos) << r.error().message;
+  // The same key in two objects is no repeat.
+  EXPECT_FALSE(duplicate_json_key(R"({"a": {"D": 1}, "b": {"D": 2}, "c": [{"x": 1}, {"x": 2}]})"));
+  EXPECT_EQ(duplicate_json_key(R"({"a": [{"x": 1, "y": 2, "x": 3}]})"), std::optional<std::string>("x"));
+}
+
 TEST(MachiningJson, EveryMissingFieldIsNamedAtOnce) {
   json j = example_json(test::kE1);
   j["operation"].erase("D");

@@ -178,6 +178,7 @@ TEST(ReaderDialect, ErrorsNameTheFileAndTheField) {
       {R"({"header": ["G17\nG90"]})", "field 'header': a line holds printable ASCII only"},
       {"{\"header\": [\"(F\xC3\xBC" "r)\"]}", "field 'header': a line holds printable ASCII only"},
       {R"({"pierce": ["G4 P{pierce_s}", "G4 P{pierce_ms}"]})", "G4 P{pierce_s} (seconds) beside {pierce_ms}"},
+      {R"({"decimals": 3, "decimals": 4})", "dialect field 'decimals' appears twice"},
   };
   for (const auto& [json, message] : refused) {
     r = derive(json);

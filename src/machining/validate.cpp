@@ -16,6 +16,7 @@ constexpr double kMaxCubatureWork = 2.0e8;
 constexpr double kMaxLengthMm = 1.0e5;   // bore diameter and length: 100 m
 constexpr std::size_t kMaxSweep = 100;   // K_TZ_sweep values
 constexpr double kMaxGridWork = 5.0e7;   // grid points evaluated in all (4.4 million a second)
+constexpr double kMaxMotorKw = 1000.0;   // spindle power: machining centres have 5-100 kW
 
 struct Checker {
   std::vector<std::string> out;
@@ -80,6 +81,10 @@ std::vector<std::string> validate(const Problem& p) {
   c.rule(!(p.op.ap >= p.op.D / 2.0), "operation.ap must be smaller than the radius D/2");
 
   c.positive("tool.r_eps", p.tool.r_eps);
+  // Unit slips (a value in µm or W where the schema wants mm or kW) give numbers no bore or machine
+  // can have; they are refused by name rather than solved (r_eps = 400 on a 40-mm bore was).
+  c.rule(!(p.tool.r_eps >= p.op.D / 2.0), "tool.r_eps must be smaller than the bore radius D/2 = " + fmt(p.op.D / 2.0) +
+                                              " mm, got " + fmt_exact(p.tool.r_eps) + " (r_eps is in mm: 0.4 mm, not 400 um)");
   // At 180 degrees the edge lies along the feed: sin(kappa_r) is 1e-16, the chip 1e-16 times the
   // feed and the Kienzle force beyond any machine (found by fuzzing, session 39).
   c.rule(p.tool.kappa_r > 0.0 && p.tool.kappa_r < 180.0,
@@ -110,6 +115,8 @@ std::vector<std::string> validate(const Problem& p) {
   if (p.radial) check_force(c, *p.radial, "force.radial", true);
 
   c.positive("machine.P_motor", p.machine.P_motor);
+  c.rule(!(p.machine.P_motor > kMaxMotorKw), "machine.P_motor must be at most " + fmt(kMaxMotorKw) + " kW, got " +
+                                                 fmt_exact(p.machine.P_motor) + " (P_motor is in kW: 7.5 kW, not 7500 W)");
   c.rule(p.machine.eta > 0.0 && p.machine.eta <= 1.0,
          "machine.eta must lie in (0, 1], got " + fmt_exact(p.machine.eta));
   c.positive("machine.n_max", p.machine.n_max);
@@ -147,6 +154,9 @@ std::vector<std::string> validate(const Problem& p) {
     c.rule(a.waves >= 1, "accuracy.waves must be >= 1");
     c.open_unit("accuracy.P", a.P);
     c.positive("accuracy.K_TZ", a.K_TZ);
+    c.rule(!(a.K_TZ >= p.op.D / 10.0), "accuracy.K_TZ must be below D/10 = " + fmt(p.op.D / 10.0) +
+                                           " mm, coarser than any ISO tolerance grade, got " + fmt_exact(a.K_TZ) +
+                                           " (K_TZ is in mm: 6 um is 0.006)");
     c.rule(a.n_phi >= 1 && a.n_phi <= 3600, "accuracy.integration.n_phi must lie in [1, 3600]");
     c.rule(a.n_z >= 1 && a.n_z <= 1000, "accuracy.integration.n_z must lie in [1, 1000]");
     c.rule(a.cubature.m >= 2 && a.cubature.m % 2 == 0 && a.cubature.m <= 4096,
@@ -173,7 +183,11 @@ std::vector<std::string> validate(const Problem& p) {
   if (p.search.T_min && p.search.T_max) {
     c.rule(*p.search.T_min < *p.search.T_max, "search.T_window must be [lo, hi] with lo < hi");
   }
-  for (double K : p.K_TZ_sweep) c.positive("accuracy.K_TZ_sweep[]", K);
+  for (double K : p.K_TZ_sweep) {
+    c.positive("accuracy.K_TZ_sweep[]", K);
+    c.rule(!(K >= p.op.D / 10.0), "accuracy.K_TZ_sweep[] must be below D/10 = " + fmt(p.op.D / 10.0) + " mm, got " + fmt_exact(K) +
+                                      " (K_TZ is in mm)");
+  }
   c.rule(p.K_TZ_sweep.size() <= kMaxSweep, "accuracy.K_TZ_sweep holds at most " + std::to_string(kMaxSweep) + " values, got " +
                                                std::to_string(p.K_TZ_sweep.size()));
   // Each sweep value repeats the whole grid search: a 4001 x 4001 grid with 12 values took 47 s

@@ -102,6 +102,10 @@ TEST(MachiningJson, BadInputNamesTheField) {
       {"typo", [](json& j) { j["tool"]["r_epsilon"] = 0.4; }, "tool.r_epsilon", "unknown field"},
       {"string for number", [](json& j) { j["operation"]["D"] = "40"; }, "operation.D", "expected a number"},
       {"eta > 1", [](json& j) { j["machine"]["eta"] = 1.2; }, "machine.eta", "(0, 1]"},
+      // Unit slips: micrometres and watts where the schema wants mm and kW.
+      {"r_eps in um", [](json& j) { j["tool"]["r_eps"] = 400; }, "tool.r_eps", "smaller than the bore radius"},
+      {"P_motor in W", [](json& j) { j["machine"]["P_motor"] = 7500; }, "machine.P_motor", "at most 1000 kW"},
+      {"K_TZ in um", [](json& j) { j["accuracy"]["K_TZ"] = 6; }, "accuracy.K_TZ", "below D/10"},
       {"odd simpson", [](json& j) { j["accuracy"]["integration"]["simpson_m"] = 63; }, "simpson_m", "even"},
       // Found by fuzzing: each within its range, together they ran for minutes (SIGTERM ignored).
       {"cubature too fine",

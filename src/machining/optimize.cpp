@@ -131,7 +131,7 @@ std::vector<std::string> suggestions_for(ConstraintId c) {
     case ConstraintId::accuracy:
       return {"shorten the boring-bar overhang L_o or use a stiffer bar (larger d, solid, carbide)",
               "add a semi-finishing pass: it reduces TA, TB and T_R3 for the finishing pass",
-              "use a smaller nose radius r_eps (lower radial force)"};
+              "use a smaller nose radius r_eps (lower radial force)"};  // MACHINING.md 5.1 step 2; physical, not in the Py models
     case ConstraintId::roughness:
       return {"use a larger nose radius r_eps (or a wiper insert)", "relax Ra_max or lower f_min"};
     case ConstraintId::power:
@@ -395,6 +395,14 @@ OptimizeResult optimize(const Problem& p, const OptimizeParams& params) {
                     inf.constraint + " (g = " + fmt(least_violation) + " at vc = " + fmt(inf.vc) +
                     " m/min, f = " + fmt(inf.f) + " mm/rev)";
       inf.suggestions = suggestions_for(c);
+      // At the spindle's top speed the limit wants a faster spindle, not only the usual remedies:
+      // E2 with K_TZ = 3 um and n_max = 800 named accuracy alone, the spindle never.
+      const double vc_spindle = kPi * p.op.D * p.machine.n_max / 1000.0;
+      if (vc_spindle < p.search.vc_max && std::abs(inf.vc / vc_spindle - 1.0) <= 1e-6) {
+        inf.message += "; that point lies at the spindle's top speed n_max = " + fmt(p.machine.n_max) + " rpm (vc = " +
+                       fmt(vc_spindle) + " m/min): the " + inf.constraint + " limit needs a higher cutting speed than the spindle gives";
+        inf.suggestions.insert(inf.suggestions.begin(), "a spindle with a higher machine.n_max");
+      }
     }
     r.infeasible = std::move(inf);
     return r;

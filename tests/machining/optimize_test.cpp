@@ -313,6 +313,21 @@ TEST(MachiningOptimizer, StepSpindleKeepsTheSearchBoxAndWarnsOfItsOwnPoint) {
   EXPECT_REL(*r.V_rho_cubature, r.solution->acc->V_rho, 1e-4);
 }
 
+// E2 asking 3 um of a spindle capped at 800 rpm: accuracy needs a higher speed than the spindle
+// gives, and the answer says so (it named accuracy alone).
+TEST(MachiningOptimizer, InfeasibleAtTheSpindlesTopSpeedNamesIt) {
+  Problem p = test::load_machining_example(test::kE2);
+  p.accuracy->K_TZ = 0.003;
+  p.machine.n_max = 800;
+  const OptimizeResult r = optimize(p);
+  EXPECT_EQ(r.status, Status::infeasible);
+  ASSERT_TRUE(r.infeasible);
+  EXPECT_EQ(r.infeasible->constraint, "accuracy");
+  EXPECT_NE(r.infeasible->message.find("spindle's top speed n_max = 800 rpm"), std::string::npos) << r.infeasible->message;
+  ASSERT_FALSE(r.infeasible->suggestions.empty());
+  EXPECT_NE(r.infeasible->suggestions.front().find("machine.n_max"), std::string::npos);
+}
+
 TEST(MachiningOptimizer, KienzleWithRatioRadialForce) {
   Problem p = test::load_machining_example(test::kE2);
   p.tangential.kind = ForceKind::kienzle;

@@ -144,7 +144,8 @@ json report_json(const RunOutput& out) {
     const Infeasibility& inf = *r.infeasible;
     j["infeasible"] = {{"least_violated", inf.constraint},
                        {"violation_g", num(inf.violation)},
-                       {"at", {{"vc_m_min", num(inf.vc)}, {"f_mm_rev", num(inf.f)}}},
+                       // An empty search box has no point to name.
+                       {"at", inf.constraint == "bounds" ? json(nullptr) : json{{"vc_m_min", num(inf.vc)}, {"f_mm_rev", num(inf.f)}}},
                        {"message", inf.message},
                        {"suggestions", inf.suggestions}};
   }
@@ -249,6 +250,7 @@ std::string report_csv(const RunOutput& out) {
     std::string b;
     for (const auto& n : v.binding) b += (b.empty() ? "" : "+") + n;
     if (v.feasible) row("valley", v.vc, v.f, v.CT, v.T, true, b);
+    else s += "valley,," + fmt(v.f, 10) + ",,,,0," + b + "\n";  // a feed no speed makes feasible, as the JSON lists it
   }
   if (r.surface) {
     const Surface& g = *r.surface;

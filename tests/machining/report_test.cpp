@@ -68,6 +68,14 @@ TEST(MachiningReport, InfeasibleJsonNamesConstraintAndRemedies) {
   EXPECT_GE(j["infeasible"]["suggestions"].size(), 3u);
   EXPECT_FALSE(j.contains("vc_m_min"));
   EXPECT_NE(report_text(RunOutput{&p, &r, std::nullopt, {}}).find("semi-finishing"), std::string::npos);
+  EXPECT_TRUE(j["infeasible"]["at"].is_object());
+  // An empty search box has no point: "at" is null, not (0, 0).
+  Problem e1 = test::load_machining_example(test::kE1);
+  e1.quality.Ra_max = 0.1;  // f_Ra = 0.0358 < f_min = 0.05
+  const OptimizeResult empty = optimize(e1);
+  const auto k = report_json(RunOutput{&e1, &empty, std::nullopt, {}});
+  EXPECT_EQ(k["infeasible"]["least_violated"], "bounds");
+  EXPECT_TRUE(k["infeasible"]["at"].is_null());
 }
 
 TEST(MachiningReport, CsvHasValleyAndGrid) {
@@ -80,19 +88,22 @@ TEST(MachiningReport, CsvHasValleyAndGrid) {
   std::string line;
   std::getline(in, line);
   EXPECT_EQ(line, "section,vc_m_min,f_mm_rev,vf_mm_min,ct_cu,tool_life_min,feasible,constraint");
-  int valley = 0, grid = 0, feasible = 0;
+  int valley = 0, valley_feasible = 0, grid = 0, feasible = 0;
   while (std::getline(in, line)) {
     EXPECT_EQ(std::count(line.begin(), line.end(), ','), 7) << line;
-    if (line.rfind("valley,", 0) == 0) ++valley;
+    if (line.rfind("valley,", 0) == 0) ++valley, valley_feasible += line.find(",1,") != std::string::npos;
     if (line.rfind("grid,", 0) == 0) {
       ++grid;
       if (line.find(",1,") != std::string::npos) ++feasible;
     }
   }
-  // At f = f_Ra the accuracy limit would need vc ≈ 607 m/min > vc_max: that valley point is infeasible.
-  EXPECT_EQ(valley,
+  // At f = f_Ra the accuracy limit would need vc ≈ 607 m/min > vc_max: that valley point is infeasible,
+  // listed with its feed and no speed, as in the JSON.
+  EXPECT_EQ(valley, static_cast<int>(r.valley.size()));
+  EXPECT_EQ(valley, 25);
+  EXPECT_EQ(valley_feasible,
             std::count_if(r.valley.begin(), r.valley.end(), [](const FeedOptimum& v) { return v.feasible; }));
-  EXPECT_EQ(valley, 24);
+  EXPECT_EQ(valley_feasible, 24);
   EXPECT_EQ(grid, 31 * 21);
   EXPECT_GT(feasible, 0);
   EXPECT_LT(feasible, grid);  // E2 has infeasible (accuracy) grid points at low speed

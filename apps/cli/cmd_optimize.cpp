@@ -232,12 +232,20 @@ std::string printed_warnings(const std::string& nest, const std::vector<Diagnost
     const std::string nearest = narrowest > 0 ? " (the nearest free ends lie " + format_fixed(narrowest, 3) + " mm apart: --close-gaps " +
                                                     format_fixed(io::gap_to_close(narrowest), 3) + " joins them)"
                                               : std::string();
+    // Those inside a part's material may be its holes, drawn with a gap: the part is then cut whole.
+    const auto inside = std::count_if(loaded.open_paths.begin(), loaded.open_paths.end(), [](const io::OpenPath& p) { return p.inside_part.has_value(); });
+    std::string in_parts;
+    if (inside > 0) {
+      const auto first = std::find_if(loaded.open_paths.begin(), loaded.open_paths.end(), [](const io::OpenPath& p) { return p.inside_part.has_value(); });
+      in_parts = ", and " + std::to_string(inside) + " lie in the material of a part (first: part " + std::to_string(first->inside_part->value() + 1) +
+                 "), which is cut without them if they are holes drawn with a gap";
+    }
     std::string named;
     for (const Place& p : places)
       named += (named.empty() ? "" : "; ") + (p.count > 1 ? std::to_string(p.count) + " at " : std::string()) + p.where;
     out += "cutroute: " + format(make_warning(std::to_string(open) + " open contour(s) not cut, their ends not meeting within " +
                                                   "--snap and --close-gaps (" + named + (more ? "; ..." : "") +
-                                                  "): a part drawn with a gap among them is missing from the program" + nearest,
+                                                  "): a part drawn with a gap among them is missing from the program" + in_parts + nearest,
                                               nest)) + "\n";
   }
   return out;

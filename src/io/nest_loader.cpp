@@ -7,6 +7,7 @@
 
 #include <cutroute/core/number_format.hpp>
 #include <cutroute/geometry/chain.hpp>
+#include <cutroute/geometry/spatial_index.hpp>
 
 namespace cutroute::io {
 
@@ -20,6 +21,33 @@ void take_origin(const std::vector<DxfEntity>& ents, const std::vector<std::int3
   layer = first.layer;
   handle = first.handle;
   line = first.line;
+}
+
+// Each open path's first point located among the nest's contours: inside a part's material (its
+// outer contour, none of its holes) it may be a hole drawn with a gap, and the part is then cut
+// without it. Boxes first (a packed R-tree), exact point-in-contour on the few candidates.
+void place_open_paths(const model::Nest& nest, std::vector<OpenPath>& open) {
+  if (open.empty() || nest.contours.empty()) return;
+  std::vector<geometry::Box> boxes;
+  boxes.reserve(nest.contours.size());
+  for (const auto& c : nest.contours) boxes.push_back(c.box);
+  const geometry::StaticSpatialIndex index(boxes);
+  std::vector<std::uint32_t> near;
+  for (OpenPath& p : open) {
+    if (p.path.vertices.empty()) continue;
+    const geometry::Vec2 at = p.path.vertices.front().p;
+    index.query(geometry::Box{at.x, at.y, at.x, at.y}, near);
+    // The smallest contour holding the point decides: an outer one means part material.
+    std::optional<model::ContourId> holder;
+    for (const std::uint32_t k : near) {
+      const model::ContourId id(static_cast<std::int32_t>(k));
+      const auto& c = nest.contours[id];
+      if (c.role == model::ContourRole::sheet) continue;
+      if (geometry::locate(c.source.contour, at, 0.0) != geometry::Location::inside) continue;
+      if (!holder || c.area_mm2 < nest.contours[*holder].area_mm2) holder = id;
+    }
+    if (holder && nest.contours[*holder].role == model::ContourRole::outer) p.inside_part = nest.contours[*holder].part;
+  }
 }
 
 }  // namespace
@@ -87,25 +115,8 @@ LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
     OpenPath p;
     p.path = std::move(c.contour);
     p.nearest_end_mm = c.nearest_end_mm;
+    p.entities = c.sources.size();
     take_origin(ents, c.sources, p.layer, p.handle, p.line);
-    if (!p.path.vertices.empty()) {
-      const auto a = p.path.vertices.front().p;
-      const auto b = p.path.vertices.back().p;
-      Diagnostic d = make_warning("open contour from " + std::to_string(c.sources.size()) +
-                                      " entities, ends at (" + format_fixed(a.x, 3) + ", " + format_fixed(a.y, 3) +
-                                      ") and (" + format_fixed(b.x, 3) + ", " + format_fixed(b.y, 3) +
-                                      "); kept as an open path, not cut" +
-                                      (p.nearest_end_mm > options.close_gaps_mm ? "; an end lies " + format_fixed(p.nearest_end_mm, 3) +
-                                                                                    " mm from another free end (--close-gaps " +
-                                                                                    format_fixed(gap_to_close(p.nearest_end_mm), 3) +
-                                                                                    " would join them)"
-                                                                              : std::string()),
-                                  out.file, p.line);
-      d.handle = p.handle;
-      d.layer = p.layer;
-      d.code = "chain.open";
-      out.diagnostics.push_back(std::move(d));
-    }
     out.open_paths.push_back(std::move(p));
   }
   if (chained.dropped_zero_length > 0)
@@ -119,6 +130,33 @@ LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
   nest_options.crossing_tol_mm = std::max(nest_options.crossing_tol_mm, options.dxf.curve_tol_mm);
   nest_options.self_loop_tol_mm = std::max(nest_options.self_loop_tol_mm, 4 * std::max(options.snap_mm, options.dxf.curve_tol_mm));
   out.nest = model::build_nest(std::move(closed), nest_options);
+  place_open_paths(out.nest, out.open_paths);
+  // The open paths' warnings go before the nest's, after the chaining's counts, as chained.
+  Diagnostics open_warnings;
+  for (const OpenPath& p : out.open_paths) {
+    if (p.path.vertices.empty()) continue;
+    const auto a = p.path.vertices.front().p;
+    const auto b = p.path.vertices.back().p;
+    std::string message = "open contour from " + std::to_string(p.entities) + " entities, ends at (" + format_fixed(a.x, 3) + ", " +
+                          format_fixed(a.y, 3) + ") and (" + format_fixed(b.x, 3) + ", " + format_fixed(b.y, 3) +
+                          "); kept as an open path, not cut";
+    if (p.inside_part)
+      message += "; it lies in the material of part " + std::to_string(p.inside_part->value() + 1) +
+                 ": if it is a hole drawn with a gap, that part is cut without it";
+    if (p.nearest_end_mm > options.close_gaps_mm)
+      message += "; an end lies " + format_fixed(p.nearest_end_mm, 3) + " mm from another free end (--close-gaps " +
+                 format_fixed(gap_to_close(p.nearest_end_mm), 3) + " would join them)";
+    Diagnostic d = make_warning(std::move(message), out.file, p.line);
+    d.handle = p.handle;
+    d.layer = p.layer;
+    d.code = "chain.open";
+    open_warnings.push_back(std::move(d));
+  }
+  const auto counts_at = std::find_if(out.diagnostics.begin(), out.diagnostics.end(), [](const Diagnostic& d) {
+    return d.code.empty() && (d.message.find("zero-length entities dropped") != std::string::npos ||
+                              d.message.find("duplicated entities dropped") != std::string::npos);
+  });
+  out.diagnostics.insert(counts_at, open_warnings.begin(), open_warnings.end());
   for (auto& d : out.nest.diagnostics) {
     if (d.file.empty()) d.file = out.file;
     out.diagnostics.push_back(d);

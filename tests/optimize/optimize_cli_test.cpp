@@ -721,6 +721,24 @@ TEST(OptimizeCli, AnOutlineDrawnTwiceSlightlyOffIsCutOnce) {
   fs::remove_all(dir);
 }
 
+// A hole drawn with a gap wider than --close-gaps is not cut; the warning says that it lies in
+// part 1's material, so that the part would come out without its hole.
+TEST(OptimizeCli, AnOpenContourInsideAPartIsNamedAsAPossibleHole) {
+  const auto dir = temp_dir("open-hole");
+  const auto nest = (dir / "n.dxf").string(), prog = (dir / "n.ngc").string();
+  std::vector<geometry::Vertex> square{{{10, 10}, 0}, {{110, 10}, 0}, {{110, 60}, 0}, {{10, 60}, 0}};
+  std::ofstream(nest) << DxfBuilder().insunits(4).lwpolyline(square, true, "CUT").arc({60, 35}, 5, 0, 355, "CUT").str();
+  const auto r = run_command(cli_path() + " optimize " + nest + " -o " + prog + " --time-limit 1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("1 open contour(s) not cut"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("and 1 lie in the material of a part (first: part 1), which is cut without them if they are holes"),
+            std::string::npos)
+      << r.err;
+  const auto shown = run_command(cli_path() + " inspect " + nest + " --json");
+  EXPECT_NE(shown.out.find("it lies in the material of part 1: if it is a hole drawn with a gap"), std::string::npos) << shown.out;
+  fs::remove_all(dir);
+}
+
 // Ctrl-C or SIGTERM: the best program found so far is written, with a warning that says so (a
 // supervisor's SIGTERM must not pass the program off as a full run's).
 TEST(OptimizeCli, AnInterruptedRunSaysSo) {

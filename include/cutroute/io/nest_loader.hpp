@@ -21,6 +21,8 @@ struct OpenPath {
   std::string handle;          // first entity of the chain
   std::optional<long> line;
   double nearest_end_mm = -1;  // its end nearest another free end (or its own other end), if within 1 mm
+  std::size_t entities = 0;    // how many entities it was chained from
+  std::optional<model::PartId> inside_part;  // the part whose material holds its first point
 };
 
 struct NestLoadOptions {

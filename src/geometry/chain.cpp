@@ -416,12 +416,15 @@ void drop_repeated_strokes(ChainResult& result) {
 // made across a gap is listed for a warning, where a wider snap would move ends unsaid.
 constexpr double kSliverGaps = 2.0;
 
-// Would the open path c, closed by a straight joint, be a loop thinner than kSliverGaps gaps?
+// Is the closed loop c thinner (mean width 2 area / length) than kSliverGaps joints of gap_mm?
+bool is_sliver(const Contour& c, double gap_mm) { return 2 * std::abs(signed_area(c)) < kSliverGaps * gap_mm * length(c); }
+
+// Would the open path c, closed by a straight joint, be such a loop?
 bool sliver_if_closed(const Contour& c, double gap_mm) {
   Contour loop = c;
   loop.closed = true;
   loop.vertices.back().bulge = 0;
-  return 2 * std::abs(signed_area(loop)) < kSliverGaps * gap_mm * length(loop);
+  return is_sliver(loop, gap_mm);
 }
 
 void close_gaps(ChainResult& result, double gap_mm) {
@@ -509,7 +512,8 @@ void measure_open_ends(ChainResult& result) {
     bool may_close_alone = segment_count(chain.contour) >= 2 || segment(chain.contour, 0).is_arc();
     // Not when step 7 would refuse that loop as a sliver (a V-shaped mark).
     if (may_close_alone)
-      may_close_alone = !sliver_if_closed(chain.contour, distance(chain.contour.vertices.front().p, chain.contour.vertices.back().p));
+      may_close_alone = !sliver_if_closed(
+          chain.contour, std::max(distance(chain.contour.vertices.front().p, chain.contour.vertices.back().p), tol::kSamePointMm));
     double best = -1;
     for (const std::size_t e : {2 * k, 2 * k + 1}) {
       // A crowded cell (a fan of strokes) gives no hint rather than a slow one.
@@ -561,6 +565,14 @@ ChainResult chain_once(const std::vector<ChainPiece>& pieces, double snap_mm, do
   };
   walk_chains(walker, [&](std::size_t k, bool cycle, ChainedContour chain) {
     flush_closed_before(open[k]);
+    // A mark whose ends meet within the snap (a V, a stroke there and back) closes into a sliver
+    // that would be cut as a slit through the part it marks (and a there-and-back stroke with a
+    // side trip made the whole drawing fail as a contour touching itself): it stays an open path.
+    if (cycle && is_sliver(chain.contour, snap_mm)) {
+      chain.contour.closed = false;
+      chain.contour.vertices.push_back({chain.contour.vertices.front().p, 0.0});
+      cycle = false;
+    }
     if (cycle) closed_key.push_back(open[k]);
     (cycle ? result.closed : result.open).push_back(std::move(chain));
   });

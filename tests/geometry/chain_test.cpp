@@ -240,6 +240,17 @@ TEST(Chain, MarksWhoseEndsMeetAcrossAGapStayOpen) {
   ASSERT_EQ(r.open.size(), 2u);
   // Nor does a warning offer a --close-gaps that would close them.
   for (const ChainedContour& c : r.open) EXPECT_LT(c.nearest_end_mm, 0) << c.sources[0];
+  // The same within the snap: ends 0.005 mm apart, or a polyline there and back to its start
+  // exactly (cut, each was a slit through the part it marks).
+  std::vector<ChainPiece> snapped{line({50, 20}, {65, 25}, 0), line({65, 25}, {50.005, 20}, 1),
+                                  {polygon({{0, 0}, {20, 0}, {20, 5}, {20, 0}, {0, 0}}, false), 2, 0}};
+  const ChainResult sn = chain_contours(snapped, 0.01, 0.05);
+  EXPECT_TRUE(sn.closed.empty());
+  ASSERT_EQ(sn.open.size(), 2u);
+  for (const ChainedContour& c : sn.open) {
+    EXPECT_FALSE(c.contour.closed);
+    EXPECT_LT(c.nearest_end_mm, 0) << c.sources[0];
+  }
   // A triangle of the same size drawn with its corner 0.04 mm open is an outline: closed.
   std::vector<ChainPiece> tri{line({50, 20}, {65, 25}, 0), line({65, 25}, {60, 35}, 1), line({60, 35}, {50.04, 20}, 2)};
   const ChainResult t = chain_contours(tri, 0.01, 0.05);

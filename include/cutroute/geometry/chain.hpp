@@ -72,7 +72,8 @@ struct ChainResult {
 //     (detail::chain_faces(), src/geometry/chain_faces.hpp, says when a group is left to the end
 //     pairing instead, its copies dropped). The ends of the pieces left are matched again (3).
 //  5. walk: pieces linked through matched ends form paths (open) and cycles (closed); each
-//     joint is moved to the midpoint of its two ends.
+//     joint is moved to the midpoint of its two ends. A cycle thinner than 2 snaps (2 area /
+//     length: a V or there-and-back mark whose ends meet) stays an open path.
 //  6. an open chain lying wholly on closed contours of its group (within tol::kCollinearMm: a
 //     LINE drawn again over an edge of a closed polyline) is dropped, counted as duplicates.
 //  7. gaps: when gap_mm > snap_mm, a chain still open whose own ends lie within gap_mm closes on

@@ -25,6 +25,7 @@ namespace {
 
 constexpr std::int32_t kNone = -1;
 
+
 bool finite_path(const Contour& c) {
   for (const Vertex& v : c.vertices) {
     if (!is_finite(v.p) || std::isnan(v.bulge)) return false;
@@ -164,6 +165,77 @@ std::size_t drop_duplicates(const std::vector<ChainPiece>& pieces, std::vector<s
       (*copies)[static_cast<std::size_t>(at)].push_back(copy);
     }
   }
+  return count;
+}
+
+// Does open piece b repeat a within tol, vertex for vertex and segment midpoint for midpoint, in
+// either direction?
+bool near_copy(const Contour& a, const Contour& b, double tol) {
+  if (a.closed || b.closed || a.vertices.size() != b.vertices.size()) return false;
+  const std::size_t n = segment_count(a);
+  for (const bool back : {false, true}) {
+    const Contour& other = back ? reversed(b) : b;
+    bool same = true;
+    for (std::size_t i = 0; i < n && same; ++i) {
+      const Segment x = segment(a, i), y = segment(other, i);
+      same = distance(x.a, y.a) <= tol && distance(x.b, y.b) <= tol && distance(x.point_at(0.5), y.point_at(0.5)) <= tol;
+    }
+    if (same) return true;
+  }
+  return false;
+}
+
+// Open pieces repeating an earlier one within `tol` (the snap: a copy written with other rounding,
+// 1e-9 mm off, or redrawn by hand a few µm off): dropped as copies, like the exact repeats. Left in, the copy's ends, nearer to the
+// original's than to the neighbours', took them as partners and the part lost its edge (fuzzing,
+// session 49). Found through a grid (cell tol) of the kept pieces' end points.
+std::size_t drop_near_copies(const std::vector<ChainPiece>& pieces, std::vector<std::uint32_t>& ids,
+                             std::vector<std::vector<std::uint32_t>>& copies, double tol) {
+  const auto cell = [tol](Vec2 p) {
+    return std::pair<std::int64_t, std::int64_t>{detail::cell_of(p.x, tol), detail::cell_of(p.y, tol)};
+  };
+  std::map<std::pair<std::int64_t, std::int64_t>, std::vector<std::size_t>> kept_at;  // cell -> positions in ids
+  std::vector<std::int64_t> keeper(ids.size(), -1);
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    const ChainPiece& piece = pieces[ids[k]];
+    const Contour& c = piece.path;
+    const auto [cx, cy] = cell(c.vertices.front().p);
+    for (std::int64_t dx = -1; dx <= 1 && keeper[k] < 0; ++dx)
+      for (std::int64_t dy = -1; dy <= 1 && keeper[k] < 0; ++dy) {
+        const auto it = kept_at.find({cx + dx, cy + dy});
+        if (it == kept_at.end()) continue;
+        for (const std::size_t j : it->second)
+          if (pieces[ids[j]].group == piece.group && near_copy(pieces[ids[j]].path, c, tol)) {
+            keeper[k] = static_cast<std::int64_t>(j);
+            break;
+          }
+      }
+    if (keeper[k] >= 0) {
+      ++count;
+      continue;
+    }
+    kept_at[cell(c.vertices.front().p)].push_back(k);
+    if (cell(c.vertices.back().p) != cell(c.vertices.front().p)) kept_at[cell(c.vertices.back().p)].push_back(k);
+  }
+  if (count == 0) return 0;
+  std::vector<std::uint32_t> kept_ids;
+  std::vector<std::vector<std::uint32_t>> kept_copies;
+  std::vector<std::size_t> new_index(ids.size(), 0);
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    if (keeper[k] >= 0) continue;
+    new_index[k] = kept_ids.size();
+    kept_ids.push_back(ids[k]);
+    kept_copies.push_back(std::move(copies[k]));
+  }
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    if (keeper[k] < 0) continue;
+    auto& list = kept_copies[new_index[static_cast<std::size_t>(keeper[k])]];
+    list.push_back(ids[k]);
+    list.insert(list.end(), copies[k].begin(), copies[k].end());
+  }
+  ids = std::move(kept_ids);
+  copies = std::move(kept_copies);
   return count;
 }
 
@@ -533,7 +605,8 @@ ChainResult chain_once(const std::vector<ChainPiece>& pieces, double snap_mm, do
   Sorted sorted = classify(pieces, result);
   result.dropped_duplicates += drop_duplicates(pieces, sorted.closed);
   std::vector<std::vector<std::uint32_t>> copies;
-  const std::size_t open_copies = drop_duplicates(pieces, sorted.open, &copies);
+  std::size_t open_copies = drop_duplicates(pieces, sorted.open, &copies);
+  open_copies += drop_near_copies(pieces, sorted.open, copies, snap_mm);
   result.dropped_duplicates += open_copies;
 
   // Ends paired first; parts drawn edge to edge, where the pairing is unsure, then traced as faces

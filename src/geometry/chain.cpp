@@ -25,6 +25,11 @@ namespace {
 
 constexpr std::int32_t kNone = -1;
 
+// Open pieces this close to another at every vertex and midpoint are copies of it [mm]: above the
+// rounding with which another program writes a copy (1e-9 .. 1e-6 mm), far below the snap. At the
+// snap itself, two outlines drawn 0.01 mm apart lost edges to each other (fuzzing, session 49).
+constexpr double kNearCopyMm = 1e-4;
+
 
 bool finite_path(const Contour& c) {
   for (const Vertex& v : c.vertices) {
@@ -185,8 +190,8 @@ bool near_copy(const Contour& a, const Contour& b, double tol) {
   return false;
 }
 
-// Open pieces repeating an earlier one within `tol` (the snap: a copy written with other rounding,
-// 1e-9 mm off, or redrawn by hand a few µm off): dropped as copies, like the exact repeats. Left in, the copy's ends, nearer to the
+// Open pieces repeating an earlier one within `tol` (kNearCopyMm: a copy written with other
+// rounding, 1e-9 mm off): dropped as copies, like the exact repeats. Left in, the copy's ends, nearer to the
 // original's than to the neighbours', took them as partners and the part lost its edge (fuzzing,
 // session 49). Found through a grid (cell tol) of the kept pieces' end points.
 std::size_t drop_near_copies(const std::vector<ChainPiece>& pieces, std::vector<std::uint32_t>& ids,
@@ -606,7 +611,7 @@ ChainResult chain_once(const std::vector<ChainPiece>& pieces, double snap_mm, do
   result.dropped_duplicates += drop_duplicates(pieces, sorted.closed);
   std::vector<std::vector<std::uint32_t>> copies;
   std::size_t open_copies = drop_duplicates(pieces, sorted.open, &copies);
-  open_copies += drop_near_copies(pieces, sorted.open, copies, snap_mm);
+  open_copies += drop_near_copies(pieces, sorted.open, copies, std::min(snap_mm, kNearCopyMm));
   result.dropped_duplicates += open_copies;
 
   // Ends paired first; parts drawn edge to edge, where the pairing is unsure, then traced as faces

@@ -280,7 +280,7 @@ TEST(Chain, OneArcClosingOnItselfIsItsCircle) {
 // A piece drawn again a hair off (another program's rounding) is a copy like an exact repeat: left
 // in, its ends took the original's as partners, and the rectangle lost its edge (fuzzing, session 49).
 TEST(Chain, APieceDrawnAgainAHairOffIsACopy) {
-  for (const double off : {1e-9, 1e-6, 0.003}) {
+  for (const double off : {1e-9, 1e-6, 5e-5}) {
     const std::vector<ChainPiece> pieces{line({0, 0}, {100, 0}, 0), line({100, 0}, {100, 50}, 1), line({100, 50}, {0, 50}, 2),
                                          line({0, 50}, {0.005, 0}, 3), line({100, off}, {0, off}, 4)};
     const ChainResult r = chain_contours(pieces, 0.01, 0.05);
@@ -289,9 +289,12 @@ TEST(Chain, APieceDrawnAgainAHairOffIsACopy) {
     EXPECT_EQ(r.dropped_duplicates, 1u) << off;
     EXPECT_NEAR(std::abs(signed_area(r.closed[0].contour)), 5000, 0.5) << off;
   }
-  // Two strokes 0.02 mm apart are two strokes.
-  const std::vector<ChainPiece> two{line({0, 0}, {100, 0}, 0), line({0, 0.02}, {100, 0.02}, 1)};
-  EXPECT_EQ(chain_contours(two, 0.01, 0.05).dropped_duplicates, 0u);
+  // Two strokes 0.02 mm apart are two strokes; so are two 0.005 mm apart (within the snap): two
+  // outlines drawn that close lost edges to each other when copies were looked for at the snap.
+  for (const double apart : {0.02, 0.005}) {
+    const std::vector<ChainPiece> two{line({0, 0}, {100, 0}, 0), line({0, apart}, {100, apart}, 1)};
+    EXPECT_EQ(chain_contours(two, 0.01, 0.05).dropped_duplicates, 0u) << apart;
+  }
 }
 
 TEST(Chain, DuplicatesAndZeroLengthDroppedAndCounted) {

@@ -60,7 +60,7 @@ struct ChainResult {
 //  2. drop exact duplicates: the same vertices (bit-exact, -0 == +0) read forwards or backwards,
 //     in the same group; the first in input order is kept. (Closed pieces that repeat another
 //     from a different start vertex are not caught here; model::build_nest() reports them.)
-//     Then open pieces that repeat an earlier one within snap_mm at every vertex and segment
+//     Then open pieces that repeat an earlier one within 1e-4 mm at every vertex and segment
 //     midpoint, either way round (a copy rounded otherwise), are dropped the same way.
 //  3. match end points: all pairs of ends (same group) within snap_mm, found through a uniform
 //     grid of cell snap_mm, sorted by distance (ties by index) and matched greedily, so each end

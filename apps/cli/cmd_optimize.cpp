@@ -214,12 +214,18 @@ std::string printed_warnings(const std::string& nest, const std::vector<Diagnost
   std::vector<Place> places;
   int open = 0;
   bool more = false;
-  for (const Diagnostic& d : loading) {
-    if (d.code != "chain.open") continue;
+  // Those whose ends nearly meet (within 1 mm: a part drawn with a gap, most likely) are named
+  // first, then the others in drawing order: marks and text strokes crowded the parts out of the
+  // five places named.
+  std::vector<const io::OpenPath*> order;
+  for (const auto& p : loaded.open_paths)
+    if (!p.path.vertices.empty()) order.push_back(&p);
+  std::stable_partition(order.begin(), order.end(), [](const io::OpenPath* p) { return p->nearest_end_mm > 0; });
+  for (const io::OpenPath* p : order) {
     ++open;
-    std::string where = d.line ? "line " + std::to_string(*d.line) : "entity " + d.handle;
-    if (!d.layer.empty()) where += ", layer " + d.layer;
-    const auto it = std::find_if(places.begin(), places.end(), [&](const Place& p) { return p.where == where; });
+    std::string where = p->line ? "line " + std::to_string(*p->line) : "entity " + p->handle;
+    if (!p->layer.empty()) where += ", layer " + p->layer;
+    const auto it = std::find_if(places.begin(), places.end(), [&](const Place& q) { return q.where == where; });
     if (it != places.end()) ++it->count;
     else if (places.size() < kNamed) places.push_back({std::move(where), 1});
     else more = true;

@@ -739,6 +739,28 @@ TEST(OptimizeCli, AnOpenContourInsideAPartIsNamedAsAPossibleHole) {
   fs::remove_all(dir);
 }
 
+// Six marks drawn before a part with a 0.3 mm gap: the part's place is named first, not crowded
+// out of the five named by the marks.
+TEST(OptimizeCli, APartWithAGapIsNamedBeforeMarks) {
+  const auto dir = temp_dir("named-first");
+  const auto nest = (dir / "n.dxf").string();
+  DxfBuilder b;
+  b.insunits(4);
+  std::vector<geometry::Vertex> plate{{{0, 0}, 0}, {{400, 0}, 0}, {{400, 200}, 0}, {{0, 200}, 0}};
+  b.lwpolyline(plate, true, "CUT");
+  for (int i = 0; i < 6; ++i) b.line({20.0 + 30 * i, 150}, {30.0 + 30 * i, 160}, "MARK");
+  b.line({250, 50}, {350, 50}, "CUT").line({350, 50}, {350, 100}, "CUT").line({350, 100}, {250, 100}, "CUT").line({250, 100}, {250, 50.3}, "CUT");
+  const std::string text = b.str();
+  std::ofstream(nest) << text;
+  const auto r = run_command(cli_path() + " optimize " + nest + " -o " + (dir / "n.ngc").string() + " --time-limit 1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("7 open contour(s) not cut, their ends not meeting within --snap and --close-gaps (line "), std::string::npos) << r.err;
+  const auto list = r.err.find("--close-gaps (line ");
+  ASSERT_NE(list, std::string::npos);
+  EXPECT_EQ(r.err.compare(r.err.find(", layer ", list), 11, ", layer CUT"), 0) << r.err;
+  fs::remove_all(dir);
+}
+
 // Ctrl-C or SIGTERM: the best program found so far is written, with a warning that says so (a
 // supervisor's SIGTERM must not pass the program off as a full run's).
 TEST(OptimizeCli, AnInterruptedRunSaysSo) {

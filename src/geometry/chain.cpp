@@ -246,6 +246,10 @@ std::size_t drop_near_copies(const std::vector<ChainPiece>& pieces, std::vector<
 
 // --- step 3: match end points, nearest pairs first (step 4 is chain_faces.cpp) ---
 
+// Can an open path close on itself? A single straight line cannot (its ends meet only if it has
+// no length); two segments or an arc can.
+bool can_close_alone(const Contour& c) { return segment_count(c) >= 2 || segment(c, 0).is_arc(); }
+
 using detail::end_point;
 
 // Why a grid and not nanoflann: the search radius is fixed (the snap), so a uniform grid with
@@ -267,10 +271,7 @@ std::vector<std::int32_t> match_ends(const std::vector<ChainPiece>& pieces, cons
   };
   std::vector<Candidate> cand;
   cand.reserve(2 * n_ends);
-  auto may_close_alone = [&](std::size_t k) {
-    const Contour& c = pieces[open[k]].path;
-    return segment_count(c) >= 2 || segment(c, 0).is_arc();
-  };
+  auto may_close_alone = [&](std::size_t k) { return can_close_alone(pieces[open[k]].path); };
   // Each end offers only its kMaxPartners nearest ends: where hundreds of ends crowd into one
   // snap circle (a fan of lines from one point) the pair list stays linear in memory; such an
   // end can then only miss a partner that is farther than kMaxPartners others.
@@ -524,8 +525,7 @@ void close_gaps(ChainResult& result, double gap_mm) {
   std::vector<std::uint32_t> rest;
   for (std::uint32_t k = 0; k < chains.size(); ++k) {
     const Contour& c = chains[k].path;
-    const bool alone = segment_count(c) >= 2 || segment(c, 0).is_arc();
-    if (alone && distance(c.vertices.front().p, c.vertices.back().p) <= gap_mm && !sliver_if_closed(c, gap_mm)) {
+    if (can_close_alone(c) && distance(c.vertices.front().p, c.vertices.back().p) <= gap_mm && !sliver_if_closed(c, gap_mm)) {
       partner[2 * k] = static_cast<std::int32_t>(2 * k + 1);
       partner[2 * k + 1] = static_cast<std::int32_t>(2 * k);
     } else {
@@ -545,7 +545,7 @@ void close_gaps(ChainResult& result, double gap_mm) {
   {
     Walker probe{chains, ids, partner};
     walk_chains(probe, [&](std::size_t k, bool cycle, const ChainedContour& chain) {
-      if (cycle && 2 * std::abs(signed_area(chain.contour)) < kSliverGaps * gap_mm * length(chain.contour)) slivers.push_back(k);
+      if (cycle && is_sliver(chain.contour, gap_mm)) slivers.push_back(k);
     });
   }
   for (const std::size_t k : slivers) {
@@ -586,7 +586,7 @@ void measure_open_ends(ChainResult& result) {
   const detail::EndGrid grid = detail::make_grid(n_ends, kGapHintMm, [&](std::size_t e) { return pos[e]; });
   for (std::size_t k = 0; k < result.open.size(); ++k) {
     ChainedContour& chain = result.open[k];
-    bool may_close_alone = segment_count(chain.contour) >= 2 || segment(chain.contour, 0).is_arc();
+    bool may_close_alone = can_close_alone(chain.contour);
     // Not when step 7 would refuse that loop as a sliver (a V-shaped mark).
     if (may_close_alone)
       may_close_alone = !sliver_if_closed(

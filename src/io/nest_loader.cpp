@@ -119,20 +119,14 @@ LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
     take_origin(ents, c.sources, p.layer, p.handle, p.line);
     out.open_paths.push_back(std::move(p));
   }
-  if (chained.dropped_zero_length > 0)
-    out.diagnostics.push_back(make_warning(
-        std::to_string(chained.dropped_zero_length) + " zero-length entities dropped", out.file));
-  if (chained.dropped_duplicates > 0)
-    out.diagnostics.push_back(make_warning(
-        std::to_string(chained.dropped_duplicates) + " duplicated entities dropped", out.file));
 
   model::NestOptions nest_options = options.nest;
   nest_options.crossing_tol_mm = std::max(nest_options.crossing_tol_mm, options.dxf.curve_tol_mm);
   nest_options.self_loop_tol_mm = std::max(nest_options.self_loop_tol_mm, 4 * std::max(options.snap_mm, options.dxf.curve_tol_mm));
   out.nest = model::build_nest(std::move(closed), nest_options);
   place_open_paths(out.nest, out.open_paths);
-  // The open paths' warnings go before the nest's, after the chaining's counts, as chained.
-  Diagnostics open_warnings;
+  // The open paths' warnings (they need the nest: which part holds them) and the chaining's counts
+  // go before the nest's diagnostics.
   for (const OpenPath& p : out.open_paths) {
     if (p.path.vertices.empty()) continue;
     const auto a = p.path.vertices.front().p;
@@ -150,13 +144,14 @@ LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
     d.handle = p.handle;
     d.layer = p.layer;
     d.code = "chain.open";
-    open_warnings.push_back(std::move(d));
+    out.diagnostics.push_back(std::move(d));
   }
-  const auto counts_at = std::find_if(out.diagnostics.begin(), out.diagnostics.end(), [](const Diagnostic& d) {
-    return d.code.empty() && (d.message.find("zero-length entities dropped") != std::string::npos ||
-                              d.message.find("duplicated entities dropped") != std::string::npos);
-  });
-  out.diagnostics.insert(counts_at, open_warnings.begin(), open_warnings.end());
+  if (chained.dropped_zero_length > 0)
+    out.diagnostics.push_back(make_warning(
+        std::to_string(chained.dropped_zero_length) + " zero-length entities dropped", out.file));
+  if (chained.dropped_duplicates > 0)
+    out.diagnostics.push_back(make_warning(
+        std::to_string(chained.dropped_duplicates) + " duplicated entities dropped", out.file));
   for (auto& d : out.nest.diagnostics) {
     if (d.file.empty()) d.file = out.file;
     out.diagnostics.push_back(d);

@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include <cutroute/core/json_duplicates.hpp>
+#include <cutroute/core/json_text.hpp>
 
 #include <cutroute/core/result.hpp>
 
@@ -25,7 +25,7 @@ inline std::string item(const std::string& parent, std::size_t i) {
   return parent + "[" + std::to_string(i) + "]";
 }
 
-// Parses a file; the error names the file and, for syntax errors, the byte offset.
+// Parses a file; the error names the file and, for syntax errors, the line.
 inline Result<json> parse_json_file(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) return make_error("is a directory, not a JSON file", path);
@@ -34,8 +34,9 @@ inline Result<json> parse_json_file(const std::string& path) {
   std::stringstream ss;
   ss << in.rdbuf();
   const std::string text = ss.str();
-  json j = json::parse(text, nullptr, false);
-  if (j.is_discarded()) return make_error("not valid JSON", path);
+  auto parsed = parse_json_text(text, path);
+  if (!parsed) return parsed.error();
+  const json& j = *parsed;
   if (const auto key = duplicate_json_key(text)) return make_error("key \"" + *key + "\" appears twice in one object", path);
   if (!j.is_object()) return make_error("the top level must be a JSON object", path);
   return j;

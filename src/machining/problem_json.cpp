@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include <cutroute/core/json_duplicates.hpp>
+#include <cutroute/core/json_text.hpp>
 
 #include <cutroute/machining/optimize.hpp>
 
@@ -414,17 +414,10 @@ Result<Problem> read_one(const json& root, const std::string& file, const std::s
 }
 
 Result<json> parse(std::string_view text, const std::string& file) {
-  try {
-    json j = json::parse(text.begin(), text.end());
-    if (const auto key = duplicate_json_key(text)) return make_error("key \"" + *key + "\" appears twice in one object", file);
-    return j;
-  } catch (const json::parse_error& e) {
-    // Byte offset -> 1-based line for the diagnostic.
-    const std::size_t upto = std::min<std::size_t>(e.byte, text.size());
-    const long line = 1 + static_cast<long>(std::count(
-                              text.begin(), text.begin() + static_cast<std::ptrdiff_t>(upto), '\n'));
-    return make_error(std::string("invalid JSON: ") + e.what(), file, line);
-  }
+  auto j = parse_json_text(text, file);
+  if (!j) return j.error();
+  if (const auto key = duplicate_json_key(text)) return make_error("key \"" + *key + "\" appears twice in one object", file);
+  return j;
 }
 
 }  // namespace

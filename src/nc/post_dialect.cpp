@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include <cutroute/core/json_duplicates.hpp>
+#include <cutroute/core/json_text.hpp>
 #include <cutroute/core/text.hpp>
 #include <cutroute/core/version.hpp>
 #include <cutroute/io/output_file.hpp>
@@ -142,12 +142,9 @@ std::string check_lines(const PostDialect& d) {
 Result<PostDialect> load_post_dialect(const std::string& path) {
   auto text = io::read_file(path);
   if (!text) return text.error();
-  json j;
-  try {
-    j = json::parse(*text);
-  } catch (const json::parse_error& e) {
-    return make_error(std::string("not valid JSON: ") + e.what(), path);
-  }
+  auto parsed = parse_json_text(*text, path);
+  if (!parsed) return parsed.error();
+  const json& j = *parsed;
   if (const auto key = duplicate_json_key(*text)) return make_error("dialect field '" + *key + "' appears twice", path);
   if (!j.is_object()) return make_error("a dialect file holds one JSON object", path);
   PostDialect d;

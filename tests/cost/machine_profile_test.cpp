@@ -136,6 +136,11 @@ TEST(MachineProfile, MissingFileAndBadJson) {
   auto b = load_machine_profile(path);
   ASSERT_FALSE(b.ok());
   EXPECT_NE(b.error().message.find("not valid JSON"), std::string::npos);
+  EXPECT_EQ(b.error().line, std::optional<long>(1));
+  std::ofstream(path) << "{\"name\": \"a\",\n \"rapid_speed_m_s\": 1e400}";
+  auto big = load_machine_profile(path);
+  ASSERT_FALSE(big.ok());
+  EXPECT_EQ(big.error().line, std::optional<long>(2)) << format(big.error());
   std::ofstream(path) << R"({"name": "a", "rapid_speed_m_s": 1.0, "rapid_speed_m_s": 100.0})";
   auto c = load_machine_profile(path);
   ASSERT_FALSE(c.ok());

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include <cutroute/core/json_duplicates.hpp>
+#include <cutroute/core/json_text.hpp>
 #include <cutroute/machining/problem_json.hpp>
 
 #include "examples.hpp"
@@ -166,6 +166,21 @@ TEST(MachiningJson, ARepeatedKeyIsAnError) {
   // The same key in two objects is no repeat.
   EXPECT_FALSE(duplicate_json_key(R"({"a": {"D": 1}, "b": {"D": 2}, "c": [{"x": 1}, {"x": 2}]})"));
   EXPECT_EQ(duplicate_json_key(R"({"a": [{"x": 1, "y": 2, "x": 3}]})"), std::optional<std::string>("x"));
+}
+
+// nlohmann reports a number beyond double's range as out_of_range, with no position: the message
+// named neither file nor line (session 49 audit: "D": 1e999).
+TEST(MachiningJson, ANumberOutOfRangeNamesItsLine) {
+  const auto r = read_problem_json("{\n  \"operation\": {\n    \"D\": 1e999,\n    \"L\": 60\n  }\n}\n", "big.json");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().file, "big.json");
+  EXPECT_EQ(r.error().line, std::optional<long>(3));
+  EXPECT_EQ(r.error().message, "not valid JSON: number overflow parsing '1e999'");
+  // A syntax error keeps its line, without nlohmann's exception tag.
+  const auto s = parse_json_text("{\n  \"a\": 1,\n  \"b\": }\n", "s.json");
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.error().line, std::optional<long>(3));
+  EXPECT_EQ(s.error().message.rfind("not valid JSON: parse error at line 3", 0), 0U) << s.error().message;
 }
 
 TEST(MachiningJson, EveryMissingFieldIsNamedAtOnce) {

@@ -3,6 +3,7 @@
 #include <cutroute/io/dxf.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -792,7 +793,19 @@ Result<DxfDrawing> read_dxf(const std::string& path, const DxfOptions& options) 
   if (!f) return make_error("cannot open file", path);
   f.seekg(0, std::ios::end);
   const auto size = f.tellg();
-  if (size < 0) return make_error("cannot read file", path);
+  if (size < 0) {
+    // A pipe or FIFO has no size (`optimize <(unzip -p nests.zip a.dxf)`, a batch fed through
+    // FIFOs): read to its end instead of refusing it with "cannot read file".
+    f.clear();
+    std::string content;
+    std::array<char, 1 << 16> buf;
+    while (f.read(buf.data(), buf.size()) || f.gcount() > 0) {
+      content.append(buf.data(), static_cast<std::size_t>(f.gcount()));
+      if (content.size() > kMaxFileBytes) return make_error("file is larger than 512 MB", path);
+    }
+    if (f.bad()) return make_error("cannot read file", path);
+    return read_dxf_string(content, path, options);
+  }
   if (static_cast<std::uintmax_t>(size) > kMaxFileBytes) return make_error("file is larger than 512 MB", path);
   f.seekg(0, std::ios::beg);
   std::string content(static_cast<std::size_t>(size), '\0');

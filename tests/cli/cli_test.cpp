@@ -255,5 +255,16 @@ TEST(Cli, FailedRunLeavesNoOutputBehind) {
   fs::remove_all(dir);
 }
 
+// A drawing through a pipe or FIFO (no size to seek to) was refused with "cannot read file".
+TEST(Cli, ADrawingIsReadThroughAPipe) {
+  const auto dir = temp_dir("pipe");
+  const auto dxf = dir / "demo.dxf";
+  ASSERT_EQ(run_command(cli_path() + " demo " + dxf.string()).exit_code, 0);
+  const auto r = run_command("cat '" + dxf.string() + "' | " + cli_path() + " inspect /dev/stdin");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("entities: CIRCLE 10 LWPOLYLINE 12"), std::string::npos) << r.out;
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace cutroute::test

@@ -69,6 +69,7 @@ int run_gtsp(const GtspOptions& o) {
     for (auto v : s.route) tour.push_back(v.value() + 1);
     j["tour"] = tour;
     if (s.lower_bound) j["lower_bound"] = *s.lower_bound;
+    if (interrupt_signal() != 0) j["interrupted"] = true;
     std::cout << json_text(j, -1) << '\n';
   } else {
     std::cout << "instance:  " << inst->name << '\n';
@@ -85,6 +86,11 @@ int run_gtsp(const GtspOptions& o) {
     std::cout << "time:      " << seconds_text(s.stats.seconds) << " s (" << s.stats.solver << ", " << s.stats.threads
               << (s.stats.threads == 1 ? " thread" : " threads") << ")\n";
   }
+  // Stopped early, the route is the best found by then, with the status a time limit gives it: a
+  // benchmark table must not take it for a full run's.
+  if (interrupt_signal() != 0)
+    std::cerr << "cutroute: " << o.instance << ": warning: the run was interrupted (Ctrl-C or SIGTERM): the route is the best "
+              << "found before the stop\n";
   if (s.status == solve::SolveStatus::infeasible) {
     std::cerr << "cutroute: " << o.instance << ": error: the instance has no feasible route\n";
     return kInputError;
@@ -111,7 +117,7 @@ void add_gtsp(CLI::App& root, Commands& out) {
       ->check(finite_range(0.0, 1e9));
   app->add_flag("--json", opts->json, "Print one JSON object");
   app->add_flag("-q,--quiet", opts->quiet, "No progress line on the terminal");
-  out.push_back({app, [opts] { return run_gtsp(*opts); }});
+  out.push_back({app, [opts] { return run_gtsp(*opts); }, true});
 }
 
 }  // namespace cutroute::cli

@@ -1,6 +1,7 @@
 // cutroute optimize: DXF nest(s) -> optimized cutting program, report, pictures (in parallel for several nests).
 #include <algorithm>
 #include <atomic>
+#include <csignal>
 #include <filesystem>
 #include <iostream>
 #include <set>
@@ -143,6 +144,7 @@ struct NestOutcome {
   int code = kOk;
   std::string message, warnings;
   nlohmann::json report;
+  bool not_started = false;  // Ctrl-C or SIGTERM came first: not cut, though nothing is wrong with it
 };
 
 // The warnings of a cut nest that reach stderr: rapids left over freed parts, cuts the controller's
@@ -275,7 +277,7 @@ std::string summary_line(const std::string& nest, const nlohmann::json& r, const
 NestOutcome cut_nest(const std::string& nest, const Outputs& out, const pipeline::OptimizeOptions& po,
                      const io::NestLoadOptions& load_options, ProgressLine& progress) {
   // After Ctrl-C the nests already under way still write their best program; the rest do not start.
-  if (StopToken::global().cancelled()) return {kInputError, nest + ": not started (interrupted)", {}, {}};
+  if (StopToken::global().cancelled()) return {kInputError, nest + ": not started (interrupted)", {}, {}, true};
   auto loaded = io::load_nest(nest, load_options);
   if (!loaded) return {kInputError, format(loaded.error()), {}, {}};
   pipeline::OptimizeOptions mine = po;
@@ -315,7 +317,7 @@ int write_batch_summary(const Opts& o, const std::vector<Outputs>& outs, const s
   for (std::size_t i = 0; i < o.nests.size(); ++i) {
     const bool ok = done[i].code == kOk;
     entries[i] = {o.nests[i], ok ? outs[i].program : std::string(), ok ? done[i].report : nlohmann::json(),
-                  ok ? std::string() : done[i].message};
+                  ok ? std::string() : done[i].message, done[i].not_started};
     if (ok) t_cut += done[i].report["t_cut_s"].get<double>(), ++cut;
   }
   const auto summary = (std::filesystem::path(o.out) / "summary.csv").string();
@@ -382,11 +384,13 @@ int run(const Opts& o) {
   progress.done();
 
   int code = kOk;
+  bool stopped = false;  // sheets left undone by Ctrl-C or SIGTERM: the batch is incomplete
   for (std::size_t i = 0; i < o.nests.size(); ++i) {
     std::cerr << done[i].warnings;
     if (done[i].code != kOk) {
       std::cerr << "cutroute: " << done[i].message << '\n';
       code = done[i].code;
+      stopped = stopped || done[i].not_started;
       // A batch's outputs for a sheet that failed: a file of that name from an earlier run into the
       // folder would pass for this sheet's program (another drawing's, or an older one).
       if (o.nests.size() > 1) {
@@ -406,6 +410,8 @@ int run(const Opts& o) {
   }
   if (o.nests.size() > 1)
     if (const int st = write_batch_summary(o, *outs, done); st != kOk) return st;
+  // Not an input error (2): a script that reruns the batch must tell "stopped" from "bad sheet".
+  if (stopped) return kSignalBase + (interrupt_signal() != 0 ? interrupt_signal() : SIGINT);
   return code;
 }
 
@@ -528,7 +534,8 @@ void add_optimize(CLI::App& root, Commands& out) {
   out.push_back({app, [o, app] {
                    for (const auto& w : idle_options(*app, *o)) std::cerr << "cutroute: warning: " << w << '\n';
                    return run(*o);
-                 }});
+                 },
+                 true});
 }
 
 }  // namespace cutroute::cli

@@ -6,6 +6,7 @@
 
 #include <cutroute/core/stop.hpp>
 #include <cutroute/core/version.hpp>
+#include <cutroute/io/output_file.hpp>
 
 #include "commands.hpp"
 
@@ -27,18 +28,24 @@ bool show_progress(bool quiet) { return !quiet && ::isatty(STDERR_FILENO); }
 namespace {
 // The first Ctrl-C (or SIGTERM) asks the run to stop and write its best result; the second ends the
 // process at once, for whatever cannot stop: a read blocked on a FIFO nobody writes to, a step
-// that does not look at the stop request.
-volatile std::sig_atomic_t signals_seen = 0;
+// that does not look at the stop request. A command that never looks at it (estimate, machining,
+// inspect) ends at the first: a supervisor's single SIGTERM went unheeded. Ending, the process
+// leaves no temporary file of an output it was writing.
+volatile std::sig_atomic_t signal_seen = 0;     // the first signal's number, 0 before any
+volatile std::sig_atomic_t stops_on_request = 0;  // the running command looks at the stop request
 extern "C" void on_signal(int sig) {
-  if (signals_seen != 0) {
+  if (signal_seen != 0 || stops_on_request == 0) {
+    cutroute::io::remove_temp_files();
     std::signal(sig, SIG_DFL);
     std::raise(sig);
     return;
   }
-  signals_seen = 1;
+  signal_seen = sig;
   cutroute::StopToken::global().request_stop();
 }
 }  // namespace
+
+int cutroute::cli::interrupt_signal() { return signal_seen; }
 
 int main(int argc, char** argv) {
   using namespace cutroute::cli;
@@ -71,6 +78,7 @@ int main(int argc, char** argv) {
   }
   for (const auto& c : commands) {
     if (c.app->parsed()) {
+      stops_on_request = c.stops_on_request ? 1 : 0;
       try {
         return c.run();
       } catch (const std::bad_alloc&) {

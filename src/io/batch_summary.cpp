@@ -60,7 +60,7 @@ std::string batch_summary_csv(const std::vector<BatchEntry>& entries) {
   for (const auto& e : entries) {
     const nlohmann::json& r = e.report;
     if (!r.is_object()) {
-      csv += row({e.nest, "error", "", "", "", "", "", "", "", "", "", "", "", "", e.program, e.error, ""});
+      csv += row({e.nest, e.not_started ? "not started" : "error", "", "", "", "", "", "", "", "", "", "", "", "", e.program, e.error, ""});
       continue;
     }
     ++ok;

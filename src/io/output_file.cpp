@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <utility>
 
 namespace cutroute::io {
 
@@ -23,6 +24,46 @@ std::string temp_name(const fs::path& target) {
   static std::atomic<unsigned long> counter{0};
   return (target.parent_path() / (".cutroute-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".tmp")).string();
 }
+
+// The temporary files that may exist right now, for remove_temp_files() in a signal handler:
+// fixed slots a handler can read at any moment (no allocation, no lock). A batch has at most
+// four outputs per sheet in flight on each core; a name that finds no free slot (or is longer
+// than a path can be) is written all the same, only not removed by a hard stop.
+struct TempSlot {
+  std::atomic<int> state{0};  // 0 free, 1 being filled, 2 names a file that may exist
+  char path[4096];
+};
+TempSlot temp_slots[64];
+
+// Holds a temporary file's name in a slot from before the file is made until it is renamed or
+// removed (a name whose file does not exist yet or any more costs the handler one failed unlink).
+class TempEntry {
+ public:
+  explicit TempEntry(const std::string& path) {
+    if (path.size() >= sizeof(TempSlot::path)) return;
+    for (TempSlot& s : temp_slots) {
+      int free = 0;
+      if (!s.state.compare_exchange_strong(free, 1)) continue;
+      std::memcpy(s.path, path.c_str(), path.size() + 1);
+      s.state.store(2);
+      slot_ = &s;
+      return;
+    }
+  }
+  TempEntry(const TempEntry&) = delete;
+  TempEntry& operator=(const TempEntry&) = delete;
+  TempEntry(TempEntry&& o) noexcept : slot_(std::exchange(o.slot_, nullptr)) {}
+  TempEntry& operator=(TempEntry&& o) noexcept {
+    std::swap(slot_, o.slot_);
+    return *this;
+  }
+  ~TempEntry() {
+    if (slot_ != nullptr) slot_->state.store(0);
+  }
+
+ private:
+  TempSlot* slot_ = nullptr;
+};
 
 // Where an output really goes: a symbolic link is followed (the link stays; its target gets the
 // new content), and a device, FIFO or socket is written in place: renaming a file over it would
@@ -93,6 +134,8 @@ Status write_files_atomic(const std::vector<OutputFile>& files) {
     targets[k] = std::move(*t);
   }
   std::vector<std::string> tmps(files.size());
+  std::vector<TempEntry> live;  // released (after the renames or removals) when this returns
+  live.reserve(files.size());
   auto drop = [&](std::size_t from) {
     std::error_code ec;
     for (std::size_t k = from; k < files.size(); ++k)
@@ -101,6 +144,7 @@ Status write_files_atomic(const std::vector<OutputFile>& files) {
   for (std::size_t k = 0; k < files.size(); ++k) {
     if (files[k].path == "-" || targets[k].in_place) continue;
     const std::string tmp = temp_name(targets[k].path);
+    live.emplace_back(tmp);
     if (Status st = write_to(tmp, files[k].path, files[k].content, false); !st) {
       drop(0);
       return st;
@@ -128,10 +172,16 @@ Status check_output(const std::string& path) {
   if (!t) return t.error();
   if (t->in_place) return Ok{};
   const std::string tmp = temp_name(t->path);
+  const TempEntry live(tmp);
   if (Status st = write_to(tmp, path, {}, false); !st) return st;
   std::error_code ec;
   fs::remove(tmp, ec);
   return Ok{};
+}
+
+void remove_temp_files() noexcept {
+  for (TempSlot& s : temp_slots)
+    if (s.state.load() == 2) ::unlink(s.path);
 }
 
 bool same_output(const std::string& a, const std::string& b) {

@@ -375,17 +375,20 @@ TEST(CliEstimate, MotionModelWhenTheProfileHasAcceleration) {
 }
 
 // Found by fuzzing (session 39): reading a FIFO nobody writes to blocks in open(), and Ctrl-C
-// only asked the run to stop; the process could be ended by SIGKILL alone. The first SIGINT
-// still asks for a graceful stop (the process lives on), the second ends it.
+// only asked the run to stop; the process could be ended by SIGKILL alone. For a command that
+// stops on request (optimize, gtsp) the first SIGINT still asks for a graceful stop (the process
+// lives on), the second ends it; estimate, which cannot stop gracefully, ends at the first
+// (tests/cli/signals_test.cpp).
 TEST(CliSignals, ASecondInterruptEndsARunThatCannotStop) {
   const auto dir = std::filesystem::temp_directory_path() / ("cutroute-fifo-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
-  const auto fifo = dir / "blocked.ngc";
+  const auto fifo = dir / "blocked.dxf";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
   // As a script file: written inline, the shell popen runs would expand $! and $p itself. The run's
   // output goes to /dev/null, so that a run that outlived the script cannot hold the pipe open.
   const auto script = dir / "interrupt.sh";
-  std::ofstream(script) << "'" << test::cli_path() << "' estimate '" << fifo.string() << "' >/dev/null 2>&1 &\n"
+  std::ofstream(script) << "'" << test::cli_path() << "' optimize '" << fifo.string() << "' -o '" << (dir / "blocked.ngc").string()
+                        << "' >/dev/null 2>&1 &\n"
                         << "p=$!\nsleep 1\nkill -INT $p\nsleep 0.5\nkill -0 $p 2>/dev/null && echo alive\n"
                         << "kill -INT $p\nwait $p\necho exit=$?\n";
   const auto r = test::run_command("timeout -k 2 20 sh '" + script.string() + "'");

@@ -14,9 +14,10 @@ struct BatchEntry {
   std::string program;         // the program written ("" when none was)
   nlohmann::json report;       // null when the nest failed
   std::string error;           // the message when it failed
+  bool not_started = false;    // Ctrl-C or SIGTERM stopped the batch before this nest was begun
 };
 
-// Columns: nest, status (ok / error), technique, material, thickness_mm, pierces,
+// Columns: nest, status (ok / error / not started), technique, material, thickness_mm, pierces,
 // cut_length_mm, rapid_length_mm, frames, t_cut_s, t_cut_const_speed_s, cost, cost_unit, route
 // ("optimal", "gap Z %" or empty), program, error, warnings (the report's warnings counted by
 // code, "chain.open:2 tabs.on_a_neighbours_cut:1": what to look at before cutting that sheet);

@@ -37,6 +37,11 @@ Status check_output(const std::string& path);
 // to it: one file)? For outputs against each other and against the inputs.
 bool same_output(const std::string& a, const std::string& b);
 
+// Removes the temporary files of outputs being written at this moment, for a signal handler
+// that ends the process (a second Ctrl-C during writing left .cutroute-<pid>-<n>.tmp files of
+// tens of MB beside the outputs). Async-signal-safe: no allocation, no lock, only unlink().
+void remove_temp_files() noexcept;
+
 // Reads a whole file; the error names the file.
 Result<std::string> read_file(const std::string& path);
 

@@ -11,6 +11,9 @@ namespace cutroute::cli {
 
 // One line per job ("name: stage  best X  T s"), rewritten in place at most 5 times a second;
 // silent when off (not a terminal, or --quiet). Safe to call from several threads.
+// "name: rest" shortened to fit `columns` - 1 characters: the name loses its front first.
+std::string fit_progress_line(const std::string& name, const std::string& rest, std::size_t columns);
+
 class ProgressLine {
  public:
   // decimals: of the best value shown (2 for seconds of T_cut, 0 for integer costs).

@@ -4,6 +4,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -117,6 +119,40 @@ TEST(CliSignals, AStoppedBatchExitsWithTheSignalAndNamesTheSheetsNotStarted) {
   EXPECT_NE(summary.find(".dxf,not started,"), std::string::npos) << summary;
   EXPECT_EQ(summary.find(".dxf,error,"), std::string::npos) << summary;
   EXPECT_TRUE(fs::exists(out / "sheet0.ngc"));  // begun before the signal: its best program
+  fs::remove_all(dir);
+}
+
+// Found auditing how runs stop: the progress line was written whole, and a line as wide as the
+// terminal wraps, so each rewrite ("\r") left a row behind; the end cleared only 79 columns. Run
+// in a pseudo-terminal of 40 columns (script(1), util-linux), every rewrite must fit in 39.
+TEST(CliProgress, TheLineFitsTheTerminal) {
+  if (std::system("command -v script >/dev/null 2>&1") != 0) GTEST_SKIP() << "script(1) missing";
+  const auto dir = fresh_temp_dir("signals", "a_folder_with_a_name_longer_than_the_terminal_is_wide");
+  const auto dxf = dir / "a_sheet_with_a_long_name.dxf";
+  ASSERT_EQ(run_command(cli_path() + " demo " + dxf.string()).exit_code, 0);
+  std::ostringstream inner;
+  inner << "stty cols 40; '" << cli_path() << "' optimize '" << dxf.string() << "' -o '" << (dir / "p.ngc").string()
+        << "' --time-limit 1";
+  std::ostringstream command;
+  command << "timeout 60 script -qfc \"" << inner.str() << "\" /dev/null";
+  const auto r = run_command(command.str());
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  // The terminal ends lines with "\r\n"; within a line, every piece ended by "\r" is one rewrite of
+  // the progress line, the last piece the results printed once it was cleared.
+  std::string out = r.out;
+  for (std::size_t k; (k = out.find("\r\n")) != std::string::npos;) out.erase(k, 1);
+  for (std::size_t k; (k = out.find("\x1b[K")) != std::string::npos;) out.erase(k, 3);
+  int lines = 0;
+  std::istringstream rows(out);
+  for (std::string row; std::getline(rows, row);) {
+    for (std::size_t from = 0, to; (to = row.find('\r', from)) != std::string::npos; from = to + 1) {
+      const std::string piece = row.substr(from, to - from);
+      if (piece.empty()) continue;
+      ++lines;
+      EXPECT_LE(piece.size(), 39U) << piece;
+    }
+  }
+  EXPECT_GT(lines, 0) << r.out;  // the progress line was shown
   fs::remove_all(dir);
 }
 

@@ -179,7 +179,18 @@ struct UnitsDecision {
   std::string units_in_file = "unitless";
   std::string source = "default";
   double mm_per_unit = 1.0;
+  std::string unit_name = "mm";  // the unit the numbers are read in
 };
+
+// The --units value as a unit's name ("inch" -> "in").
+std::string option_unit_name(const std::string& u) {
+  const std::string l = upper(u);
+  if (l == "INCH") return "in";
+  if (l == "FOOT") return "ft";
+  std::string name = u;
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return name;
+}
 
 UnitsDecision decide_units(std::optional<int> insunits, std::optional<int> measurement, const DxfOptions& opt) {
   UnitsDecision d;
@@ -187,6 +198,7 @@ UnitsDecision decide_units(std::optional<int> insunits, std::optional<int> measu
     d.units_in_file = detail::insunits_name(*insunits);
     d.source = "$INSUNITS";
     d.mm_per_unit = *detail::insunits_mm(*insunits);
+    d.unit_name = detail::insunits_name(*insunits);
   } else if (insunits && *insunits == 0) {
     // $INSUNITS 0 says "unitless" explicitly: the drawing's numbers are millimetres for a
     // cutting machine (the foundation issue: unitless files read as mm). $MEASUREMENT, a
@@ -196,11 +208,13 @@ UnitsDecision decide_units(std::optional<int> insunits, std::optional<int> measu
     d.units_in_file = *measurement == 0 ? "in" : "mm";
     d.source = "$MEASUREMENT";
     d.mm_per_unit = *measurement == 0 ? units::kMmPerInch : 1.0;
+    d.unit_name = d.units_in_file;
   }
   if (opt.units) {
     if (auto mm = option_units_mm(*opt.units)) {
       d.source = "option";
       d.mm_per_unit = *mm;
+      d.unit_name = option_unit_name(*opt.units);
     }
   }
   return d;
@@ -759,6 +773,7 @@ Result<DxfDrawing> read_dxf_string(const std::string& content, const std::string
   d.units_in_file = u.units_in_file;
   d.units_source = u.source;
   d.mm_per_unit = u.mm_per_unit;
+  d.unit_name = u.unit_name;
   if (s.insunits && *s.insunits != 0 && !detail::insunits_mm(*s.insunits)) {
     d.diagnostics.push_back(make_warning("$INSUNITS " + std::to_string(*s.insunits) + " (" +
                                              detail::insunits_name(*s.insunits) + ") is not supported; ignored: its numbers are read as " +

@@ -5,6 +5,7 @@
 
 #include <map>
 
+#include <cutroute/core/drawing_unit.hpp>
 #include <cutroute/core/number_format.hpp>
 #include <cutroute/geometry/chain.hpp>
 #include <cutroute/geometry/spatial_index.hpp>
@@ -66,6 +67,7 @@ LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
   out.units_in_file = drawing.units_in_file;
   out.units_source = drawing.units_source;
   out.mm_per_unit = drawing.mm_per_unit;
+  out.unit = DrawingUnit{drawing.mm_per_unit, drawing.unit_name};
   out.entity_counts = drawing.entity_counts;
   out.layers = drawing.layers;
   out.skipped = drawing.skipped;
@@ -102,8 +104,8 @@ LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
       return e.line ? "the entity at line " + std::to_string(*e.line) : std::string("an entity");
     };
     const std::string between = g.source_a == g.source_b ? "the ends of " + name(a) : name(a) + " and " + name(b);
-    Diagnostic d = make_warning("gap of " + format_fixed(g.width_mm, 3) + " mm between " + between + " closed at (" +
-                                    format_fixed(g.at.x, 3) + ", " + format_fixed(g.at.y, 3) + ")",
+    Diagnostic d = make_warning("gap of " + format_fixed(g.width_mm, 3) + " mm between " + between + " closed at " +
+                                    format_position(g.at.x, g.at.y, out.unit),
                                 out.file, a.line);
     d.handle = a.handle;
     d.layer = a.layer;
@@ -121,6 +123,7 @@ LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
   }
 
   model::NestOptions nest_options = options.nest;
+  nest_options.position_unit = out.unit;
   nest_options.crossing_tol_mm = std::max(nest_options.crossing_tol_mm, options.dxf.curve_tol_mm);
   nest_options.self_loop_tol_mm = std::max(nest_options.self_loop_tol_mm, 4 * std::max(options.snap_mm, options.dxf.curve_tol_mm));
   out.nest = model::build_nest(std::move(closed), nest_options);
@@ -131,9 +134,8 @@ LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
     if (p.path.vertices.empty()) continue;
     const auto a = p.path.vertices.front().p;
     const auto b = p.path.vertices.back().p;
-    std::string message = "open contour from " + std::to_string(p.entities) + " entities, ends at (" + format_fixed(a.x, 3) + ", " +
-                          format_fixed(a.y, 3) + ") and (" + format_fixed(b.x, 3) + ", " + format_fixed(b.y, 3) +
-                          "); kept as an open path, not cut";
+    std::string message = "open contour from " + std::to_string(p.entities) + " entities, ends at " + format_position(a.x, a.y, out.unit) +
+                          " and " + format_position(b.x, b.y, out.unit) + "; kept as an open path, not cut";
     if (p.inside_part)
       message += "; it lies in the material of part " + std::to_string(p.inside_part->value() + 1) +
                  ": if it is a hole drawn with a gap, that part is cut without it";

@@ -14,6 +14,7 @@
 #include <span>
 #include <thread>
 
+#include <cutroute/core/drawing_unit.hpp>
 #include <cutroute/core/number_format.hpp>
 #include <cutroute/core/parallel.hpp>
 #include <cutroute/core/text.hpp>
@@ -310,7 +311,8 @@ nlohmann::json sequence_json(const model::Nest& nest, const std::vector<model::E
 // uses, not the candidates a job was built with (a common-cut job reuses the standard job's
 // candidates without their warnings, and the standard job's name contours the program may enter
 // elsewhere). A common line pierced on the line is said by the job itself (common.pierce_on_line).
-Diagnostics lead_fallback_diagnostics(const model::Nest& nest, const std::vector<model::EntryCandidate>& seq) {
+Diagnostics lead_fallback_diagnostics(const model::Nest& nest, const std::vector<model::EntryCandidate>& seq,
+                                      const DrawingUnit& unit) {
   std::vector<const model::EntryCandidate*> fell_back;  // in contour order, as the nest lists them
   std::set<std::int32_t> said;
   for (const auto& e : seq)
@@ -322,11 +324,7 @@ Diagnostics lead_fallback_diagnostics(const model::Nest& nest, const std::vector
     const bool multi = model::is_multi_piece(e);
     if (multi && e.fallback == model::Fallback::on_contour) continue;
     const auto& c = nest.contours[e.contour];
-    std::string at = "(";  // piece by piece: GCC 12 warns (-Wrestrict) on "(" + std::string
-    at += format_fixed(e.point.x, 3);
-    at += ", ";
-    at += format_fixed(e.point.y, 3);
-    at += ")";
+    const std::string at = format_position(e.point.x, e.point.y, unit);
     const std::string what = multi ? "the joined cut entered at " + at
                                    : "part " + std::to_string(c.part.valid() ? c.part.value() + 1 : 0) + " " +
                                          (c.role == model::ContourRole::hole ? "hole" : "outer") + " (contour " +
@@ -880,7 +878,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     Diagnostics said;
     for (const auto& d : jobs[chosen].diagnostics)
       if (!d.code.starts_with("leads.")) said.push_back(d);
-    for (auto& d : lead_fallback_diagnostics(cut_nest, best->sequence)) said.push_back(std::move(d));
+    for (auto& d : lead_fallback_diagnostics(cut_nest, best->sequence, loaded.unit)) said.push_back(std::move(d));
     result.diagnostics.insert(result.diagnostics.begin() + static_cast<std::ptrdiff_t>(job_diagnostics_at), said.begin(), said.end());
   }
   // Parts drawn edge to edge and cut one by one (not by common lines): each shared stretch is cut

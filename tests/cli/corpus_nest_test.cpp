@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <cutroute/geometry/contour.hpp>
+#include <cutroute/io/dxf_writer.hpp>
 #include <cutroute/io/nest_loader.hpp>
 
 #include "support/paths.hpp"
@@ -166,6 +167,45 @@ TEST(CorpusNestParity, EvenOddAgreesWithOurRoles) {
       EXPECT_EQ(count % 2 == 1, hole) << file << " contour " << i + 1;
     }
   }
+}
+
+// Places in messages are given in the drawing's unit: d2g_Teile (inches) closes its first gap at
+// 727.136 mm, which its drawing has at (28.6274, 6.0966); a message naming the millimetres sent
+// the shop looking 25.4 times too far. Crossing contours of an inch drawing are named in inches too.
+TEST(CorpusNestSnap, AnInchDrawingsPlacesAreNamedInInches) {
+  auto first_gap = [](const io::NestLoadOptions& o) {
+    auto loaded = io::load_nest(shared("data/dxf/d2g_Teile.dxf"), o);
+    EXPECT_TRUE(loaded.ok());
+    for (const auto& d : loaded->diagnostics)
+      if (d.code == "chain.gap_closed") return d.message;
+    return std::string();
+  };
+  EXPECT_NE(first_gap({}).find("closed at (28.6274, 6.0966) in"), std::string::npos) << first_gap({});
+
+  // Two 1-inch squares drawn in inches, the second from (0.5, 0.5): their edges cross at (1, 0.5)
+  // and (0.5, 1). Read with --units mm, the drawing's numbers are millimetres, named as such.
+  auto square = [](double x, double y) {
+    const double s = 25.4;
+    return geometry::Contour{{{{x, y}, 0}, {{x + s, y}, 0}, {{x + s, y + s}, 0}, {{x, y + s}, 0}}, true};
+  };
+  io::DxfWriteOptions in;
+  in.units = "in";
+  const std::string text = io::write_dxf({{square(0, 0), ""}, {square(12.7, 12.7), ""}}, in);
+  auto crossing = [&](const io::DxfOptions& o) {
+    auto drawing = io::read_dxf_string(text, "in.dxf", o);
+    EXPECT_TRUE(drawing.ok());
+    const io::LoadedNest nest = io::assemble_nest(std::move(drawing).value(), {});
+    for (const auto& d : nest.diagnostics)
+      if (d.code == "nest.crossing") return d.message;
+    return std::string();
+  };
+  const std::string inches = crossing({});
+  EXPECT_TRUE(inches.find("near (1, 0.5) in") != std::string::npos || inches.find("near (0.5, 1) in") != std::string::npos)
+      << inches;
+  io::DxfOptions as_mm;
+  as_mm.units = "mm";
+  const std::string mm = crossing(as_mm);
+  EXPECT_TRUE(mm.find("near (1, 0.5),") != std::string::npos || mm.find("near (0.5, 1),") != std::string::npos) << mm;
 }
 
 // d2g_Teile's ELLIPSE arcs end 0.011 mm from the lines they meet (an inch drawing; the README

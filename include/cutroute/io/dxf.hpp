@@ -47,6 +47,7 @@ struct DxfDrawing {
   std::string units_in_file;              // "mm", "cm", "m", "in", "ft", "unitless", ...
   std::string units_source;               // "$INSUNITS", "$MEASUREMENT", "default", "option"
   double mm_per_unit = 1.0;
+  std::string unit_name = "mm";           // the unit its numbers are read in: the header's, or --units
   std::optional<int> insunits;            // raw $INSUNITS of the HEADER, when present
   std::optional<int> measurement;         // raw $MEASUREMENT of the HEADER, when present
   std::vector<DxfEntity> entities;        // curves only, in file order (block contents at

@@ -37,6 +37,7 @@ struct LoadedNest {
   std::string units_in_file;
   std::string units_source;
   double mm_per_unit = 1.0;
+  DrawingUnit unit;  // the drawing's unit: places in messages are given in it
   std::map<std::string, std::size_t> entity_counts;  // every modelspace entity type (skipped included)
   std::map<std::string, std::size_t> skipped;
   std::map<std::string, std::size_t> layers;         // entities per layer, filters not applied

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <cutroute/core/diagnostic.hpp>
+#include <cutroute/core/drawing_unit.hpp>
 #include <cutroute/core/ids.hpp>
 #include <cutroute/core/tolerances.hpp>
 #include <cutroute/geometry/contour.hpp>
@@ -65,6 +66,9 @@ struct NestOptions {
   // than this [mm]: snapping ends (--snap) and converting curves leave zig-zags of a few of their
   // tolerances (d2g_DRAAK: 53 loops of at most 0.015 mm). The DXF loader sets 4 × max(snap, curve tolerance).
   double self_loop_tol_mm = 4 * tol::kSnapMm;
+  // The unit the places in messages are given in: the drawing's (the DXF loader sets it), so that
+  // an inch drawing's crossing is named where its drawing has it.
+  DrawingUnit position_unit;
 };
 
 struct Nest {

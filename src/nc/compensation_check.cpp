@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include <cutroute/geometry/arc.hpp>
 #include <cutroute/nc/gcode_writer.hpp>
@@ -14,6 +15,15 @@ using geometry::Vec2;
 
 constexpr double kDropMm = 1e-4;
 constexpr double kRoundingMm = 1e-3;  // the writer's coordinate resolution (generic dialect)
+// LinuxCNC's interpreter (interp_cutter.cc, TOLERANCE_CONCAVE_CORNER): a joint turning toward the
+// tool by less than this is not a concave corner; the tool is taken on without a crossing [rad].
+constexpr double kConcaveCornerRad = 0.05;
+// How much more an arc may sweep once its offset ends at a concave corner's crossing before
+// LinuxCNC refuses it ("Arc move in concave corner cannot be reached by the tool without
+// gouging", move_endpoint_and_flush): 0.0254 in a G21 program, 0.001 in a G20 one, compared with
+// the sweeps in radians [rad].
+constexpr double kArcGrowthMmRad = 0.0254;
+constexpr double kArcGrowthInchRad = 0.001;
 
 struct Move {
   Vec2 a, b;
@@ -44,45 +54,69 @@ void append_line(Vec2 a, Vec2 b, std::vector<Move>& out, const Grid& grid) {
   out.push_back(m);
 }
 
-// Appends the moves of a segment's pieces as the writer emits them (gcode_writer.cpp): end points
-// on the grid, moves that round to nothing dropped, arcs nearly straight or with a chord under two
-// grid steps written as lines, arcs beyond kMaxArcRadiusMm or below kMinArcRadiusMm as chords (a
-// cusp of a spline fit: its chords zig-zag on the grid, and LinuxCNC refused such a corner that a
-// single chord hid), the others as arcs through the rounded end points.
-void append_moves(const CutSegment& seg, std::vector<Move>& out, const Grid& grid) {
+// An arc from a (on the grid) to b as the writer emits it (gcode_writer.cpp): a line when nearly
+// straight or a chord under two grid steps, chords beyond kMaxArcRadiusMm or below kMinArcRadiusMm
+// (a cusp of a spline fit: its chords zig-zag on the grid, and LinuxCNC refused such a corner that
+// a single chord hid), two halves in the R format beyond 150 degrees, else one arc about the centre
+// the writer writes (written_arc()), its radius taken at its end as the controller takes it.
+void append_arc(Vec2 a, Vec2 to, double bulge, std::vector<Move>& out, const Grid& grid, const PostDialect& d) {
+  const Vec2 b = grid(to);
+  if (a == b) return;
+  const ArcPlan plan = plan_arc(geometry::distance(a, b), bulge, grid.res_mm);
+  const double sweep = 4 * std::atan(bulge);
+  auto chords = [&](int k) {
+    Vec2 at = a;
+    for (int j = 1; j < k; ++j) {
+      const Vec2 p = geometry::arc_point_at_sweep(a, b, bulge, sweep * j / k);
+      append_line(at, p, out, grid);
+      at = grid(p);
+    }
+    append_line(at, b, out, grid);
+  };
+  if (plan.form == ArcPlan::Form::line) return append_line(a, b, out, grid);
+  if (plan.form == ArcPlan::Form::chords) return chords(plan.chords);
+  if (d.arc_format == ArcFormat::r && std::abs(sweep) > 150.0 * std::numbers::pi / 180.0) {
+    const Vec2 c = geometry::Segment{a, b, bulge}.center();
+    const double a0 = std::atan2(a.y - c.y, a.x - c.x), r = geometry::distance(c, a);
+    const Vec2 mid{c.x + r * std::cos(a0 + sweep / 2), c.y + r * std::sin(a0 + sweep / 2)};
+    append_arc(a, mid, std::tan(sweep / 8), out, grid, d);
+    return append_arc(grid(mid), b, std::tan(sweep / 8), out, grid, d);
+  }
+  const WrittenArc w = written_arc(a, b, bulge, d);
+  if (w.chords > 0) return chords(w.chords);
+  Move m;
+  m.a = a;
+  m.b = b;
+  m.bulge = bulge;
+  m.centre = w.centre;
+  m.radius = geometry::distance(w.centre, b);
+  double turn = std::atan2(b.y - m.centre.y, b.x - m.centre.x) - std::atan2(a.y - m.centre.y, a.x - m.centre.x);
+  const double two_pi = 2 * std::numbers::pi;
+  if (bulge > 0) {
+    while (turn <= 0) turn += two_pi;
+  } else {
+    while (turn >= 0) turn -= two_pi;
+  }
+  m.sweep = turn;
+  m.length = std::abs(turn) * m.radius;
+  const double dir = bulge > 0 ? 1.0 : -1.0;
+  m.t0 = geometry::perp(a - m.centre) * (dir / geometry::distance(a, m.centre));
+  m.t1 = geometry::perp(b - m.centre) * (dir / m.radius);
+  out.push_back(m);
+}
+
+// Appends the moves of a segment's pieces as the writer emits them: end points on the grid, moves
+// that round to nothing dropped, arcs as append_arc().
+void append_moves(const CutSegment& seg, std::vector<Move>& out, const Grid& grid, const PostDialect& d) {
   for (const auto& piece : seg.pieces) {
     const std::size_t n = geometry::segment_count(piece.path);
     for (std::size_t i = 0; i < n; ++i) {
       const geometry::Segment s = geometry::segment(piece.path, i);
-      const Vec2 a = grid(s.a), b = grid(s.b);
-      const ArcPlan plan = s.is_arc() ? plan_arc(geometry::distance(a, b), s.bulge, grid.res_mm) : ArcPlan{};
-      if (plan.form == ArcPlan::Form::line) {
-        append_line(a, b, out, grid);
-        continue;
+      if (s.is_arc()) {
+        append_arc(grid(s.a), s.b, s.bulge, out, grid, d);
+      } else {
+        append_line(s.a, s.b, out, grid);
       }
-      if (plan.form == ArcPlan::Form::chords) {
-        const double sweep = 4 * std::atan(s.bulge);
-        Vec2 at = a;
-        for (int j = 1; j < plan.chords; ++j) {
-          const Vec2 p = geometry::arc_point_at_sweep(a, b, s.bulge, sweep * j / plan.chords);
-          append_line(at, p, out, grid);
-          at = grid(p);
-        }
-        append_line(at, b, out, grid);
-        continue;
-      }
-      const geometry::Segment w{a, b, s.bulge};
-      Move m;
-      m.a = a;
-      m.b = b;
-      m.bulge = s.bulge;
-      m.length = w.length();
-      m.radius = w.radius();
-      m.centre = w.center();
-      m.sweep = w.sweep();
-      m.t0 = w.tangent_at(0);
-      m.t1 = w.tangent_at(1);
-      out.push_back(m);
     }
   }
 }
@@ -103,7 +137,8 @@ double offset_param(const Move& m, Vec2 x) {
 // at all (a straight lead from the centre of a hole little wider than the tool), or cross beyond
 // a short arc's end. LinuxCNC refuses both ("... in concave corner cannot be reached by the tool
 // without gouging").
-bool arc_corner_reachable(const Move& in, const Move& out, double side, double r) {
+// Returns the crossing, or nullopt where there is none the tool can stop at.
+std::optional<Vec2> arc_corner_crossing(const Move& in, const Move& out, double side, double r) {
   constexpr double kTangentMm = 1e-6;
   struct Offset {
     bool circle = false;
@@ -146,19 +181,20 @@ bool arc_corner_reachable(const Move& in, const Move& out, double side, double r
       }
     }
   }
-  if (xs.empty()) return false;
+  if (xs.empty()) return std::nullopt;
   // The crossing at the corner: the one nearest to it.
   const Vec2 corner = in.b;
   const Vec2 x = *std::min_element(xs.begin(), xs.end(), [&](Vec2 p, Vec2 q) {
     return geometry::distance(p, corner) < geometry::distance(q, corner);
   });
   constexpr double kTol = 1e-6;
-  return offset_param(in, x) >= -kTol && offset_param(out, x) <= out.length + kTol;
+  if (offset_param(in, x) >= -kTol && offset_param(out, x) <= out.length + kTol) return x;
+  return std::nullopt;
 }
 
 // One G41/G42 .. G40 block: the segments it holds (a contour and the pieces after its tabs when the
 // compensation stays on over them), with the rapids over the gaps between them.
-bool at_risk(const std::vector<Move>& ms, double side, double r) {
+bool at_risk(const std::vector<Move>& ms, double side, double r, double arc_growth_rad) {
   if (ms.empty()) return false;
   // The entry move: the controller moves from the uncompensated point onto the offset path. Both
   // limits with a micrometre to spare: the written coordinates are rounded to it (an arc of radius
@@ -169,11 +205,28 @@ bool at_risk(const std::vector<Move>& ms, double side, double r) {
     if (m.bulge * side > 0 && m.radius <= at_most) return true;  // curving toward the tool: inside the arc
   // Each inside corner needs r tan(theta / 2) of both moves at it for the offsets to intersect.
   std::vector<double> need(ms.size(), 0.0);
+  // How far the offset of each arc reaches back before its start [rad]: to the crossing at a
+  // concave corner, to the offset end of the move before at a nearly straight joint (there the
+  // controller takes the tool on from where that move left it), none at a convex corner (it goes
+  // round it from the arc's own offset start).
+  std::vector<double> reach_back(ms.size(), 0.0);
   for (std::size_t i = 0; i + 1 < ms.size(); ++i) {
     const double theta = std::atan2(geometry::cross(ms[i].t1, ms[i + 1].t0), geometry::dot(ms[i].t1, ms[i + 1].t0));
+    const bool concave = theta * side > kConcaveCornerRad;  // as LinuxCNC tells a corner's side
+    if (ms[i + 1].bulge != 0 && std::abs(theta) <= kConcaveCornerRad) {
+      const Vec2 from = ms[i].b + geometry::perp(ms[i].t1) * (side * r);
+      reach_back[i + 1] = -offset_param(ms[i + 1], from) / ms[i + 1].radius;
+    }
     if (theta * side <= 1e-9) continue;  // straight on, or turning away from the tool
     if (ms[i].bulge != 0 || ms[i + 1].bulge != 0) {
-      if (!arc_corner_reachable(ms[i], ms[i + 1], side, r)) return true;
+      // A turn toward the tool under kConcaveCornerRad is no corner to LinuxCNC: it needs no crossing
+      // (a tangent lead arc whose written radius misses the contour's offset by a micrometre).
+      if (!concave) continue;
+      const auto x = arc_corner_crossing(ms[i], ms[i + 1], side, r);
+      if (!x) return true;
+      if (ms[i + 1].bulge != 0) reach_back[i + 1] = -offset_param(ms[i + 1], *x) / ms[i + 1].radius;
+      // The arc before the corner now ends at the crossing: it may not sweep more than written.
+      if (ms[i].bulge != 0 && reach_back[i] + (offset_param(ms[i], *x) - ms[i].length) / ms[i].radius > arc_growth_rad) return true;
       continue;
     }
     const double back = r * std::tan(std::min(std::abs(theta), std::numbers::pi - 1e-3) / 2);
@@ -187,17 +240,19 @@ bool at_risk(const std::vector<Move>& ms, double side, double r) {
 
 }  // namespace
 
-CompensationHazards compensation_hazards(const Toolpath& path, double tool_radius_mm, bool held_over_tabs, double resolution_mm) {
+CompensationHazards compensation_hazards(const Toolpath& path, double tool_radius_mm, bool held_over_tabs,
+                                         const PostDialect& written_with) {
   CompensationHazards h;
   if (!(tool_radius_mm > 0)) return h;
-  const Grid grid{resolution_mm > 0 ? resolution_mm : kRoundingMm};
+  const Grid grid{resolution_mm(written_with)};
+  const double arc_growth_rad = written_with.units == "in" ? kArcGrowthInchRad : kArcGrowthMmRad;
   std::vector<Move> block;
   const CutSegment* first = nullptr;
   std::size_t first_k = 0;
   auto close = [&] {
     if (!first) return;
     ++h.compensated;
-    if (at_risk(block, first->kerf == KerfSide::left ? 1.0 : -1.0, tool_radius_mm)) h.at.push_back(first_k);
+    if (at_risk(block, first->kerf == KerfSide::left ? 1.0 : -1.0, tool_radius_mm, arc_growth_rad)) h.at.push_back(first_k);
     block.clear();
     first = nullptr;
   };
@@ -214,7 +269,7 @@ CompensationHazards compensation_hazards(const Toolpath& path, double tool_radiu
       first = &seg;
       first_k = k;
     }
-    append_moves(seg, block, grid);
+    append_moves(seg, block, grid, written_with);
   }
   close();
   return h;

@@ -22,12 +22,62 @@ Vec2 arc_center(Vec2 a, Vec2 b, double bulge) {
   return (a + b) / 2 + geometry::perp(d) * ((1 - bulge * bulge) / (4 * bulge));
 }
 
+}  // namespace
+
+WrittenArc written_arc(Vec2 from, Vec2 to, double bulge, const PostDialect& d) {
+  const double scale = d.units == "in" ? 1.0 / units::kMmPerInch : 1.0;
+  const double f = std::pow(10.0, d.decimals);
+  const double res_mm = std::pow(10.0, -d.decimals) / scale;
+  const double arc_tol_mm = d.units == "in" ? tol::kGcodeArcRadiusInch * units::kMmPerInch : tol::kGcodeArcRadiusMm;
+  auto quantise_delta = [&](Vec2 v) -> Vec2 {
+    return {std::round(v.x * scale * f) / f / scale, std::round(v.y * scale * f) / f / scale};
+  };
+  WrittenArc w;
+  Vec2 c = arc_center(from, to, bulge);
+  if (d.arc_format == ArcFormat::r) {
+    // The controller puts the centre on the chord's bisector at the written radius.
+    w.radius = quantise_delta({geometry::distance(c, from), 0}).x;
+    const Vec2 dd = to - from;
+    const double chord = geometry::norm(dd);
+    const double h = std::sqrt(std::max(0.0, w.radius * w.radius - chord * chord / 4));
+    w.centre = (from + to) / 2 + geometry::perp(dd) / chord * (bulge > 0 ? h : -h);
+    return w;
+  }
+  const Vec2 exact = c;
+  c = from + quantise_delta(c - from);
+  // On a coarse grid (2 decimals: 0.01 mm, or 0.001 in) the rounded centre can lie 0.014 mm nearer one end
+  // than the other, an arc the controller (and our reader, at 0.01 mm) refuses: the grid
+  // point next to it with the least difference is taken instead. At the default 1 µm the
+  // difference stays below a third of the tolerance, and the centre as rounded is kept.
+  auto mismatch = [&](Vec2 cc) { return std::abs(geometry::distance(cc, from) - geometry::distance(cc, to)); };
+  if (mismatch(c) > 0.5 * arc_tol_mm) {
+    const Vec2 rounded = c;
+    for (int i = -1; i <= 1; ++i)
+      for (int j = -1; j <= 1; ++j) {
+        const Vec2 cand = from + quantise_delta(rounded - from + Vec2{i * res_mm, j * res_mm});
+        const double m = mismatch(cand), mc = mismatch(c);
+        if (m < mc - 1e-12 || (std::abs(m - mc) <= 1e-12 && geometry::distance(cand, exact) < geometry::distance(c, exact))) c = cand;
+      }
+    // A grid coarser still (1 decimal) has no such point: the arc goes as chords whose
+    // sagitta stays within the grid step.
+    if (mismatch(c) > 0.9 * arc_tol_mm) {
+      const double r = geometry::distance(exact, from);
+      const double step = 2 * std::acos(std::clamp(1 - res_mm / std::max(r, res_mm), -1.0, 1.0));
+      w.chords = std::clamp(static_cast<int>(std::ceil(std::abs(4 * std::atan(bulge)) / std::max(step, 1e-3))), 2, 720);
+    }
+  }
+  w.centre = c;
+  w.radius = geometry::distance(c, from);
+  return w;
+}
+
+namespace {
+
 class Emitter {
  public:
   Emitter(const PostDialect& d, WrittenProgram& out)
       : d_(d), out_(out), scale_(d.units == "in" ? 1.0 / units::kMmPerInch : 1.0),
-        res_mm_(std::pow(10.0, -d.decimals) / scale_),
-        arc_tol_mm_(d.units == "in" ? tol::kGcodeArcRadiusInch * units::kMmPerInch : tol::kGcodeArcRadiusMm) {}
+        res_mm_(std::pow(10.0, -d.decimals) / scale_) {}
 
   void start_numbers() { next_n_ = d_.line_number_start; }
   void set_position(Vec2 p) {
@@ -144,34 +194,10 @@ class Emitter {
       const bool first = arc(mid, half, feed_word);
       return arc(to, half, first ? std::string() : feed_word) || first;
     }
-    // The centre as written (I J rounded to the resolution): what the controller will cut.
-    Vec2 c = arc_center(pos_, q, bulge);
-    if (d_.arc_format == ArcFormat::ij) {
-      const Vec2 exact = c;
-      c = pos_ + quantise_delta(c - pos_);
-      // On a coarse grid (2 decimals: 0.01 mm, or 0.001 in) the rounded centre can lie 0.014 mm nearer one end
-      // than the other, an arc the controller (and our reader, at 0.01 mm) refuses: the grid
-      // point next to it with the least difference is taken instead. At the default 1 µm the
-      // difference stays below a third of the tolerance, and the centre as rounded is kept.
-      auto mismatch = [&](Vec2 cc) { return std::abs(geometry::distance(cc, pos_) - geometry::distance(cc, q)); };
-      if (mismatch(c) > 0.5 * arc_tol_mm_) {
-        const Vec2 rounded = c;
-        for (int i = -1; i <= 1; ++i)
-          for (int j = -1; j <= 1; ++j) {
-            const Vec2 cand = pos_ + quantise_delta(rounded - pos_ + Vec2{i * res_mm_, j * res_mm_});
-            const double m = mismatch(cand), mc = mismatch(c);
-            if (m < mc - 1e-12 || (std::abs(m - mc) <= 1e-12 && geometry::distance(cand, exact) < geometry::distance(c, exact))) c = cand;
-          }
-        // A grid coarser still (1 decimal) has no such point: the arc goes as chords whose
-        // sagitta stays within the grid step.
-        if (mismatch(c) > 0.9 * arc_tol_mm_) {
-          const double r = geometry::distance(exact, pos_);
-          const double step = 2 * std::acos(std::clamp(1 - res_mm_ / std::max(r, res_mm_), -1.0, 1.0));
-          const int k = std::clamp(static_cast<int>(std::ceil(std::abs(sweep) / std::max(step, 1e-3))), 2, 720);
-          return flat_arc(q, bulge, k, feed_word);
-        }
-      }
-    }
+    // The centre as written: what the controller will cut.
+    const WrittenArc w = written_arc(pos_, q, bulge, d_);
+    if (w.chords > 0) return flat_arc(q, bulge, w.chords, feed_word);
+    const Vec2 c = w.centre;
     std::string s = bulge < 0 ? "G2 X" : "G3 X";
     coord(s, q.x);
     s += " Y";
@@ -182,14 +208,8 @@ class Emitter {
       s += " J";
       coord(s, c.y - pos_.y);
     } else {
-      // The controller puts the centre on the chord's bisector at the written radius.
-      const double r = quantise_delta({geometry::distance(c, pos_), 0}).x;
       s += " R";
-      coord(s, r);
-      const Vec2 d = q - pos_;
-      const double chord = geometry::norm(d);
-      const double h = std::sqrt(std::max(0.0, r * r - chord * chord / 4));
-      c = (pos_ + q) / 2 + geometry::perp(d) / chord * (bulge > 0 ? h : -h);
+      coord(s, w.radius);
     }
     s += feed_word;
     block(s);
@@ -230,9 +250,6 @@ class Emitter {
   WrittenProgram& out_;
   double scale_;
   double res_mm_;
-  // How far apart the written start and end radii may lie: the reader's (and LinuxCNC's, which
-  // takes 0.0019 in at r = 1 in) tolerance in the program's unit.
-  double arc_tol_mm_;
   long long next_n_ = 0;  // a long program from a high start can pass 2^31
   Vec2 pos_{};
   bool have_pos_ = false;

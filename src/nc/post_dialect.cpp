@@ -12,6 +12,7 @@
 
 #include <cutroute/core/json_text.hpp>
 #include <cutroute/core/text.hpp>
+#include <cutroute/core/units.hpp>
 #include <cutroute/core/version.hpp>
 #include <cutroute/io/output_file.hpp>
 
@@ -304,6 +305,10 @@ Result<std::vector<int>> m_codes(const PostDialect& post, const char* field,
 }
 
 }  // namespace
+
+double resolution_mm(const PostDialect& post) {
+  return std::pow(10.0, -post.decimals) * (post.units == "in" ? units::kMmPerInch : 1.0);
+}
 
 bool beam_switches_under_compensation(const PostDialect& post) {
   if (!post.thc_on.empty() || !post.thc_off.empty()) return false;

@@ -63,10 +63,10 @@ bool clear_of(const model::Nest& nest, model::ContourId id, const geometry::Cont
 }  // namespace
 
 OffsetCuts offset_refused_blocks(nc::Toolpath& path, const model::Nest& nest, double kerf_mm, bool held_over_tabs,
-                                 double resolution_mm, bool pieces) {
+                                 const nc::PostDialect& written_with, bool pieces) {
   OffsetCuts rewritten;
   if (!(kerf_mm > 0)) return rewritten;
-  const nc::CompensationHazards h = nc::compensation_hazards(path, kerf_mm / 2, held_over_tabs, resolution_mm);
+  const nc::CompensationHazards h = nc::compensation_hazards(path, kerf_mm / 2, held_over_tabs, written_with);
   for (const std::size_t k : h.at) {
     nc::CutSegment& seg = path.segments[k];
     if (seg.after_tab || (k + 1 < path.segments.size() && path.segments[k + 1].after_tab)) continue;
@@ -117,7 +117,7 @@ OffsetCuts offset_refused_blocks(nc::Toolpath& path, const model::Nest& nest, do
     // is then moved whole, by the move of its end onto the offset loop. Each is joined to the loops
     // by a straight move where the two do not meet exactly, and must keep its kerf out of the
     // contours at its ends; where neither way does, the cut stays compensated (and warned of).
-    const double half = kerf_mm / 2, tol = std::max(1e-3, resolution_mm);
+    const double half = kerf_mm / 2, tol = std::max(1e-3, nc::resolution_mm(written_with));
     const double left = seg.kerf == nc::KerfSide::left ? half : -half;
     std::vector<geometry::Contour> moved(seg.pieces.size());
     std::vector<geometry::Contour> loops(seg.pieces.size());

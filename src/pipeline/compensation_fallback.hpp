@@ -5,6 +5,7 @@
 #include <vector>
 
 #include <cutroute/model/nest.hpp>
+#include <cutroute/nc/post_dialect.hpp>
 #include <cutroute/nc/toolpath.hpp>
 
 namespace cutroute::pipeline {
@@ -17,7 +18,7 @@ namespace cutroute::pipeline {
 // that path (they move by kerf/2 into scrap). Left compensated: common lines, cuts next to a tab,
 // and contours whose offset is not one loop (a feature narrower than the kerf, which no toolpath
 // follows).
-// `resolution_mm` and `held_over_tabs` as for nc::compensation_hazards().
+// `written_with` and `held_over_tabs` as for nc::compensation_hazards().
 struct OffsetCuts {
   std::vector<std::string> labels;  // the cuts rewritten
   // The most a rewritten path deviates from kerf/2 where the offset needed a drawing's details
@@ -27,6 +28,6 @@ struct OffsetCuts {
 // `pieces`: pieces of a contour are rewritten too (false with micro-joints, whose pieces between
 // tabs keep the compensation they resume with).
 OffsetCuts offset_refused_blocks(nc::Toolpath& path, const model::Nest& nest, double kerf_mm, bool held_over_tabs,
-                                 double resolution_mm, bool pieces);
+                                 const nc::PostDialect& written_with, bool pieces);
 
 }  // namespace cutroute::pipeline

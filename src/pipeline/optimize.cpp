@@ -199,11 +199,6 @@ nlohmann::json lead_json(const std::string& lead_in, const Evaluated& ev) {
   return j;
 }
 
-// The coordinate step of a dialect's programs [mm].
-double program_resolution_mm(const nc::PostDialect& d) {
-  return std::pow(10.0, -d.decimals) * (d.units == "in" ? units::kMmPerInch : 1.0);
-}
-
 // `detour_stop`: where the shop rules' tip-up detour searches stop (see RunLimit). `planner`:
 // the nest's entry planner (the shop rules plan lead-ins after micro-joint gaps with it).
 Evaluated evaluate(const model::Nest& nest, const model::EntryPlanner& planner, const std::vector<model::EntryCandidate>& seq,
@@ -227,7 +222,7 @@ Evaluated evaluate(const model::Nest& nest, const model::EntryPlanner& planner, 
   }
   if (o.kerf_mode == nc::KerfMode::controller && o.offset_refused_cuts)
     ev.offset_written = offset_refused_blocks(ev.toolpath, nest, s.entries.kerf_mm, nc::beam_switches_under_compensation(s.dialect),
-                                              program_resolution_mm(s.dialect), o.rules.tabs == 0);
+                                              s.dialect, o.rules.tabs == 0);
   ev.program = nc::write_gcode(ev.toolpath, s.dialect, nc::GcodeWriteOptions{o.title, true});
   ev.frames = nc::count_frames(ev.program.text);
   cost::ProgramTotals totals;
@@ -951,7 +946,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   if (o.kerf_mode == nc::KerfMode::controller) {
     const nc::CompensationHazards h =
         nc::compensation_hazards(best_ev.toolpath, s.entries.kerf_mm / 2, nc::beam_switches_under_compensation(s.dialect),
-                                 program_resolution_mm(s.dialect));
+                                 s.dialect);
     compensation = {{"blocks", h.compensated}, {"at_risk", h.at.size()}, {"at_risk_segments", nlohmann::json::array()},
                     {"written_on_offset", best_ev.offset_written.labels.size()}};
     const auto& written = best_ev.offset_written.labels;

@@ -204,6 +204,26 @@ TEST(OptimizeCli, LeadsGrowWithAPlasmaKerfSoTheControllerAcceptsTheProgram) {
   fs::remove_all(dir);
 }
 
+// d2g_Teile (an inch drawing of parts with ellipse arcs) written in inches to 0.001 in. Where an
+// arc's offset must reach a concave corner, LinuxCNC lets the arc sweep more than written by 0.001
+// of a radian in a G20 program (0.0254 in G21), about the centre as written: near-tangent joints of
+// the fitted arcs grow more. The check read neither, and LinuxCNC refused 3 blocks none flagged;
+// they are now written on their offset, and it accepts the program.
+TEST(OptimizeCli, AnInchProgramIsCheckedAsTheControllerReadsItsArcs) {
+  const auto dir = temp_dir("inch-arcs");
+  std::ofstream(dir / "inch.json") << R"({"name": "inch", "units": "in", "decimals": 3, "feed_decimals": 1})";
+  const OptRun run = optimize(shared("data/dxf/d2g_Teile.dxf"), dir,
+                              "--dialect " + (dir / "inch.json").string() + " --threads 1 --work-limit 1", "0");
+  ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
+  EXPECT_EQ(run.report["compensation"]["at_risk"], 0);
+  EXPECT_GE(run.report["compensation"]["written_on_offset"].get<int>(), 3);
+  if (std::system("command -v rs274 >/dev/null 2>&1") == 0) {
+    const auto rs = run_rs274((dir / "out.ngc").string(), 0.15);
+    EXPECT_EQ(rs.exit_code, 0) << rs.out.substr(0, 2000);
+  }
+  fs::remove_all(dir);
+}
+
 // Lead types are compared whole, but an entry the type does not fit keeps the previous type's
 // lead: 5-mm holes take no arc lead-in of the default job, so the arc program enters them with a
 // line (one block) rather than the default line-arc lead (two). Without that, the arc program had

@@ -3,6 +3,7 @@
 
 #include <vector>
 
+#include <cutroute/nc/post_dialect.hpp>
 #include <cutroute/nc/toolpath.hpp>
 
 namespace cutroute::nc {
@@ -35,9 +36,14 @@ struct CompensationHazards {
 // writer keeps compensation on over micro-joint gaps (compensation_held()), a contour and the
 // pieces after its tabs are one block, with the rapids over the gaps, and only its first move is
 // an entry.
-// `resolution_mm`: the program's coordinate step (PostDialect decimals, in mm), to which the path
-// is rounded as the writer rounds it.
+// `written_with`: the dialect the program is written in. The path is rounded to its grid as the
+// writer rounds it, and its arcs have the centres it writes (written_arc(); the controller takes an
+// arc's radius at its end). Where the offset of an arc must reach a concave corner beyond the arc's
+// ends, LinuxCNC lets the arc grow by at most 0.0254 of a radian in a G21 program but 0.001 in a
+// G20 one (its interpreter compares the sweeps in radians against a length in the program's
+// unit): near-tangent joints of arcs on the 0.001-in grid, which the same path in millimetres
+// passes, are refused. A block whose arcs grow more is at risk.
 CompensationHazards compensation_hazards(const Toolpath& path, double tool_radius_mm, bool held_over_tabs,
-                                         double resolution_mm = 1e-3);
+                                         const PostDialect& written_with = PostDialect{});
 
 }  // namespace cutroute::nc

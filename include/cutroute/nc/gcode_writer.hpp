@@ -62,6 +62,19 @@ inline ArcPlan plan_arc(double chord_mm, double bulge, double res_mm) {
   return p;
 }
 
+// An arc as the writer writes it from `from` to `to` (both on the program's grid) [mm], and so
+// where the controller puts its centre: I J rounded to the grid (on a coarse grid the neighbouring
+// grid point whose start and end radii differ least), or, with R words, on the chord's bisector at
+// the rounded radius. The compensation check reads the arcs with these centres: on an inch grid
+// they lie up to 0.0005 in from the drawn ones, enough to move the corners the controller's offset
+// must turn. Only for arcs plan_arc() writes as arcs (R arcs beyond 150 degrees are split first).
+struct WrittenArc {
+  geometry::Vec2 centre;  // [mm]
+  double radius = 0.0;    // the written R; with I J the start radius [mm]
+  int chords = 0;         // > 0: no grid point makes the radii agree (1 decimal): written as chords
+};
+WrittenArc written_arc(geometry::Vec2 from, geometry::Vec2 to, double bulge, const PostDialect& d);
+
 // Does the writer keep G41/G42 on from segment `from` into the next one, `to`? When `to` resumes
 // `from`'s contour past a micro-joint gap (after_tab) on the same kerf side, and the dialect lets
 // the beam switch under compensation (beam_switches_under_compensation()).

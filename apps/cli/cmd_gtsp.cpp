@@ -89,7 +89,7 @@ int run_gtsp(const GtspOptions& o) {
   // Stopped early, the route is the best found by then, with the status a time limit gives it: a
   // benchmark table must not take it for a full run's.
   if (interrupt_signal() != 0)
-    std::cerr << "cutroute: " << o.instance << ": warning: the run was interrupted (Ctrl-C or SIGTERM): the route is the best "
+    std::cerr << "cutroute: " << o.instance << ": warning: the run was interrupted (Ctrl-C, SIGTERM or a closed terminal): the route is the best "
               << "found before the stop\n";
   if (s.status == solve::SolveStatus::infeasible) {
     std::cerr << "cutroute: " << o.instance << ": error: the instance has no feasible route\n";

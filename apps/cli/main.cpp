@@ -26,7 +26,7 @@ bool show_progress(bool quiet) { return !quiet && ::isatty(STDERR_FILENO); }
 }  // namespace cutroute::cli
 
 namespace {
-// The first Ctrl-C (or SIGTERM) asks the run to stop and write its best result; the second ends the
+// The first Ctrl-C (or SIGTERM, SIGHUP) asks the run to stop and write its best result; the second ends the
 // process at once, for whatever cannot stop: a read blocked on a FIFO nobody writes to, a step
 // that does not look at the stop request. A command that never looks at it (estimate, machining,
 // inspect) ends at the first: a supervisor's single SIGTERM went unheeded. Ending, the process
@@ -51,6 +51,9 @@ int main(int argc, char** argv) {
   using namespace cutroute::cli;
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
+  // A closed terminal stops a run as SIGTERM does (it ended it with no program written), unless the
+  // run was started to ignore it (nohup).
+  if (std::signal(SIGHUP, on_signal) == SIG_IGN) std::signal(SIGHUP, SIG_IGN);
 
   CLI::App app{"cutroute: cutting-route optimizer and CAM engine for CNC sheet cutting", "cutroute"};
   app.set_version_flag("--version", std::string("cutroute ") + cutroute::version());

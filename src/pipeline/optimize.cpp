@@ -901,7 +901,7 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   // would have found (TopsNest stopped at 2.5 s: chain, 498.5 s, against common, 398.9 s).
   if (stop.cancelled()) {
     const std::string names = join(interrupted, ", ");
-    Diagnostic w = make_warning("the run was interrupted (Ctrl-C or SIGTERM): the program holds the best route found before "
+    Diagnostic w = make_warning("the run was interrupted (Ctrl-C, SIGTERM or a closed terminal): the program holds the best route found before "
                                 "the stop" + (names.empty() ? std::string() : ", and the " + names + " alternative" +
                                                                                   (interrupted.size() > 1 ? "s were" : " was") +
                                                                                   " not solved"));

@@ -87,7 +87,29 @@ TEST(CliSignals, AnInterruptedGtspRunSaysSo) {
   const auto j = nlohmann::json::parse(r.out.substr(0, r.out.find('\n')));
   EXPECT_EQ(j.value("interrupted", false), true) << r.out;
   EXPECT_FALSE(j["tour"].empty());
-  EXPECT_NE(read_text(dir / "err.txt").find("warning: the run was interrupted (Ctrl-C or SIGTERM)"), std::string::npos);
+  EXPECT_NE(read_text(dir / "err.txt").find("warning: the run was interrupted (Ctrl-C, SIGTERM or a closed terminal)"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+// A closed terminal (SIGHUP) ended a run at once, with no program written; it now stops the run as
+// SIGTERM does. Started under nohup, the run keeps ignoring it and goes on to its time limit.
+TEST(CliSignals, AClosedTerminalStopsTheRunUnlessNohup) {
+  const auto dir = fresh_temp_dir("signals", "hup");
+  for (const bool nohup : {false, true}) {
+    std::ostringstream script;
+    script << (nohup ? "nohup '" : "'") << cli_path() << "' gtsp '" << shared("data/sop/prob.100.sop") << "' --time-limit "
+           << (nohup ? "3" : "60") << " --json >'" << (dir / "out.txt").string() << "' 2>/dev/null &\np=$!\nsleep 1\n"
+           << "kill -HUP $p\nwait $p\necho exit=$?\n";
+    const auto r = run_script(dir, script.str());
+    EXPECT_NE(r.out.find("exit=0"), std::string::npos) << nohup << ' ' << r.out;
+    const std::string out = read_text(dir / "out.txt");
+    ASSERT_FALSE(out.empty()) << nohup;
+    const auto j = nlohmann::json::parse(out.substr(0, out.find('\n')));
+    EXPECT_EQ(j.value("interrupted", false), !nohup) << out;
+    if (nohup) {
+      EXPECT_GE(j["time_s"].get<double>(), 2.9);
+    }
+  }
   fs::remove_all(dir);
 }
 

@@ -793,7 +793,7 @@ TEST(OptimizeCli, AnInterruptedRunSaysSo) {
   const auto r = run_command("timeout -k 2 60 sh '" + script.string() + "'");
   EXPECT_NE(r.out.find("exit=0"), std::string::npos) << r.out;
   const std::string err = read_text(dir / "err.txt");
-  EXPECT_NE(err.find("warning: the run was interrupted (Ctrl-C or SIGTERM): the program holds the best route found before the stop"),
+  EXPECT_NE(err.find("warning: the run was interrupted (Ctrl-C, SIGTERM or a closed terminal): the program holds the best route found before the stop"),
             std::string::npos)
       << err;
   ASSERT_TRUE(fs::exists(out) && fs::exists(rep));

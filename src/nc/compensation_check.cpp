@@ -5,6 +5,7 @@
 #include <numbers>
 #include <optional>
 
+#include <cutroute/core/units.hpp>
 #include <cutroute/geometry/arc.hpp>
 #include <cutroute/nc/gcode_writer.hpp>
 
@@ -38,10 +39,20 @@ struct Move {
 // The program's coordinate grid: the writer rounds every end point to it, which turns a run of
 // micrometre moves of a noisy drawing into a zig-zag whose inside corners the controller cannot
 // reach (5 blocks of d2g_DRAAK that LinuxCNC refused went unflagged when the check read the
-// unrounded path).
+// unrounded path). Rounded by the writer's own arithmetic (GcodeWriter::quantise), to the last
+// bit: written_arc() breaks ties between centres a grid step apart on differences of 1e-12, and
+// an end point one bit off made the check read an arc about the other centre (a block of
+// d2g_fraesen_test_02_2004 in inches that LinuxCNC refused went unflagged).
 struct Grid {
+  double scale;  // program units per mm
+  double f;      // grid steps per program unit
   double res_mm;
-  Vec2 operator()(Vec2 p) const { return {std::round(p.x / res_mm) * res_mm, std::round(p.y / res_mm) * res_mm}; }
+  explicit Grid(const PostDialect& d)
+      : scale(d.units == "in" ? 1.0 / units::kMmPerInch : 1.0), f(std::pow(10.0, d.decimals)),
+        res_mm(std::pow(10.0, -d.decimals) / scale) {}
+  Vec2 operator()(Vec2 p) const {
+    return {std::round(p.x * scale * f) / f / scale, std::round(p.y * scale * f) / f / scale};
+  }
 };
 
 void append_line(Vec2 a, Vec2 b, std::vector<Move>& out, const Grid& grid) {
@@ -158,7 +169,14 @@ std::optional<Vec2> arc_corner_crossing(const Move& in, const Move& out, double 
     }
     return o;
   };
-  const Offset f = offset(in), g = offset(out);
+  Offset f = offset(in);
+  const Offset g = offset(out);
+  // LinuxCNC places a line before an arc by the arc's radius at its end, as if the arc began on
+  // that circle: where the written centre is a grid step nearer one end, the line's offset sits
+  // that much nearer the centre, and at a shallow corner the crossing moves along it by many times
+  // that (a 0.001-in line of d2g_DRAAK between two such corners).
+  if (!f.circle && g.circle)
+    f.p = out.centre + (in.b - out.centre) * (out.radius / geometry::distance(in.b, out.centre)) + geometry::perp(in.t0) * (side * r);
   std::vector<Vec2> xs;
   auto line_circle = [&](const Offset& l, const Offset& c) {
     const Vec2 w = l.p - c.c;
@@ -203,19 +221,32 @@ bool at_risk(const std::vector<Move>& ms, double side, double r, double arc_grow
   if (ms.front().length <= at_most || (ms.front().bulge != 0 && ms.front().radius <= at_most)) return true;
   for (const Move& m : ms)
     if (m.bulge * side > 0 && m.radius <= at_most) return true;  // curving toward the tool: inside the arc
-  // Each inside corner needs r tan(theta / 2) of both moves at it for the offsets to intersect.
-  std::vector<double> need(ms.size(), 0.0);
+  // Where along each line its offset begins and ends: each inside corner takes r tan(theta / 2) of
+  // both lines at it, or up to the crossing with an arc's offset. The controller moves the line's
+  // end back to the corner it meets and refuses the line once that end lies behind its start; a
+  // line of one grid step between two arcs at a cusp loses its length from both ends.
+  std::vector<double> from(ms.size(), 0.0), to(ms.size());
+  for (std::size_t i = 0; i < ms.size(); ++i) to[i] = ms[i].length;
   // How far the offset of each arc reaches back before its start [rad]: to the crossing at a
   // concave corner, to the offset end of the move before at a nearly straight joint (there the
   // controller takes the tool on from where that move left it), none at a convex corner (it goes
   // round it from the arc's own offset start).
   std::vector<double> reach_back(ms.size(), 0.0);
+  // How far the offset of each arc reaches on past its end to the crossing at a concave corner
+  // [rad]; elsewhere it ends where its own offset does, on the radius through its end.
+  std::vector<double> reach_on(ms.size(), 0.0);
+  // Whether the controller checks an arc's sweep as it ends: it does where it moves the arc's end,
+  // at a concave corner, at a convex one before a line (it flushes the arc to its offset end
+  // there) and at the G40, but not where an arc follows at a convex or nearly straight joint.
+  std::vector<bool> end_checked(ms.size(), false);
+  end_checked.back() = true;
   for (std::size_t i = 0; i + 1 < ms.size(); ++i) {
     const double theta = std::atan2(geometry::cross(ms[i].t1, ms[i + 1].t0), geometry::dot(ms[i].t1, ms[i + 1].t0));
     const bool concave = theta * side > kConcaveCornerRad;  // as LinuxCNC tells a corner's side
+    end_checked[i] = concave || (ms[i + 1].bulge == 0 && theta * side < -kConcaveCornerRad);
     if (ms[i + 1].bulge != 0 && std::abs(theta) <= kConcaveCornerRad) {
-      const Vec2 from = ms[i].b + geometry::perp(ms[i].t1) * (side * r);
-      reach_back[i + 1] = -offset_param(ms[i + 1], from) / ms[i + 1].radius;
+      const Vec2 left_at = ms[i].b + geometry::perp(ms[i].t1) * (side * r);
+      reach_back[i + 1] = -offset_param(ms[i + 1], left_at) / ms[i + 1].radius;
     }
     if (theta * side <= 1e-9) continue;  // straight on, or turning away from the tool
     if (ms[i].bulge != 0 || ms[i + 1].bulge != 0) {
@@ -225,16 +256,26 @@ bool at_risk(const std::vector<Move>& ms, double side, double r, double arc_grow
       const auto x = arc_corner_crossing(ms[i], ms[i + 1], side, r);
       if (!x) return true;
       if (ms[i + 1].bulge != 0) reach_back[i + 1] = -offset_param(ms[i + 1], *x) / ms[i + 1].radius;
-      // The arc before the corner now ends at the crossing: it may not sweep more than written.
-      if (ms[i].bulge != 0 && reach_back[i] + (offset_param(ms[i], *x) - ms[i].length) / ms[i].radius > arc_growth_rad) return true;
+      else from[i + 1] = offset_param(ms[i + 1], *x);
+      // The move before the corner now ends at the crossing.
+      if (ms[i].bulge != 0) reach_on[i] = (offset_param(ms[i], *x) - ms[i].length) / ms[i].radius;
+      else to[i] = offset_param(ms[i], *x);
       continue;
     }
     const double back = r * std::tan(std::min(std::abs(theta), std::numbers::pi - 1e-3) / 2);
-    need[i] += back;
-    need[i + 1] += back;
+    to[i] -= back;
+    from[i + 1] = back;
   }
   for (std::size_t i = 1; i < ms.size(); ++i)
-    if (need[i] > ms[i].length + 1e-9) return true;
+    if (ms[i].bulge == 0 && to[i] < from[i] - 1e-9) return true;
+  // An arc may not sweep more than written where its end is checked, at a concave corner or not:
+  // an arc taken on at a nearly straight joint from a move whose offset ends short of the arc's
+  // own (its written centre off the drawn one by a grid step) sweeps more to its own offset end.
+  // Nor may its ends pass each other: the controller then reads the sweep the long way round.
+  for (std::size_t i = 0; i < ms.size(); ++i) {
+    const double grown = reach_back[i] + reach_on[i];
+    if (ms[i].bulge != 0 && end_checked[i] && (grown > arc_growth_rad || std::abs(ms[i].sweep) + grown <= 0)) return true;
+  }
   return false;
 }
 
@@ -244,7 +285,7 @@ CompensationHazards compensation_hazards(const Toolpath& path, double tool_radiu
                                          const PostDialect& written_with) {
   CompensationHazards h;
   if (!(tool_radius_mm > 0)) return h;
-  const Grid grid{resolution_mm(written_with)};
+  const Grid grid(written_with);
   const double arc_growth_rad = written_with.units == "in" ? kArcGrowthInchRad : kArcGrowthMmRad;
   std::vector<Move> block;
   const CutSegment* first = nullptr;

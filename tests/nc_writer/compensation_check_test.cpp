@@ -60,14 +60,18 @@ Contour round_hole(double radius) {
   return Contour{{Vertex{{10 + radius, 10}, 1.0}, Vertex{{10 - radius, 10}, 1.0}, Vertex{{10 + radius, 10}, 0}}, false};
 }
 
-bool refused_by_linuxcnc(const Toolpath& tp, const char* dialect = "generic") {
-  auto d = find_post_dialect(dialect);
-  EXPECT_TRUE(d.ok());
+bool refused_by_linuxcnc(const Toolpath& tp, const PostDialect& d) {
   const auto path = std::filesystem::temp_directory_path() / ("cutroute-comp-check-" + std::to_string(::getpid()) + ".ngc");
-  std::ofstream(path) << write_gcode(tp, *d, GcodeWriteOptions{}).text;
+  std::ofstream(path) << write_gcode(tp, d, GcodeWriteOptions{}).text;
   const auto r = test::run_rs274(path.string(), kKerf);
   std::filesystem::remove(path);
   return r.exit_code != 0;
+}
+
+bool refused_by_linuxcnc(const Toolpath& tp, const char* dialect = "generic") {
+  auto d = find_post_dialect(dialect);
+  EXPECT_TRUE(d.ok());
+  return refused_by_linuxcnc(tp, *d);
 }
 
 TEST(CompensationCheck, AgreesWithLinuxCncOnDetailsFinerThanTheKerf) {
@@ -157,6 +161,61 @@ TEST(CompensationCheck, APieceAfterATabIsNoEntryWhileTheCompensationHolds) {
   if (std::system("command -v rs274 >/dev/null 2>&1") == 0) {
     EXPECT_FALSE(refused_by_linuxcnc(tp, "generic"));
     EXPECT_TRUE(refused_by_linuxcnc(tp, "plasma-thc"));
+  }
+}
+
+// A point of the circle about c through p, turned by `turn` [rad] about c.
+Vec2 turned(Vec2 c, Vec2 p, double turn) {
+  const Vec2 v = p - c;
+  return c + Vec2{v.x * std::cos(turn) - v.y * std::sin(turn), v.x * std::sin(turn) + v.y * std::cos(turn)};
+}
+
+// A line of 0.07 mm between two inside corners with arcs (the tool left): the arc before it turns
+// into it by 60 degrees, the arc after it by 30. Each corner alone leaves the line long enough
+// (its offset crosses the arc's 0.058 and 0.027 mm from the line's ends), both together do not,
+// and LinuxCNC refuses the line once its end is moved back behind its start. At 0.1 mm it fits.
+TEST(CompensationCheck, ALineLosesItsLengthAtBothOfItsCornersWithArcs) {
+  for (const double length : {0.07, 0.1}) {
+    const double radius = 5, sweep = std::numbers::pi / 6;
+    const Vec2 p0{0, 0}, p1{0, -length};
+    // Clockwise into p0, heading 150 degrees below the x axis; counter-clockwise out of p1, 60 below.
+    const Vec2 c0 = p0 + Vec2{-0.5, std::sqrt(3.0) / 2} * radius;
+    const Vec2 c1 = p1 + Vec2{std::sqrt(3.0) / 2, 0.5} * radius;
+    const Vec2 start = turned(c0, p0, sweep);
+    const double bulge = std::tan(sweep / 4);
+    const Vec2 heading = geometry::perp(c0 - start) / radius;  // clockwise at the start
+    const Toolpath tp = cut(Contour{{Vertex{start, -bulge}, Vertex{p0, 0}, Vertex{p1, bulge}, Vertex{turned(c1, p1, sweep), 0}}, false},
+                            start - heading * 3);
+    const bool fits = length > 0.08;
+    EXPECT_EQ(compensation_hazards(tp, kKerf / 2, true).at.size(), fits ? 0u : 1u) << length;
+    if (std::system("command -v rs274 >/dev/null 2>&1") == 0) {
+      EXPECT_EQ(refused_by_linuxcnc(tp), !fits) << length;
+    }
+  }
+}
+
+// A line up to (1.02, 0.999) in and an arc on about (1, 1) to (1.001, 1.02), both ends 0.020025 in
+// from the centre: the arc turns 0.05 rad from the line, under LinuxCNC's corner threshold, so the
+// controller takes the tool on from where the line's offset ended, 0.012 rad before the arc's own
+// offset start, and the arc, which ends at the G40, sweeps that much more than written. In a G20
+// program the controller allows 0.001 rad and refuses it; the same path in millimetres (0.0254)
+// passes.
+TEST(CompensationCheck, AnArcTakenOnAtANearlyStraightJointMaySweepNoMoreThanWritten) {
+  auto inches = [](double x, double y) { return Vec2{x * 25.4, y * 25.4}; };
+  const Vec2 c = inches(1, 1), a = inches(1.02, 0.999), b = inches(1.001, 1.02);
+  const double sweep = std::atan2(b.y - c.y, b.x - c.x) - std::atan2(a.y - c.y, a.x - c.x);
+  const Toolpath tp = cut(Contour{{Vertex{inches(1.02, 0.959), 0}, Vertex{a, std::tan(sweep / 4)}, Vertex{b, 0}}, false},
+                          inches(1, 0.93));
+  auto generic = find_post_dialect("generic");
+  ASSERT_TRUE(generic.ok());
+  PostDialect inch = *generic;
+  inch.name = "inch";
+  inch.units = "in";
+  EXPECT_EQ(compensation_hazards(tp, kKerf / 2, true, inch).at, std::vector<std::size_t>{0});
+  EXPECT_TRUE(compensation_hazards(tp, kKerf / 2, true, *generic).at.empty());
+  if (std::system("command -v rs274 >/dev/null 2>&1") == 0) {
+    EXPECT_TRUE(refused_by_linuxcnc(tp, inch));
+    EXPECT_FALSE(refused_by_linuxcnc(tp, *generic));
   }
 }
 

@@ -53,6 +53,9 @@ int run_machining(const MachiningOptions& o) {
   std::string text_out;
   double total = 0.0;
   std::string status = "optimal";
+  // Every transition's pictures and tables are written together once all are made: one by one, a
+  // failure (or a stop) at a later transition left the earlier ones' files behind.
+  std::vector<io::OutputFile> files;
   for (std::size_t k = 0; k < count; ++k) {
     const machining::Problem& p = parts->items[k];
     results[k] = machining::optimize(p, params);
@@ -63,12 +66,8 @@ int run_machining(const MachiningOptions& o) {
     if (!p.K_TZ_sweep.empty()) out.sweep = machining::cost_of_accuracy(p, p.K_TZ_sweep, params);
     const std::string svg = parts->is_list ? numbered(o.svg, k) : o.svg;
     const std::string csv = parts->is_list ? numbered(o.csv, k) : o.csv;
-    if (!o.svg.empty()) {
-      if (auto st = io::write_file_atomic(svg, machining::report_svg(out)); !st) return fail(st.error());
-    }
-    if (!o.csv.empty()) {
-      if (auto st = io::write_file_atomic(csv, machining::report_csv(out)); !st) return fail(st.error());
-    }
+    if (!o.svg.empty()) files.push_back({svg, machining::report_svg(out)});
+    if (!o.csv.empty()) files.push_back({csv, machining::report_csv(out)});
     reports.push_back(machining::report_json(out));
     if (parts->is_list) text_out += "--- transition " + std::to_string(k + 1) + "\n";
     text_out += machining::report_text(out);
@@ -78,6 +77,7 @@ int run_machining(const MachiningOptions& o) {
     else if (results[k].status == machining::Status::warning && status == "optimal")
       status = "warning";
   }
+  if (auto st = io::write_files_atomic(files); !st) return fail(st.error());
   if (o.json) {
     if (!parts->is_list) {
       std::cout << json_text(reports[0]) << '\n';

@@ -94,6 +94,25 @@ TEST(MachiningCli, InfeasibleIsAnAnswer) {
   EXPECT_FALSE(j["infeasible"]["suggestions"].empty());
 }
 
+// The transitions' pictures were written one by one: where the second could not be written (here
+// its name is taken by a folder), the first was left behind for a run that failed (exit 2).
+TEST(MachiningCli, TransitionsWriteTheirFilesAllOrNone) {
+  const auto dir = std::filesystem::temp_directory_path() / ("cutroute-machining-all-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "map.t2.svg");
+  const auto r = run(test::machining_example_path("boring-two-transitions-E2-E1.json") + " --no-fig5 --svg " +
+                     (dir / "map.svg").string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "map.t1.svg"));
+  std::filesystem::remove(dir / "map.t2.svg");
+  const auto ok = run(test::machining_example_path("boring-two-transitions-E2-E1.json") + " --no-fig5 --svg " +
+                      (dir / "map.svg").string());
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_TRUE(std::filesystem::exists(dir / "map.t1.svg"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "map.t2.svg"));
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace cutroute::machining
 

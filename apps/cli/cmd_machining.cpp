@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cutroute/core/file.hpp>
 #include <cutroute/io/output_file.hpp>
 #include <cutroute/machining/optimize.hpp>
 #include <cutroute/machining/problem_json.hpp>
@@ -40,7 +41,7 @@ int run_machining(const MachiningOptions& o) {
     std::cerr << "cutroute: --svg and --csv name the same output: " << o.csv << '\n';
     return kUsageError;
   }
-  auto text = io::read_file(o.problem);
+  auto text = read_file(o.problem);
   if (!text) return fail(text.error());
   auto parts = machining::read_transitions_json(*text, o.problem);
   if (!parts) return fail(parts.error());

@@ -1,1 +1,1 @@
-set(CUTROUTE_CORE_SOURCES diagnostic.cpp drawing_unit.cpp number_format.cpp random.cpp stop.cpp text.cpp version.cpp)
+set(CUTROUTE_CORE_SOURCES diagnostic.cpp drawing_unit.cpp file.cpp number_format.cpp random.cpp stop.cpp text.cpp version.cpp)

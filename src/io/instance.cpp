@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include <cutroute/io/output_file.hpp>
+#include <cutroute/core/file.hpp>
 
 #include "instance_distance.hpp"
 

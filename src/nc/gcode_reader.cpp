@@ -7,9 +7,9 @@
 #include <cstdio>
 #include <numbers>
 
+#include <cutroute/core/file.hpp>
 #include <cutroute/core/number_format.hpp>
 #include <cutroute/core/units.hpp>
-#include <cutroute/io/output_file.hpp>
 #include <cutroute/nc/frames.hpp>
 
 #include "nc/block_scanner.hpp"
@@ -656,7 +656,7 @@ Result<ProgramStats> read_gcode(std::string_view program, const std::string& fil
 }
 
 Result<ProgramStats> read_gcode_file(const std::string& path, const ReadOptions& options) {
-  auto buf = io::read_file(path);  // a directory or an unreadable file: an error naming it
+  auto buf = read_file(path);  // a directory or an unreadable file: an error naming it
   if (!buf) return buf.error();
   // A UTF-8 byte order mark (Windows editors) is no part of the program.
   std::string_view text(*buf);

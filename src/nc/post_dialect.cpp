@@ -10,11 +10,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cutroute/core/file.hpp>
 #include <cutroute/core/json_text.hpp>
 #include <cutroute/core/text.hpp>
 #include <cutroute/core/units.hpp>
 #include <cutroute/core/version.hpp>
-#include <cutroute/io/output_file.hpp>
 
 #include "nc/block_scanner.hpp"
 
@@ -141,7 +141,7 @@ std::string check_lines(const PostDialect& d) {
 }  // namespace
 
 Result<PostDialect> load_post_dialect(const std::string& path) {
-  auto text = io::read_file(path);
+  auto text = read_file(path);
   if (!text) return text.error();
   auto parsed = parse_json_text(*text, path);
   if (!parsed) return parsed.error();

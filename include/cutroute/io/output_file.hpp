@@ -42,7 +42,5 @@ bool same_output(const std::string& a, const std::string& b);
 // tens of MB beside the outputs). Async-signal-safe: no allocation, no lock, only unlink().
 void remove_temp_files() noexcept;
 
-// Reads a whole file; the error names the file.
-Result<std::string> read_file(const std::string& path);
 
 }  // namespace cutroute::io

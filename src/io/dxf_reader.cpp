@@ -742,13 +742,17 @@ std::optional<Diagnostic> Expander::check_layer_filters() {
   if (!opt_.layers.empty() && found == 0)
     return make_error("no layer given with --layers is in the drawing (" + missing + "); its layers, with their entities: " + listed,
                       out_.file);
-  if (!missing.empty())
+  if (!missing.empty()) {
     out_.diagnostics.push_back(make_warning("layer " + missing + " (--layers) is not in the drawing; its layers: " + listed, out_.file));
+    out_.diagnostics.back().code = "dxf.layer_missing";
+  }
   std::string unknown;
   for (const auto& l : opt_.ignore_layers)
     if (!exists(l)) unknown += (unknown.empty() ? "'" : ", '") + l + "'";
-  if (!unknown.empty())
+  if (!unknown.empty()) {
     out_.diagnostics.push_back(make_warning("layer " + unknown + " (--ignore-layers) is not in the drawing; its layers: " + listed, out_.file));
+    out_.diagnostics.back().code = "dxf.layer_missing";
+  }
   return std::nullopt;
 }
 

@@ -562,6 +562,7 @@ Result<ScanResult> Scanner::run() {
       r_.warnings.push_back(make_warning("file is truncated after the ENTITIES section (in section " +
                                              (section_.empty() ? std::string("?") : section_) + ")",
                                          file_, line_no_));
+      r_.warnings.back().code = "dxf.truncated";
     } else if (state == State::section_name) {
       return error("file is truncated after SECTION", section_line);
     } else if (state == State::section) {

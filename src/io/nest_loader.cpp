@@ -148,12 +148,16 @@ LoadedNest assemble_nest(DxfDrawing drawing, const NestLoadOptions& options) {
     d.code = "chain.open";
     out.diagnostics.push_back(std::move(d));
   }
-  if (chained.dropped_zero_length > 0)
+  if (chained.dropped_zero_length > 0) {
     out.diagnostics.push_back(make_warning(
         std::to_string(chained.dropped_zero_length) + " zero-length entities dropped", out.file));
-  if (chained.dropped_duplicates > 0)
+    out.diagnostics.back().code = "chain.zero_length";
+  }
+  if (chained.dropped_duplicates > 0) {
     out.diagnostics.push_back(make_warning(
         std::to_string(chained.dropped_duplicates) + " duplicated entities dropped", out.file));
+    out.diagnostics.back().code = "chain.duplicate";
+  }
   for (auto& d : out.nest.diagnostics) {
     if (d.file.empty()) d.file = out.file;
     out.diagnostics.push_back(d);

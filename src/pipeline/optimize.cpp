@@ -665,7 +665,10 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
     return make_error("--tab-width " + format_fixed(o.rules.tab_width_mm, 3) + " mm is not wider than the kerf (" +
                       format_fixed(s.entries.kerf_mm, 3) + " mm): the beam would cut every tab away");
   OptimizeResult result;
-  for (const auto& w : s.conditions.warnings) result.diagnostics.push_back(make_warning(w));
+  for (const auto& w : s.conditions.warnings) {
+    result.diagnostics.push_back(make_warning(w));
+    result.diagnostics.back().code = "material.conditions";  // interpolated or extrapolated rows
+  }
   for (const auto& d : s.diagnostics) result.diagnostics.push_back(d);
   // A part no wider than the kerf is burnt away, not cut out (a drawing in the wrong unit, a stray
   // dot of a few micrometres drawn closed): said, as no compensation or offset check sees it.

@@ -1,6 +1,8 @@
 // Private helpers of common-line cutting: material side of a contour, joining path pieces with connectors.
 #pragma once
 
+#include <cutroute/core/drawing_unit.hpp>
+
 #include <string>
 
 #include <cutroute/geometry/contour.hpp>
@@ -12,8 +14,8 @@ namespace cutroute::model::detail {
 // contour, outside a hole.)
 bool material_left(const NestContour& c);
 
-// "(x, y)" with 3 decimals, for messages.
-std::string point_text(geometry::Vec2 p);
+// "(x, y)" of a point [mm] in the drawing's unit, for messages (format_position()).
+std::string point_text(geometry::Vec2 p, const DrawingUnit& unit);
 
 // Builds one path from pieces that should meet end to start: where a piece starts away from the
 // current end (parts drawn kerf apart meet at a junction's centre), a straight connector joins them.

@@ -35,6 +35,7 @@ Nest derived_nest(const Nest& nest, const CommonLinePlan& plan, std::vector<std:
   }
   NestOptions o;
   o.detect_sheet = false;
+  o.position_unit = nest.unit;
   Nest d = build_nest(std::move(sources), o);
   if (nest.sheet) {
     d.sheet = d.contours.next_id();
@@ -277,7 +278,7 @@ std::vector<std::vector<EntryCandidate>> plan_common_entries(const Nest& nest, c
     const bool forward = t.enter_at_start;
     cands.push_back(leads.on_line(t, forward, forward ? t.end_on_loop : t.start_on_loop));
     if (!t.pierce_on_line) {
-      Diagnostic dg = make_warning("common line from " + detail::point_text(cands.front().point) +
+      Diagnostic dg = make_warning("common line from " + detail::point_text(cands.front().point, nest.unit) +
                                    ": no room for a lead-in; pierced on the line");
       dg.code = "common.pierce_on_line";
       diagnostics.push_back(std::move(dg));

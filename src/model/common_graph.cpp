@@ -394,7 +394,7 @@ CommonLinePlan plan_common_lines(const Nest& nest, const CommonLineOptions& opti
     if (w.last != w.first) {
       // Cannot happen when every contour is closed: each node has as many own edges in as out.
       plan.diagnostics.push_back(make_warning("common lines: a boundary near " +
-                                              detail::point_text(g.nodes[static_cast<std::size_t>(w.last)]) +
+                                              detail::point_text(g.nodes[static_cast<std::size_t>(w.last)], nest.unit) +
                                               " does not close; closed by a straight cut"));
       plan.diagnostics.back().code = "common.open_loop";
     }
@@ -449,9 +449,9 @@ CommonLinePlan plan_common_lines(const Nest& nest, const CommonLineOptions& opti
         (end == 0 ? seg(t).enter_at_start : seg(t).enter_at_end) = true;
         seg(t).pierce_on_line = true;
         plan.precedence.emplace_back(static_cast<std::int32_t>(first_trail + *r), static_cast<std::int32_t>(first_trail + t));
-        plan.diagnostics.push_back(make_warning("common line through " + detail::point_text(seg(t).path.vertices.front().p) +
+        plan.diagnostics.push_back(make_warning("common line through " + detail::point_text(seg(t).path.vertices.front().p, nest.unit) +
                                                 ": no end on the outer boundary of its group; pierced at the junction " +
-                                                detail::point_text(g.nodes[static_cast<std::size_t>(v)]) + " on a line cut before"));
+                                                detail::point_text(g.nodes[static_cast<std::size_t>(v)], nest.unit) + " on a line cut before"));
         plan.diagnostics.back().code = "common.pierce_on_line";
         changed = true;
         break;
@@ -462,7 +462,7 @@ CommonLinePlan plan_common_lines(const Nest& nest, const CommonLineOptions& opti
     if (rooted(t)) continue;
     seg(t).enter_at_start = true;
     seg(t).pierce_on_line = true;
-    plan.diagnostics.push_back(make_warning("common line through " + detail::point_text(seg(t).path.vertices.front().p) +
+    plan.diagnostics.push_back(make_warning("common line through " + detail::point_text(seg(t).path.vertices.front().p, nest.unit) +
                                             ": reaches neither the outer boundary nor another common line; pierced on the line"));
     plan.diagnostics.back().code = "common.pierce_on_line";
   }

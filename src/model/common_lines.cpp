@@ -34,14 +34,7 @@ bool material_left(const NestContour& c) {
   return ccw == (c.role != ContourRole::hole);
 }
 
-std::string point_text(Vec2 p) {
-  std::string s = "(";  // appended piece by piece: GCC 12 warns (-Wrestrict) on "(" + std::string
-  s += format_fixed(p.x, 3);
-  s += ", ";
-  s += format_fixed(p.y, 3);
-  s += ")";
-  return s;
-}
+std::string point_text(Vec2 p, const DrawingUnit& unit) { return format_position(p.x, p.y, unit); }
 
 void PathJoiner::move_to(Vec2 p) { path_.vertices = {geometry::Vertex{p, 0}}; }
 

@@ -41,14 +41,7 @@ std::string name(const Nest& nest, ContourId id) {
   return s;
 }
 
-std::string point(Vec2 p) {
-  std::string s = "(";  // appended piecewise: "(" + std::string trips GCC 12's -Wrestrict
-  s += format_fixed(p.x, 3);
-  s += ", ";
-  s += format_fixed(p.y, 3);
-  s += ")";
-  return s;
-}
+std::string point(Vec2 p, const DrawingUnit& unit) { return format_position(p.x, p.y, unit); }
 
 Diagnostic diagnostic(Severity sev, const char* code, std::string message, const NestContour& c) {
   Diagnostic d;
@@ -162,7 +155,7 @@ std::optional<Vec2> missed_point(const Contour& drawn, const geometry::SegmentSe
 // drawing, the offset is tried again without the outline's tiny details (its known weak spot:
 // fitted splines) and the better result kept; warnings say by how much the cut deviates.
 geometry::OffsetResult offset_with_retries(const NestContour& c, const std::string& label, double d, double kerf_mm,
-                                           Diagnostics& diagnostics, double* simplified_by = nullptr) {
+                                           const DrawingUnit& unit, Diagnostics& diagnostics, double* simplified_by = nullptr) {
   const double half = kerf_mm / 2;
   geometry::OffsetResult r = geometry::offset_contour(c.source.contour, d);
   const geometry::SegmentSet drawn_set = geometry::make_segment_set(c.source.contour);
@@ -190,7 +183,7 @@ geometry::OffsetResult offset_with_retries(const NestContour& c, const std::stri
   if (r.contours.size() == 1 && gouge.depth > kGougeWarnMm) {
     diagnostics.push_back(diagnostic(Severity::warning, "kerf.gouge",
                                      "the toolpath of " + label + " comes " + format_fixed(gouge.depth, 4) +
-                                         " mm closer than kerf/2 to the drawing near " + point(gouge.where) +
+                                         " mm closer than kerf/2 to the drawing near " + point(gouge.where, unit) +
                                          " (kerf offset inaccuracy at outline details far below the kerf)",
                                      c));
   }
@@ -214,7 +207,7 @@ KerfNest offset_for_kerf(const Nest& drawn, double kerf_mm) {
     const NestContour& c = drawn.contours[id];
     if (c.role == ContourRole::sheet) continue;
     const double d = scrap_side_distance(c, half);
-    const geometry::OffsetResult r = offset_with_retries(c, name(drawn, id), d, kerf_mm, out.diagnostics);
+    const geometry::OffsetResult r = offset_with_retries(c, name(drawn, id), d, kerf_mm, drawn.unit, out.diagnostics);
     // A hole smaller than the kerf: the beam would burn it larger than drawn, so the part is out
     // of tolerance. A shop must decide that (redraw, drill, or accept a bigger hole), not the
     // program silently: it is an error, and no program is written while it stands.
@@ -253,7 +246,7 @@ KerfNest offset_for_kerf(const Nest& drawn, double kerf_mm) {
       if (const auto q = missed_point(c.source.contour, sets[i], half)) {
         out.diagnostics.push_back(diagnostic(Severity::warning, "kerf.trimmed",
                                              name(drawn, id) + ": a feature narrower than the kerf (" + kerf_text +
-                                                 ") near " + point(*q) + " cannot be cut: the toolpath passes it by",
+                                                 ") near " + point(*q, drawn.unit) + " cannot be cut: the toolpath passes it by",
                                              c));
       }
     }
@@ -282,7 +275,7 @@ KerfNest offset_for_kerf(const Nest& drawn, double kerf_mm) {
       const ContourId ca(static_cast<std::int32_t>(ia)), cb(static_cast<std::int32_t>(ib));
       out.diagnostics.push_back(diagnostic(Severity::error, "kerf.overlap",
                                            "the toolpaths of " + name(drawn, ca) + " and " + name(drawn, cb) +
-                                               " meet near " + point(contact.first) +
+                                               " meet near " + point(contact.first, drawn.unit) +
                                                ": the contours are closer than the kerf (" + kerf_text +
                                                "), so cutting one cuts into the other",
                                            drawn.contours[ca]));
@@ -307,7 +300,7 @@ std::optional<geometry::Contour> offset_loop(const Nest& nest, ContourId id, dou
   if (!(kerf_mm > 0) || c.role == ContourRole::sheet) return std::nullopt;
   Diagnostics said;  // the whole-nest offset reports them; here only the path is wanted
   geometry::OffsetResult r =
-      offset_with_retries(c, name(nest, id), scrap_side_distance(c, kerf_mm / 2), kerf_mm, said, simplified_by);
+      offset_with_retries(c, name(nest, id), scrap_side_distance(c, kerf_mm / 2), kerf_mm, nest.unit, said, simplified_by);
   if (r.contours.size() != 1) return std::nullopt;
   geometry::Contour loop = std::move(r.contours.front());
   if ((geometry::orientation(loop) == geometry::Orientation::cw) != clockwise) loop = geometry::reversed(loop);

@@ -504,6 +504,7 @@ void warn_touching_sheet(Nest& nest, const Prepared& prep, std::size_t sheet, do
 Nest build_nest(std::vector<SourceContour> contours, const NestOptions& options) {
   const double tol_mm = options.touch_tol_mm >= 0.0 ? options.touch_tol_mm : 0.0;
   Nest nest;
+  nest.unit = options.position_unit;
   const Prepared prep = prepare(std::move(contours), nest);
   std::optional<SheetCandidate> sheet = find_sheet_candidate(nest, options);
   std::optional<std::size_t> excluded;

@@ -211,6 +211,23 @@ TEST(KerfCam, PartsCloserThanTheKerfAreRefusedUnlessAllowed) {
   fs::remove_all(dir);
 }
 
+// The same in an inch drawing: the place was named in mm (25.4 times off for anyone looking at
+// the drawing), as every message's was before positions followed the drawing's unit.
+TEST(KerfCam, AnInchDrawingsOverlapIsNamedInInches) {
+  const auto dir = temp_dir("cam-close-inch");
+  const auto dxf = (dir / "close.dxf").string();
+  DxfBuilder b;
+  b.insunits(1);
+  b.lwpolyline({{{0, 0}, 0}, {{1, 0}, 0}, {{1, 1}, 0}, {{0, 1}, 0}}, true);
+  b.lwpolyline({{{1.008, 0}, 0}, {{2, 0}, 0}, {{2, 1}, 0}, {{1.008, 1}, 0}}, true);  // 0.2 mm apart
+  write(dxf, b.str());
+  const auto r = optimize(dxf, dir, "--kerf 0.3 --technique standard --kerf-mode cam");
+  EXPECT_EQ(r.cmd.exit_code, 2);
+  EXPECT_NE(r.cmd.err.find("meet near (1.004, "), std::string::npos) << r.cmd.err;
+  EXPECT_NE(r.cmd.err.find(") in: the contours are closer than the kerf"), std::string::npos) << r.cmd.err;
+  fs::remove_all(dir);
+}
+
 // Two holes that touch at a point, as in d2g_DRAAK: a square hole's corner and the tip of a 4°
 // wedge. The wedge's toolpath stops 2.15 mm short of its tip (kerf/2 / sin 2°), so a lead into
 // the square's corner keeps the clearance from every toolpath and still passes 0.25 mm from the

@@ -86,6 +86,7 @@ struct Nest {
   std::vector<std::pair<ContourId, ContourId>> shared_edges;
   std::size_t dropped_duplicates = 0;  // exact repeats of an earlier contour (error diagnostic each)
   std::size_t dropped_invalid = 0;     // open, empty, zero-length or non-finite input (error diagnostic each)
+  DrawingUnit unit;  // the drawing's unit, in which messages name places (NestOptions::position_unit)
 };
 
 // Builds the containment tree with exact arcs: parent = smallest containing contour;

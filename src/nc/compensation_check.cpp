@@ -5,7 +5,6 @@
 #include <numbers>
 #include <optional>
 
-#include <cutroute/core/units.hpp>
 #include <cutroute/geometry/arc.hpp>
 #include <cutroute/nc/gcode_writer.hpp>
 
@@ -39,21 +38,10 @@ struct Move {
 // The program's coordinate grid: the writer rounds every end point to it, which turns a run of
 // micrometre moves of a noisy drawing into a zig-zag whose inside corners the controller cannot
 // reach (5 blocks of d2g_DRAAK that LinuxCNC refused went unflagged when the check read the
-// unrounded path). Rounded by the writer's own arithmetic (GcodeWriter::quantise), to the last
-// bit: written_arc() breaks ties between centres a grid step apart on differences of 1e-12, and
-// an end point one bit off made the check read an arc about the other centre (a block of
-// d2g_fraesen_test_02_2004 in inches that LinuxCNC refused went unflagged).
-struct Grid {
-  double scale;  // program units per mm
-  double f;      // grid steps per program unit
-  double res_mm;
-  explicit Grid(const PostDialect& d)
-      : scale(d.units == "in" ? 1.0 / units::kMmPerInch : 1.0), f(std::pow(10.0, d.decimals)),
-        res_mm(std::pow(10.0, -d.decimals) / scale) {}
-  Vec2 operator()(Vec2 p) const {
-    return {std::round(p.x * scale * f) / f / scale, std::round(p.y * scale * f) / f / scale};
-  }
-};
+// unrounded path). The writer's own grid, to the last bit (ProgramGrid): an end point one bit off
+// made the check read an arc about the other centre (a block of d2g_fraesen_test_02_2004 in
+// inches that LinuxCNC refused went unflagged).
+using Grid = ProgramGrid;
 
 void append_line(Vec2 a, Vec2 b, std::vector<Move>& out, const Grid& grid) {
   Move m;

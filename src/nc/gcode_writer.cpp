@@ -25,18 +25,14 @@ Vec2 arc_center(Vec2 a, Vec2 b, double bulge) {
 }  // namespace
 
 WrittenArc written_arc(Vec2 from, Vec2 to, double bulge, const PostDialect& d) {
-  const double scale = d.units == "in" ? 1.0 / units::kMmPerInch : 1.0;
-  const double f = std::pow(10.0, d.decimals);
-  const double res_mm = std::pow(10.0, -d.decimals) / scale;
+  const ProgramGrid grid(d);
+  const double res_mm = grid.res_mm;
   const double arc_tol_mm = d.units == "in" ? tol::kGcodeArcRadiusInch * units::kMmPerInch : tol::kGcodeArcRadiusMm;
-  auto quantise_delta = [&](Vec2 v) -> Vec2 {
-    return {std::round(v.x * scale * f) / f / scale, std::round(v.y * scale * f) / f / scale};
-  };
   WrittenArc w;
   Vec2 c = arc_center(from, to, bulge);
   if (d.arc_format == ArcFormat::r) {
     // The controller puts the centre on the chord's bisector at the written radius.
-    w.radius = quantise_delta({geometry::distance(c, from), 0}).x;
+    w.radius = grid(geometry::distance(c, from));
     const Vec2 dd = to - from;
     const double chord = geometry::norm(dd);
     const double h = std::sqrt(std::max(0.0, w.radius * w.radius - chord * chord / 4));
@@ -44,7 +40,7 @@ WrittenArc written_arc(Vec2 from, Vec2 to, double bulge, const PostDialect& d) {
     return w;
   }
   const Vec2 exact = c;
-  c = from + quantise_delta(c - from);
+  c = from + grid(c - from);
   // On a coarse grid (2 decimals: 0.01 mm, or 0.001 in) the rounded centre can lie 0.014 mm nearer one end
   // than the other, an arc the controller (and our reader, at 0.01 mm) refuses: the grid
   // point next to it with the least difference is taken instead. At the default 1 µm the
@@ -54,7 +50,7 @@ WrittenArc written_arc(Vec2 from, Vec2 to, double bulge, const PostDialect& d) {
     const Vec2 rounded = c;
     for (int i = -1; i <= 1; ++i)
       for (int j = -1; j <= 1; ++j) {
-        const Vec2 cand = from + quantise_delta(rounded - from + Vec2{i * res_mm, j * res_mm});
+        const Vec2 cand = from + grid(rounded - from + Vec2{i * res_mm, j * res_mm});
         const double m = mismatch(cand), mc = mismatch(c);
         if (m < mc - 1e-12 || (std::abs(m - mc) <= 1e-12 && geometry::distance(cand, exact) < geometry::distance(c, exact))) c = cand;
       }
@@ -76,8 +72,7 @@ namespace {
 class Emitter {
  public:
   Emitter(const PostDialect& d, WrittenProgram& out)
-      : d_(d), out_(out), scale_(d.units == "in" ? 1.0 / units::kMmPerInch : 1.0),
-        res_mm_(std::pow(10.0, -d.decimals) / scale_) {}
+      : d_(d), out_(out), grid_(d), scale_(grid_.scale) {}
 
   void start_numbers() { next_n_ = d_.line_number_start; }
   void set_position(Vec2 p) {
@@ -131,10 +126,7 @@ class Emitter {
   }
 
   // Rounds a point to the output resolution (in mm).
-  Vec2 quantise(Vec2 p) const {
-    const double f = std::pow(10.0, d_.decimals);
-    return {std::round(p.x * scale_ * f) / f / scale_, std::round(p.y * scale_ * f) / f / scale_};
-  }
+  Vec2 quantise(Vec2 p) const { return grid_(p); }
 
   void rapid(Vec2 to) {
     const Vec2 q = quantise(to);
@@ -180,7 +172,7 @@ class Emitter {
   bool arc(Vec2 to, double bulge, const std::string& feed_word) {
     const Vec2 q = quantise(to);
     if (q == pos_) return false;
-    const ArcPlan plan = plan_arc(geometry::distance(pos_, q), bulge, res_mm_);
+    const ArcPlan plan = plan_arc(geometry::distance(pos_, q), bulge, grid_.res_mm);
     if (plan.form == ArcPlan::Form::line) return line(to, feed_word);
     if (plan.form == ArcPlan::Form::chords) return flat_arc(q, bulge, plan.chords, feed_word);
     const double sweep = 4 * std::atan(bulge);
@@ -232,11 +224,6 @@ class Emitter {
     return std::abs(sweep) * (r0 + r1) / 2;
   }
 
-  Vec2 quantise_delta(Vec2 d) const {
-    const double f = std::pow(10.0, d_.decimals);
-    return {std::round(d.x * scale_ * f) / f / scale_, std::round(d.y * scale_ * f) / f / scale_};
-  }
-
   std::string feed_word(double feed_mm_min) const {
     std::string s = " F";
     append_fixed(s, feed_mm_min * scale_, d_.feed_decimals);
@@ -248,8 +235,8 @@ class Emitter {
 
   const PostDialect& d_;
   WrittenProgram& out_;
+  ProgramGrid grid_;
   double scale_;
-  double res_mm_;
   long long next_n_ = 0;  // a long program from a high start can pass 2^31
   Vec2 pos_{};
   bool have_pos_ = false;

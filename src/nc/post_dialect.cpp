@@ -13,7 +13,6 @@
 #include <cutroute/core/file.hpp>
 #include <cutroute/core/json_text.hpp>
 #include <cutroute/core/text.hpp>
-#include <cutroute/core/units.hpp>
 #include <cutroute/core/version.hpp>
 
 #include "nc/block_scanner.hpp"
@@ -305,10 +304,6 @@ Result<std::vector<int>> m_codes(const PostDialect& post, const char* field,
 }
 
 }  // namespace
-
-double resolution_mm(const PostDialect& post) {
-  return std::pow(10.0, -post.decimals) * (post.units == "in" ? units::kMmPerInch : 1.0);
-}
 
 bool beam_switches_under_compensation(const PostDialect& post) {
   if (!post.thc_on.empty() || !post.thc_off.empty()) return false;

@@ -8,6 +8,7 @@
 #include <cutroute/geometry/contour.hpp>
 #include <cutroute/model/kerf_offset.hpp>
 #include <cutroute/nc/compensation_check.hpp>
+#include <cutroute/nc/gcode_writer.hpp>
 
 namespace cutroute::pipeline {
 
@@ -117,7 +118,7 @@ OffsetCuts offset_refused_blocks(nc::Toolpath& path, const model::Nest& nest, do
     // is then moved whole, by the move of its end onto the offset loop. Each is joined to the loops
     // by a straight move where the two do not meet exactly, and must keep its kerf out of the
     // contours at its ends; where neither way does, the cut stays compensated (and warned of).
-    const double half = kerf_mm / 2, tol = std::max(1e-3, nc::resolution_mm(written_with));
+    const double half = kerf_mm / 2, tol = std::max(1e-3, nc::ProgramGrid(written_with).res_mm);
     const double left = seg.kerf == nc::KerfSide::left ? half : -half;
     std::vector<geometry::Contour> moved(seg.pieces.size());
     std::vector<geometry::Contour> loops(seg.pieces.size());

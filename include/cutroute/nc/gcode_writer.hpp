@@ -7,6 +7,7 @@
 #include <string>
 
 #include <cutroute/core/tolerances.hpp>
+#include <cutroute/core/units.hpp>
 #include <cutroute/nc/post_dialect.hpp>
 #include <cutroute/nc/toolpath.hpp>
 
@@ -37,6 +38,21 @@ inline constexpr double kMaxArcRadiusMm = 1.0e5;
 // the arcs of a micrometre or two. Chords within the output resolution took two or three, and the
 // frame count sets V_on*(n): d2g_Lueftergitter_R14 got 96 more frames, 1.9 % more T_cut.
 inline constexpr double kMicroArcChordMm = 0.004;
+// The program's coordinate grid: a length in mm rounded to the dialect's decimals in its unit, back
+// in mm. The writer, written_arc() and the compensation check round with this one arithmetic:
+// written_arc() picks between centres a grid step apart on differences of 1e-12, and a copy that
+// rounded one bit differently read an arc about the other centre.
+struct ProgramGrid {
+  double scale;   // program units per mm
+  double steps;   // grid steps per program unit
+  double res_mm;  // one grid step [mm]
+  explicit ProgramGrid(const PostDialect& d)
+      : scale(d.units == "in" ? 1.0 / units::kMmPerInch : 1.0), steps(std::pow(10.0, d.decimals)),
+        res_mm(std::pow(10.0, -d.decimals) / scale) {}
+  double operator()(double mm) const { return std::round(mm * scale * steps) / steps / scale; }
+  geometry::Vec2 operator()(geometry::Vec2 p) const { return {(*this)(p.x), (*this)(p.y)}; }
+};
+
 // How the writer emits an arc of `bulge` between a and b, both already on its grid of step res_mm
 // (the compensation check follows the same plan, so that it reads the program as written):
 //   line   - one G1: nearly straight, or a chord under two grid steps;

@@ -78,9 +78,6 @@ std::vector<std::string> post_dialect_names();
 // then keeps compensation on over micro-joint gaps (gcode_writer.cpp).
 bool beam_switches_under_compensation(const PostDialect& post);
 
-// The coordinate step of the dialect's programs: 10^-decimals of its unit [mm].
-double resolution_mm(const PostDialect& post);
-
 // The reader dialect that reads what `post` writes, so that `cutroute estimate` understands the
 // programs `cutroute optimize` wrote with it:
 //   beam on / off  the M words of the beam_on / beam_off lines;

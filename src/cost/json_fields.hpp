@@ -3,13 +3,13 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <sstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include <cutroute/core/file.hpp>
 #include <cutroute/core/json_text.hpp>
 
 #include <cutroute/core/result.hpp>
@@ -29,11 +29,9 @@ inline std::string item(const std::string& parent, std::size_t i) {
 inline Result<json> parse_json_file(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) return make_error("is a directory, not a JSON file", path);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return make_error("cannot open file", path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string text = ss.str();
+  const auto read = read_file(path);
+  if (!read) return read.error();
+  const std::string& text = *read;
   auto parsed = parse_json_text(text, path);
   if (!parsed) return parsed.error();
   const json& j = *parsed;

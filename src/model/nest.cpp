@@ -333,7 +333,7 @@ struct Tree {
 };
 
 Tree build_tree(const Nest& nest, const Prepared& prep, std::optional<std::size_t> excluded, double tol_mm,
-                double crossing_tol_mm, const DrawingUnit& unit) {
+                double crossing_tol_mm) {
   const std::size_t n = nest.contours.size();
   Tree tree;
   tree.parent.assign(n, -1);
@@ -371,7 +371,7 @@ Tree build_tree(const Nest& nest, const Prepared& prep, std::optional<std::size_
         const bool crossing = (s_in_b.inside > 0 && s_in_b.outside > 0) || (b_in_s.inside > 0 && b_in_s.outside > 0);
         const bool undecided = s_in_b.inside + s_in_b.outside == 0 || b_in_s.inside + b_in_s.outside == 0;
         const std::string pair = describe(ci.source, prep.input_index[i]) + " and " + describe(cj.source, prep.input_index[j]);
-        const std::string where = " near " + format_point(contact.first, unit);
+        const std::string where = " near " + format_point(contact.first, nest.unit);
         const double depth = crossing ? std::max(s_in_b.depth, b_in_s.depth) : 0.0;
         // Curves converted to arcs (SPLINE, ELLIPSE) may cross a neighbour they only touched in
         // the drawing, by up to the conversion tolerance: that is touching, not an overlap.
@@ -509,11 +509,11 @@ Nest build_nest(std::vector<SourceContour> contours, const NestOptions& options)
   std::optional<SheetCandidate> sheet = find_sheet_candidate(nest, options);
   std::optional<std::size_t> excluded;
   if (sheet) excluded = sheet->index;
-  Tree tree = build_tree(nest, prep, excluded, tol_mm, options.crossing_tol_mm, options.position_unit);
+  Tree tree = build_tree(nest, prep, excluded, tol_mm, options.crossing_tol_mm);
   if (sheet && sheet->reason == SheetReason::geometry && !looks_like_sheet(tree)) {
     {
       sheet.reset();
-      tree = build_tree(nest, prep, std::nullopt, tol_mm, options.crossing_tol_mm, options.position_unit);
+      tree = build_tree(nest, prep, std::nullopt, tol_mm, options.crossing_tol_mm);
     }
   }
   // A contour that crosses or touches itself has no inside to speak of: its loops run in opposite
@@ -523,7 +523,7 @@ Nest build_nest(std::vector<SourceContour> contours, const NestOptions& options)
     if (const auto at = geometry::self_contact(prep.segments[i], options.self_loop_tol_mm))
       tree.report(diagnostic_for(Severity::error,
                                  describe(nest.contours[cid(i)].source, prep.input_index[i]) + " crosses or touches itself near " +
-                                     format_point(*at, options.position_unit),
+                                     format_point(*at, nest.unit),
                                  nest.contours[cid(i)].source, "nest.crossing"));
   std::optional<std::size_t> sheet_index;
   if (sheet) sheet_index = sheet->index;

@@ -42,5 +42,4 @@ bool same_output(const std::string& a, const std::string& b);
 // tens of MB beside the outputs). Async-signal-safe: no allocation, no lock, only unlink().
 void remove_temp_files() noexcept;
 
-
 }  // namespace cutroute::io

@@ -182,8 +182,13 @@ std::optional<Vec2> arc_corner_crossing(const Move& in, const Move& out, double 
       const double along = (dist * dist + f.rho * f.rho - g.rho * g.rho) / (2 * dist), h2 = f.rho * f.rho - along * along;
       if (h2 >= -kTangentMm * f.rho) {  // circles tangent to rounding (a tangent arc lead) touch
         const Vec2 mid = f.c + dc * (along / dist), up = geometry::perp(dc) * (std::sqrt(std::max(0.0, h2)) / dist);
-        xs.push_back(mid + up);
-        xs.push_back(mid - up);
+        // Between two arcs LinuxCNC takes the crossing on the side its rule names (interp_convert.cc,
+        // arc to arc: counter-clockwise of the line of centres when the tool runs inside the first arc
+        // and the second turns counter-clockwise, or outside and clockwise), not the nearer one. Where
+        // the path turns straight back along the arc it came (d2g_DRAAK) that crossing lies behind
+        // the first arc's start, and LinuxCNC refused the arc.
+        const bool inside_in = in.bulge * side > 0;
+        xs.push_back(inside_in == (out.bulge > 0) ? mid + up : mid - up);
       }
     }
   }
@@ -230,13 +235,20 @@ bool at_risk(const std::vector<Move>& ms, double side, double r, double arc_grow
   end_checked.back() = true;
   for (std::size_t i = 0; i + 1 < ms.size(); ++i) {
     const double theta = std::atan2(geometry::cross(ms[i].t1, ms[i + 1].t0), geometry::dot(ms[i].t1, ms[i + 1].t0));
-    const bool concave = theta * side > kConcaveCornerRad;  // as LinuxCNC tells a corner's side
-    end_checked[i] = concave || (ms[i + 1].bulge == 0 && theta * side < -kConcaveCornerRad);
+    // Within kConcaveCornerRad of turning straight back, which way the path turned is a matter of
+    // rounding, and LinuxCNC does not ask it (interp_convert.cc): before an arc the corner is
+    // concave where the tool runs outside that arc; before a line, where it ran outside the arc
+    // before (the "h" shape), else convex. d2g_DRAAK retraces a bridge between two holes arc by
+    // arc; its turn back read as convex here, and LinuxCNC refused the arc after it.
+    const bool turns_back = std::abs(theta) > std::numbers::pi - kConcaveCornerRad;
+    const bool concave = turns_back ? (ms[i + 1].bulge != 0 ? ms[i + 1].bulge * side < 0 : ms[i].bulge * side < 0)
+                              : theta * side > kConcaveCornerRad;  // as LinuxCNC tells a corner's side
+    end_checked[i] = concave || (ms[i + 1].bulge == 0 && (turns_back || theta * side < -kConcaveCornerRad));
     if (ms[i + 1].bulge != 0 && std::abs(theta) <= kConcaveCornerRad) {
       const Vec2 left_at = ms[i].b + geometry::perp(ms[i].t1) * (side * r);
       reach_back[i + 1] = -offset_param(ms[i + 1], left_at) / ms[i + 1].radius;
     }
-    if (theta * side <= 1e-9) continue;  // straight on, or turning away from the tool
+    if (turns_back ? !concave : theta * side <= 1e-9) continue;  // straight on, or turning away from the tool
     if (ms[i].bulge != 0 || ms[i + 1].bulge != 0) {
       // A turn toward the tool under kConcaveCornerRad is no corner to LinuxCNC: it needs no crossing
       // (a tangent lead arc whose written radius misses the contour's offset by a micrometre).

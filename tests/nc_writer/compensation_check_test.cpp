@@ -219,5 +219,54 @@ TEST(CompensationCheck, AnArcTakenOnAtANearlyStraightJointMaySweepNoMoreThanWrit
   }
 }
 
+// A path that turns straight back, as a bridge retraced between two holes does: a counter-
+// clockwise arc of radius R1 into P1, then back from P1 along a clockwise arc of radius R2 < R1
+// tangent to it there (both centres on the same side). With the tool left of the path, LinuxCNC
+// reads the turn as a concave corner whichever way rounding tips it, since the tool runs outside
+// the second arc, and takes the crossing of the two offsets that its arc-to-arc rule names, not
+// the nearer one; where that crossing lies past the first arc's end, the first arc sweeps more
+// than written and is refused. Mirrored (clockwise, then counter-clockwise: the tool inside the
+// second arc) the corner is convex and the tool goes round it. The check read both by the nearer
+// crossing and by the sign rounding gave the turn: it flagged 8 of these 12 arcs that LinuxCNC
+// runs, and the slit at the end, and passed such a turn in d2g_DRAAK that LinuxCNC refused.
+TEST(CompensationCheck, APathTurningStraightBackAlongAnArc) {
+  struct Case {
+    double r1, r2, sweep1, sweep2;
+    double mirror;  // 1: counter-clockwise then clockwise; -1: the mirror image
+    double tilt;    // the second arc's start turned by this much off straight back [rad]
+    bool refused;   // by LinuxCNC 2.9 (rs274)
+  };
+  const Case cases[] = {
+      {100, 80, 0.3, 0.4, 1, 0, false},      {100, 99.5, 0.3, 0.3, 1, 0, true},     {20, 5, 0.5, 1.0, 1, 0, false},
+      {100, 80, 0.3, 0.4, 1, 0.02, false},   {100, 80, 0.3, 0.4, 1, -0.02, false},  {100, 99.5, 0.3, 0.3, 1, 0.02, true},
+      {100, 99.5, 0.3, 0.3, 1, -0.02, false}, {20, 5, 0.5, 1.0, 1, 0.04, false},    {20, 5, 0.5, 1.0, 1, -0.04, false},
+      {100, 80, 0.3, 0.4, -1, 0, false},     {20, 5, 0.5, 1.0, -1, 0, false},       {100, 80, 0.3, 0.4, -1, 0.02, false}};
+  const bool have_rs274 = std::system("command -v rs274 >/dev/null 2>&1") == 0;
+  for (const auto& c : cases) {
+    const Vec2 p1{0, 0}, t{1, 0}, n = geometry::perp(t) * c.mirror;  // heading +x at P1, centres on n
+    const Vec2 c1 = p1 + n * c.r1, c2 = p1 + turned({0, 0}, n, c.tilt) * c.r2;
+    const Vec2 p0 = turned(c1, p1, -c.mirror * c.sweep1), p2 = turned(c2, p1, -c.mirror * c.sweep2);
+    const double b1 = c.mirror * std::tan(c.sweep1 / 4), b2 = -c.mirror * std::tan(c.sweep2 / 4);
+    const Vec2 heading = geometry::perp(c1 - p0) * (c.mirror / c.r1);
+    const Toolpath tp = cut(Contour{{Vertex{p0, b1}, Vertex{p1, b2}, Vertex{p2, 0}}, false}, p0 - heading * 3);
+    const std::string what = "R1 " + std::to_string(c.r1) + ", R2 " + std::to_string(c.r2) + ", mirror " +
+                             std::to_string(c.mirror) + ", tilt " + std::to_string(c.tilt);
+    EXPECT_EQ(compensation_hazards(tp, kKerf / 2, true).at.empty(), !c.refused) << what;
+    if (have_rs274) {
+      EXPECT_EQ(refused_by_linuxcnc(tp), c.refused) << what;
+    }
+  }
+  // Between lines a turn straight back is convex to LinuxCNC, whichever way rounding tips it: the
+  // tool goes round the end of a slit drawn out from a hole's corner and back.
+  for (const double tilt : {0.0, 0.03, -0.03}) {
+    const Vec2 tip{25, 25}, back = turned(tip, {20, 20}, tilt);
+    const Toolpath tp = cut(hole({{{20, 20}, 0}, {tip, 0}, {back, 0}}), {10, 3});
+    EXPECT_TRUE(compensation_hazards(tp, kKerf / 2, true).at.empty()) << tilt;
+    if (have_rs274) {
+      EXPECT_FALSE(refused_by_linuxcnc(tp)) << tilt;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace cutroute::nc

@@ -18,6 +18,7 @@
 #include <cutroute/cost/machine_profile.hpp>
 #include <cutroute/geometry/contour.hpp>
 #include <cutroute/io/nest_loader.hpp>
+#include <cutroute/pipeline/optimize.hpp>
 
 #include "optimize_run.hpp"
 
@@ -801,6 +802,42 @@ TEST(OptimizeCli, AnInterruptedRunSaysSo) {
   bool coded = false;
   for (const auto& d : report["diagnostics"]) coded = coded || d.value("code", "") == "run.interrupted";
   EXPECT_TRUE(coded) << report["diagnostics"];
+  fs::remove_all(dir);
+}
+
+// Stopped before it began (Ctrl-C while the first cut job was built), a run solves that job alone:
+// the other techniques are not built (seconds each on a huge nest) and the lead types not
+// compared; the program is still admissible, and the report says what was left out.
+TEST(OptimizeCli, AStoppedRunBuildsNoFurtherTechnique) {
+  const auto dir = temp_dir("stopped");
+  const auto dxf = (dir / "demo.dxf").string();
+  ASSERT_EQ(run_command(cli_path() + " demo " + dxf).exit_code, 0);
+  auto loaded = io::load_nest(dxf, io::NestLoadOptions{});
+  ASSERT_TRUE(loaded.ok());
+  StopToken stop;
+  stop.request_stop();
+  pipeline::OptimizeOptions o;
+  o.threads = 1;
+  auto r = pipeline::optimize_nest(*loaded, o, stop);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  const auto& alts = r->report["alternatives"];
+  ASSERT_EQ(alts.size(), 3u);
+  EXPECT_EQ(r->report["chosen"], "standard");
+  EXPECT_TRUE(alts[0]["available"].get<bool>());
+  for (int k : {1, 2}) {
+    EXPECT_FALSE(alts[k]["available"].get<bool>()) << alts[k];
+    EXPECT_EQ(alts[k]["reason"], "not solved (interrupted)") << alts[k];
+  }
+  EXPECT_EQ(r->report["lead_alternatives"].size(), 1u) << r->report["lead_alternatives"];
+  bool said = false;
+  for (const auto& d : r->diagnostics)
+    said = said || (d.code == "run.interrupted" && d.message.find("the chain, common alternatives were not solved") != std::string::npos);
+  EXPECT_TRUE(said);
+  ProgramCheckOptions opt;
+  opt.clearance_mm = 1.0;
+  const auto check = check_program(loaded->nest, r->program.text, opt);
+  EXPECT_TRUE(check.failures.empty());
+  EXPECT_EQ(check.runs, 21);
   fs::remove_all(dir);
 }
 

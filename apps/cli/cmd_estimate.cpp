@@ -15,6 +15,7 @@
 #include <cutroute/cost/motion_model.hpp>
 #include <cutroute/cost/speed_table.hpp>
 #include <cutroute/io/estimate_json.hpp>
+#include <cutroute/io/inspect_report.hpp>
 #include <cutroute/nc/dialect.hpp>
 #include <cutroute/nc/gcode_reader.hpp>
 #include <cutroute/nc/post_dialect.hpp>
@@ -119,7 +120,6 @@ int run_estimate(const EstimateOptions& o) {
   if (lim.accel_m_s2) ro.moves = &moves;
   auto stats = nc::read_gcode_file(o.program, ro);
   if (!stats) return fail(stats.error());
-  for (const auto& w : stats->warnings) std::cerr << "cutroute: " << format(w) << '\n';
   // Unknown M codes that a shipped post dialect writes (plasma-thc's torch-height outputs): the
   // program was likely written with it.
   if (!stats->unknown_m_codes.empty() && o.dialect.empty())
@@ -131,10 +131,13 @@ int run_estimate(const EstimateOptions& o) {
       const bool all = std::all_of(stats->unknown_m_codes.begin(), stats->unknown_m_codes.end(),
                                    [&](int m) { return reads->is_inert(m) || reads->switches_on(m) || reads->switches_off(m); });
       if (!all) continue;
-      std::cerr << "cutroute: " << o.program << ": warning: its unknown M codes are what the post dialect '" << name
-                << "' writes: --dialect " << name << " reads the program as written by it\n";
+      stats->warnings.push_back(make_warning("its unknown M codes are what the post dialect '" + name + "' writes: --dialect " +
+                                                 name + " reads the program as written by it",
+                                             o.program));
+      stats->warnings.back().code = "gcode.post_dialect";
       break;
     }
+  for (const auto& w : stats->warnings) std::cerr << "cutroute: " << format(w) << '\n';
   if (stats->suppressed_warnings > 0)
     std::cerr << "cutroute: " << o.program << ": " << stats->suppressed_warnings
               << " more warning(s) not shown\n";
@@ -178,9 +181,26 @@ int run_estimate(const EstimateOptions& o) {
                      {"mean_cut_speed_m_s", motion->mean_speed_mm_s / units::kMmPerM},
                      {"block_limited_moves", motion->block_limited}};
     }
+    // `warnings` as text, as before; `diagnostics` as optimize's report has them, each with its
+    // code, so that one reader takes both and a policy can act on a kind without parsing text.
     j["warnings"] = nlohmann::json::array();
-    for (const auto& w : conditions->warnings) j["warnings"].push_back(w);
-    for (const auto& w : stats->warnings) j["warnings"].push_back(format(w));
+    j["diagnostics"] = nlohmann::json::array();
+    for (const auto& w : conditions->warnings) {
+      j["warnings"].push_back(w);
+      Diagnostic d = make_warning(w);
+      d.code = "material.conditions";  // optimize's code for the same interpolated or extrapolated rows
+      j["diagnostics"].push_back(io::to_json(d));
+    }
+    for (const auto& w : stats->warnings) {
+      j["warnings"].push_back(format(w));
+      j["diagnostics"].push_back(io::to_json(w));
+    }
+    if (stats->suppressed_warnings > 0) {
+      Diagnostic d = make_warning(std::to_string(stats->suppressed_warnings) + " more warning(s) not shown", o.program);
+      d.code = "gcode.warnings_capped";
+      j["warnings"].push_back(format(d));
+      j["diagnostics"].push_back(io::to_json(d));
+    }
     std::cout << json_text(j) << '\n';
     return kOk;
   }

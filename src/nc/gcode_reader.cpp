@@ -133,9 +133,9 @@ class Reader {
                         static_cast<long>(line_no_ == 0 ? 1 : line_no_));
     }
     st_.lines = end_line_;
-    if (st_.pierces == 0 && st_.feed_off_length_mm > 0.0) warn(first_feed_line_, never_on_message());
+    if (st_.pierces == 0 && st_.feed_off_length_mm > 0.0) warn(first_feed_line_, "gcode.never_cut", never_on_message());
     if (frames_after_end_ > 0) {
-      warn(end_line_, std::to_string(frames_after_end_) +
+      warn(end_line_, "gcode.after_end", std::to_string(frames_after_end_) +
                           " block(s) after the program end (M2/M30) are ignored and not counted as frames");
     }
     return std::move(st_);
@@ -146,9 +146,11 @@ class Reader {
     return make_error(std::move(msg), file_, static_cast<long>(line_no_));
   }
 
-  void warn(std::size_t line, std::string msg) {
+  // `code` is the warning's kind for JSON readers (gcode_reader.hpp lists them).
+  void warn(std::size_t line, const char* code, std::string msg) {
     if (st_.warnings.size() < opt_.max_warnings) {
       st_.warnings.push_back(make_warning(std::move(msg), file_, static_cast<long>(line)));
+      st_.warnings.back().code = code;
     } else {
       ++st_.suppressed_warnings;
     }
@@ -166,7 +168,7 @@ class Reader {
         const double t = w.value * 10.0;
         const long r = std::lround(t);
         if (std::abs(t - static_cast<double>(r)) > 1e-6 || r < 0 || r > 99999) {
-          warn(line_no_, "unknown word G" + num(w.value) + " ignored");
+          warn(line_no_, "gcode.unknown_word", "unknown word G" + num(w.value) + " ignored");
           skip_motion_ = true;
           return;
         }
@@ -178,7 +180,7 @@ class Reader {
       } else if (w.letter == 'M') {
         const long r = std::lround(w.value);
         if (std::abs(w.value - static_cast<double>(r)) > 1e-9 || r < 0 || r > 99999) {
-          warn(line_no_, "unknown word M" + num(w.value) + " ignored");
+          warn(line_no_, "gcode.unknown_word", "unknown word M" + num(w.value) + " ignored");
           return;
         }
         if (b.nm == kMaxCodesPerBlock) {
@@ -190,7 +192,7 @@ class Reader {
         // Sequence numbers carry no meaning for lengths or time, but a controller refuses a block
         // whose number is negative or not a whole number (LinuxCNC: "negative line number").
         if (w.value < 0 || w.value != std::floor(w.value))
-          warn(line_no_, "line number N" + num(w.value) + " is not a whole number >= 0 (controllers refuse the block)");
+          warn(line_no_, "gcode.line_number", "line number N" + num(w.value) + " is not a whole number >= 0 (controllers refuse the block)");
       } else {
         const auto i = static_cast<std::size_t>(w.letter - 'A');
         if (b.has[i] && dup.message.empty()) {
@@ -200,7 +202,7 @@ class Reader {
         b.has[i] = true;
         b.val[i] = w.value;
         if (!known_letter(w.letter))
-          warn(line_no_, std::string("unknown word ") + w.letter + num(w.value) + " ignored");
+          warn(line_no_, "gcode.unknown_word", std::string("unknown word ") + w.letter + num(w.value) + " ignored");
       }
     });
     if (scan.error != detail::ScanError::none) {
@@ -238,6 +240,7 @@ class Reader {
   Diagnostic execute(const Block& b) {
     bool dwell = false;
     bool end = false;
+    bool set_origin = false;  // G92
     for (std::size_t k = 0; k < b.ng; ++k) {
       const int g = b.g[k];
       switch (g) {
@@ -278,15 +281,29 @@ class Reader {
         case 911:
           arc_absolute_ = false;
           break;
+        case 920:
+          set_origin = true;
+          break;
+        // G92.1 and G92.2 cancel the offset (G92.2 keeps it for G92.3 to restore).
+        case 921:
+          offset_x_ = offset_y_ = saved_offset_x_ = saved_offset_y_ = 0.0;
+          break;
+        case 922:
+          offset_x_ = offset_y_ = 0.0;
+          break;
+        case 923:
+          offset_x_ = saved_offset_x_;
+          offset_y_ = saved_offset_y_;
+          break;
         default:
           if (g == 280 || g == 300) {
-            warn(line_no_, g_name(g) + " (return to a home position) is not followed: its travel is not counted");
+            warn(line_no_, "gcode.travel_not_counted", g_name(g) + " (return to a home position) is not followed: its travel is not counted");
             skip_motion_ = true;
           } else if (g == 530) {
-            warn(line_no_, "G53 (a move in machine coordinates) is not followed: its travel is not counted");
+            warn(line_no_, "gcode.travel_not_counted", "G53 (a move in machine coordinates) is not followed: its travel is not counted");
             skip_motion_ = true;
           } else if (!inert_g(g)) {
-            warn(line_no_, "unknown word " + g_name(g) + " ignored; the block's axis words are not executed");
+            warn(line_no_, "gcode.unknown_word", "unknown word " + g_name(g) + " ignored; the block's axis words are not executed");
             skip_motion_ = true;
           }
       }
@@ -304,7 +321,7 @@ class Reader {
     {
       bool on = false, off = false;
       for (std::size_t k = 0; k < b.nm; ++k) on = on || opt_.dialect.switches_on(b.m[k]), off = off || opt_.dialect.switches_off(b.m[k]);
-      if (on && off) warn(line_no_, "the beam is switched on and off in one block: the controller refuses it; read in the order written");
+      if (on && off) warn(line_no_, "gcode.beam_on_and_off", "the beam is switched on and off in one block: the controller refuses it; read in the order written");
     }
     for (std::size_t k = 0; k < b.nm; ++k) {
       const int m = b.m[k];
@@ -331,7 +348,7 @@ class Reader {
         // Named once per code: a post-processor's output codes repeat at every contour.
         if (std::find(st_.unknown_m_codes.begin(), st_.unknown_m_codes.end(), m) == st_.unknown_m_codes.end()) {
           st_.unknown_m_codes.push_back(m);
-          warn(line_no_, "unknown word M" + std::to_string(m) + " ignored (and wherever it appears again)");
+          warn(line_no_, "gcode.unknown_m_code", "unknown word M" + std::to_string(m) + " ignored (and wherever it appears again)");
         }
       }
       if ((m == 3 || m == 4 || m == 7 || m == 8) && !opt_.dialect.switches_on(m) && foreign_on_ < 0) {
@@ -352,7 +369,7 @@ class Reader {
       const double t = dwell_x ? p : fanuc ? p / 1000.0 : p;
       // Seconds as a Fanuc program's milliseconds: one dwell of minutes in a cutting program.
       if (!fanuc && p >= 100.0 && p == std::floor(p) && !warned_long_dwell_) {
-        warn(line_no_, "G4 P" + num(p) + " dwells " + num(p) + " s (" + opt_.dialect.name +
+        warn(line_no_, "gcode.dwell_unit", "G4 P" + num(p) + " dwells " + num(p) + " s (" + opt_.dialect.name +
                            " reads P in seconds); if the program was written for a Fanuc-style control, which reads "
                            "P in milliseconds, use --dialect fanuc-ms");
         warned_long_dwell_ = true;
@@ -367,8 +384,16 @@ class Reader {
     }
     const bool axes = b.has_word('X') || b.has_word('Y') || b.has_word('Z');
     const bool centre = b.has_word('I') || b.has_word('J') || b.has_word('R');
-    if (dwell_x || (dwell && fanuc && axes)) {
-      if (!dwell_x) warn(line_no_, "axis words in a G4 dwell block are not executed");
+    if (set_origin) {
+      // G92 moves nothing, but every later absolute coordinate is measured from the origin it sets:
+      // ignored, the move after it (a step-and-repeat's rapid to the next part) had a wrong length.
+      if (!axes) return error("G92 without axis words");
+      if (b.has_word('X')) offset_x_ = x_ - b.word('X') * scale_;
+      if (b.has_word('Y')) offset_y_ = y_ - b.word('Y') * scale_;
+      saved_offset_x_ = offset_x_;
+      saved_offset_y_ = offset_y_;
+    } else if (dwell_x || (dwell && fanuc && axes)) {
+      if (!dwell_x) warn(line_no_, "gcode.dwell_axis_words", "axis words in a G4 dwell block are not executed");
     } else if (!skip_motion_ && (axes || (centre && (motion_ == Motion::cw || motion_ == Motion::ccw)))) {
       if (auto d = move(b); !d.message.empty()) return d;
     }
@@ -392,8 +417,8 @@ class Reader {
     if (motion_ == Motion::none) return error("axis words without a motion mode (G0, G1, G2 or G3)");
     double nx = x_;
     double ny = y_;
-    if (b.has_word('X')) nx = absolute_ ? b.word('X') * scale_ : x_ + b.word('X') * scale_;
-    if (b.has_word('Y')) ny = absolute_ ? b.word('Y') * scale_ : y_ + b.word('Y') * scale_;
+    if (b.has_word('X')) nx = absolute_ ? b.word('X') * scale_ + offset_x_ : x_ + b.word('X') * scale_;
+    if (b.has_word('Y')) ny = absolute_ ? b.word('Y') * scale_ + offset_y_ : y_ + b.word('Y') * scale_;
     if (auto d = check_range("X", nx); !d.message.empty()) return d;
     if (auto d = check_range("Y", ny); !d.message.empty()) return d;
     double length = 0.0;
@@ -404,7 +429,7 @@ class Reader {
       // "I word with no G2 or G3 ... to use it").
       for (const char w : {'I', 'J', 'R'})
         if (b.has_word(w)) {
-          warn(line_no_, std::string("word ") + w + " on a straight move (G0/G1) ignored: the controller refuses it");
+          warn(line_no_, "gcode.arc_word_on_line", std::string("word ") + w + " on a straight move (G0/G1) ignored: the controller refuses it");
           break;
         }
     } else {
@@ -418,7 +443,7 @@ class Reader {
     bool& warned_feed = have_feed_word_ ? warned_zero_feed_ : warned_no_feed_;
     if (motion_ != Motion::rapid && length > 0.0 && !(feed_mm_min_ > 0.0) && !warned_feed) {
       // The estimate stands (it prices cuts at V_on*(n)), but the program would not run as written.
-      warn(line_no_, std::string(have_feed_word_ ? "feed move at F0" : "feed move before any F word") +
+      warn(line_no_, "gcode.no_feed", std::string(have_feed_word_ ? "feed move at F0" : "feed move before any F word") +
                          ": a controller without a default feed refuses it (LinuxCNC: zero feed rate); its time at the "
                          "programmed feed is not counted");
       warned_feed = true;
@@ -431,7 +456,7 @@ class Reader {
         // the next cut's (GRBL laser programs: M4 S0 at the top, then G0 to the first cut).
         if (beam_on_ && !new_cut_) {
           if (!warned_beam_on_rapid_)
-            warn(line_no_,
+            warn(line_no_, "gcode.beam_on_rapid",
                  "rapid move (G0) with the beam on: counted as travel; the next cut counts as a new pierce");
           warned_beam_on_rapid_ = true;
           repierce_ = true;
@@ -588,8 +613,8 @@ class Reader {
     double cy = 0.0;
     if (arc_absolute_) {
       if (!(b.has_word('I') && b.has_word('J'))) return error("arc centre under G90.1 needs both I and J");
-      cx = b.word('I') * scale_;
-      cy = b.word('J') * scale_;
+      cx = b.word('I') * scale_ + offset_x_;
+      cy = b.word('J') * scale_ + offset_y_;
     } else {
       cx = x_ + (b.has_word('I') ? b.word('I') * scale_ : 0.0);
       cy = y_ + (b.has_word('J') ? b.word('J') * scale_ : 0.0);
@@ -645,6 +670,8 @@ class Reader {
   bool new_cut_ = false;      // a beam-on code was executed: the next recorded cut starts from a pierce
   double feed_mm_min_ = 0.0;  // 0 = not programmed yet
   double x_ = 0.0;            // [mm] current position; programs start at ReadOptions::start_mm
+  // G92: where the program's origin lies in the coordinates above [mm]; the saved pair is G92.3's.
+  double offset_x_ = 0.0, offset_y_ = 0.0, saved_offset_x_ = 0.0, saved_offset_y_ = 0.0;
   double y_ = 0.0;            // [mm]
 };
 

@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -225,6 +226,40 @@ TEST(CliEstimate, ReadsAProgramWithThePostDialectThatWroteIt) {
   EXPECT_EQ(bad.exit_code, 2);
   for (const char* listed : {"unknown --dialect 'nosuch'", "rs274-m7m9", "fanuc-ms", "generic", "plasma-thc"})
     EXPECT_NE(bad.err.find(listed), std::string::npos) << listed << ": " << bad.err;
+  std::filesystem::remove_all(dir);
+}
+
+// Found auditing `estimate`: its JSON warnings were text only, without the code every other
+// warning of the tool carries, and the hint naming the post dialect that wrote a program reached
+// stderr only. `diagnostics` has them as optimize's report does, each with its code.
+TEST(CliEstimate, JsonDiagnosticsCarryCodes) {
+  const auto dir = std::filesystem::temp_directory_path() / ("cutroute-cli-codes-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto prog = (dir / "thc.ngc").string();
+  std::ofstream(prog) << "G21 G90\nG0 X10 Y0\nM3 S1\nM64 P0\nG1 X20 F1000\nM65 P0\nM5\nG0 X0 Y0 A1\nM2\n";
+  const auto j = cli_json("estimate " + prog + " --material St10kp --thickness 3.5 --json");
+  ASSERT_TRUE(j.contains("diagnostics")) << j.dump(1);
+  std::vector<std::string> codes;
+  for (const auto& d : j["diagnostics"]) {
+    EXPECT_EQ(d.value("severity", ""), "warning") << d;
+    codes.push_back(d.value("code", ""));
+  }
+  const std::vector<std::string> expected = {"material.conditions", "gcode.unknown_m_code", "gcode.unknown_m_code",
+                                             "gcode.unknown_word", "gcode.post_dialect"};
+  EXPECT_EQ(codes, expected) << j["diagnostics"].dump(1);
+  EXPECT_EQ(j["diagnostics"][1]["line"], 4);
+  // `warnings` keeps its text, one entry per diagnostic, the hint now included.
+  ASSERT_EQ(j["warnings"].size(), expected.size());
+  EXPECT_NE(j["warnings"][4].get<std::string>().find("post dialect 'plasma-thc'"), std::string::npos) << j["warnings"];
+  // Warnings beyond the reader's cap are counted there too.
+  std::string many = "G21\n";
+  for (int i = 0; i < 60; ++i) many += "G0 X1 A1\n";
+  std::ofstream((dir / "many.ngc").string()) << many << "M2\n";
+  const auto m = cli_json("estimate " + (dir / "many.ngc").string() + " --json");
+  ASSERT_FALSE(m["diagnostics"].empty());
+  EXPECT_EQ(m["diagnostics"].back().value("code", ""), "gcode.warnings_capped");
+  EXPECT_NE(m["diagnostics"].back().value("message", "").find("10 more warning(s) not shown"), std::string::npos)
+      << m["diagnostics"].back();
   std::filesystem::remove_all(dir);
 }
 

@@ -10,6 +10,8 @@
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <cutroute/nc/frames.hpp>
 #include <cutroute/nc/gcode_reader.hpp>
@@ -250,6 +252,49 @@ TEST(GcodeReader, WarningsAreCapped) {
   EXPECT_EQ(r->suppressed_warnings, 70u);
 }
 
+// Found auditing `estimate`: its warnings had no code, where every other warning of the tool has
+// one (dxf.truncated, chain.duplicate ...): a JSON reader could only tell them apart by their text.
+TEST(GcodeReader, EveryWarningCarriesItsCode) {
+  const std::string text =
+      "G21 G90\n"           // 1
+      "G0 X10 Y0 A5\n"      // 2 gcode.unknown_word
+      "N-5 G1 X11\n"        // 3 gcode.line_number, gcode.no_feed (before any F)
+      "M3 M5\n"             // 4 gcode.beam_on_and_off
+      "M3\n"                // 5
+      "G4 P200\n"           // 6 gcode.dwell_unit
+      "G1 X20 I5 F100\n"    // 7 gcode.arc_word_on_line
+      "G0 X30\n"            // 8 gcode.beam_on_rapid
+      "G1 X40\n"            // 9
+      "M5 M64\n"            // 10 gcode.unknown_m_code
+      "G28\n"               // 11 gcode.travel_not_counted
+      "G12 X1\n"            // 12 gcode.unknown_word
+      "M30\n"               // 13 gcode.after_end
+      "G0 X0\n";
+  auto r = read_gcode(text, "codes.nc", ReadOptions{});
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  const std::vector<std::pair<long, std::string>> expected = {
+      {2, "gcode.unknown_word"},     {3, "gcode.line_number"},   {3, "gcode.no_feed"},
+      {4, "gcode.beam_on_and_off"},  {6, "gcode.dwell_unit"},    {7, "gcode.arc_word_on_line"},
+      {8, "gcode.beam_on_rapid"},    {10, "gcode.unknown_m_code"}, {11, "gcode.travel_not_counted"},
+      {12, "gcode.unknown_word"},    {13, "gcode.after_end"}};
+  ASSERT_EQ(r->warnings.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(r->warnings[i].line, expected[i].first) << i << ": " << r->warnings[i].message;
+    EXPECT_EQ(r->warnings[i].code, expected[i].second) << i << ": " << r->warnings[i].message;
+  }
+  // The end-of-program summary and the Fanuc-dialect dwell block have theirs too.
+  r = read_gcode("M7\nG1 X5 F100\nM9\nM30\n", "m7.nc", ReadOptions{});
+  ASSERT_TRUE(r.ok());
+  ASSERT_EQ(r->warnings.size(), 1u);
+  EXPECT_EQ(r->warnings[0].code, "gcode.never_cut");
+  ReadOptions fanuc;
+  fanuc.dialect = *builtin_dialect("fanuc-ms");
+  r = read_gcode("G4 P500 Y5\nM30\n", "dwell.nc", fanuc);
+  ASSERT_TRUE(r.ok());
+  ASSERT_EQ(r->warnings.size(), 1u);
+  EXPECT_EQ(r->warnings[0].code, "gcode.dwell_axis_words");
+}
+
 // Programs from other CAM systems: what changes the quote is read, or refused, or warned of; never
 // silently left out. Expected values by hand.
 bool warned(const ProgramStats& s, const std::string& text, long line) {
@@ -291,6 +336,29 @@ TEST(GcodeReaderForeign, SubprogramsAndOWordsAreRefusedAtTheirLine) {
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(*r.error().line, 2);
   EXPECT_NE(r.error().message.find("o-word o100 sub"), std::string::npos) << r.error().message;
+}
+
+// Found auditing `estimate`: G92 was an unknown word, so the absolute move after it was measured
+// from the old origin: a step-and-repeat program's rapid to each next copy had a wrong length
+// (here 10 mm for 20, as LinuxCNC moves it).
+TEST(GcodeReaderForeign, G92MovesTheOriginOfLaterAbsoluteCoordinates) {
+  auto r = read_gcode("G21 G90\nG0 X10 Y0\nG92 X0 Y0\nM3\nG1 X20 F100\nM5\nG0 X0 Y0\nM30\n", "g92.nc", ReadOptions{});
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_TRUE(r->warnings.empty()) << r->warnings[0].message;
+  EXPECT_NEAR(r->cut_length_mm, 20.0, kLenTol);
+  EXPECT_NEAR(r->rapid_length_mm, 10.0 + 20.0, kLenTol);
+  // Two copies of a 10 mm lead and a G90.1 centred circle, the origin moved to X100 mm (inches) for
+  // the second; G92.1 cancels the offset, so the last rapid goes to the machine's X0 Y50.
+  const std::string copy = "G0 X0 Y0\nM3\nG1 X0.3937008 F10\nG2 X0.3937008 Y0 I0.5905512 J0\nM5\n";
+  r = read_gcode("G20 G90 G90.1\n" + copy + "G0 X3.937008\nG92 X0\n" + copy + "G92.1\nG0 X0 Y1.968504\nM30\n", "copies.nc",
+                 ReadOptions{});
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_EQ(r->pierces, 2u);
+  EXPECT_NEAR(r->cut_length_mm, 2 * (10.0 + 2 * kPi * 5.0), 1e-5);  // the inch words round to 0.3 um
+  EXPECT_NEAR(r->rapid_length_mm, 90.0 + std::hypot(110.0, 50.0), 1e-5);
+  r = read_gcode("G92\nM30\n", "bare.nc", ReadOptions{});
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(*r.error().line, 1);
 }
 
 TEST(GcodeReaderForeign, ArcTurnCountsAddFullCircles) {

@@ -19,7 +19,8 @@ namespace cutroute::nc {
 //   (R < 0: the arc longer than 180°), I/J full circles, P turns on G2/G3 (LinuxCNC); G4 P dwell
 //   (in the dialect's unit; Fanuc-style dialects also G4 X seconds), the block's axis words then
 //   moved in the motion mode (RS274/NGC); G17 only (G18/G19 are an error); G20/G21; G90/G91;
-//   G40/G41/G42 (noted: lengths are of the programmed path, no compensation); G49, G54..G59, G61,
+//   G40/G41/G42 (noted: lengths are of the programmed path, no compensation); G92 (the origin
+//   moved: later absolute X/Y/I/J from it), G92.1/G92.2 cancel it, G92.3 restores; G49, G54..G59, G61,
 //   G61.1, G64, G80, G94 accepted without effect; F S T N words, O or ':' program numbers;
 //   M3/M4/M5/M7/M8/M9 with the beam codes taken from the dialect; M0 M1 M6; M2/M30 end the
 //   program, as does a '%' line closing a program opened by one; the dialect's inert M codes
@@ -89,7 +90,11 @@ struct ProgramStats {
   std::size_t beam_on_rapids = 0;  // G0 moves made while the beam was switched on
   bool inch = false;               // G20 was used somewhere
   std::vector<int> unknown_m_codes;  // M codes neither the dialect nor the reader knows, as first met
-  Diagnostics warnings;            // at most ReadOptions::max_warnings
+  // At most ReadOptions::max_warnings, each with its Diagnostic::code: gcode.unknown_word,
+  // gcode.unknown_m_code, gcode.line_number, gcode.never_cut, gcode.after_end,
+  // gcode.travel_not_counted (G28/G30/G53), gcode.beam_on_and_off, gcode.dwell_unit,
+  // gcode.dwell_axis_words, gcode.arc_word_on_line, gcode.no_feed, gcode.beam_on_rapid.
+  Diagnostics warnings;
   std::size_t suppressed_warnings = 0;
 };
 

@@ -3,12 +3,10 @@
 #include <cutroute/io/dxf.hpp>
 
 #include <algorithm>
-#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <numbers>
 #include <sstream>
@@ -16,6 +14,7 @@
 #include <dl_creationadapter.h>
 #include <dl_dxf.h>
 
+#include <cutroute/core/file.hpp>
 #include <cutroute/core/units.hpp>
 
 #include "io/curve_fit.hpp"
@@ -33,8 +32,6 @@ using geometry::Vec2;
 using geometry::Vertex;
 
 constexpr double kPi = std::numbers::pi;
-// Files larger than this are refused before reading: the largest real nests are a few MB.
-constexpr std::uintmax_t kMaxFileBytes = 512ull << 20;
 
 struct Vec3 {
   double x = 0, y = 0, z = 1;
@@ -808,28 +805,10 @@ Result<DxfDrawing> read_dxf_string(const std::string& content, const std::string
 Result<DxfDrawing> read_dxf(const std::string& path, const DxfOptions& options) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) return make_error("is a directory, not a DXF file", path);
-  std::ifstream f(path, std::ios::binary);
-  if (!f) return make_error("cannot open file", path);
-  f.seekg(0, std::ios::end);
-  const auto size = f.tellg();
-  if (size < 0) {
-    // A pipe or FIFO has no size (`optimize <(unzip -p nests.zip a.dxf)`, a batch fed through
-    // FIFOs): read to its end instead of refusing it with "cannot read file".
-    f.clear();
-    std::string content;
-    std::array<char, 1 << 16> buf;
-    while (f.read(buf.data(), buf.size()) || f.gcount() > 0) {
-      content.append(buf.data(), static_cast<std::size_t>(f.gcount()));
-      if (content.size() > kMaxFileBytes) return make_error("file is larger than 512 MB", path);
-    }
-    if (f.bad()) return make_error("cannot read file", path);
-    return read_dxf_string(content, path, options);
-  }
-  if (static_cast<std::uintmax_t>(size) > kMaxFileBytes) return make_error("file is larger than 512 MB", path);
-  f.seekg(0, std::ios::beg);
-  std::string content(static_cast<std::size_t>(size), '\0');
-  if (size > 0 && !f.read(content.data(), size)) return make_error("cannot read file", path);
-  return read_dxf_string(content, path, options);
+  // A pipe or FIFO too (`optimize <(unzip -p nests.zip a.dxf)`, a batch fed through FIFOs).
+  auto content = read_file(path);
+  if (!content) return content.error();
+  return read_dxf_string(*content, path, options);
 }
 
 }  // namespace cutroute::io

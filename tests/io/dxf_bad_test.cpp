@@ -80,7 +80,7 @@ TEST(DxfBad, AProgramIsNotADrawing) {
 TEST(DxfBad, MissingFile) {
   const auto r = io::read_dxf(test_data("dxf/bad/no_such_file.dxf"), {});
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.error().message, "cannot open file");
+  EXPECT_EQ(r.error().message, "cannot open: No such file or directory");  // says why
 }
 
 // Every prefix of a valid file either reads or gives an error: never a crash or a hang (the

@@ -35,6 +35,7 @@ volatile std::sig_atomic_t signal_seen = 0;     // the first signal's number, 0 
 volatile std::sig_atomic_t stops_on_request = 0;  // the running command looks at the stop request
 extern "C" void on_signal(int sig) {
   if (signal_seen != 0 || stops_on_request == 0) {
+    if (cutroute::io::defer_signal_while_committing(sig)) return;  // ends once the outputs are in place
     cutroute::io::remove_temp_files();
     std::signal(sig, SIG_DFL);
     std::raise(sig);

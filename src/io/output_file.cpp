@@ -2,13 +2,16 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <utility>
 
@@ -151,13 +154,19 @@ Status write_files_atomic(const std::vector<OutputFile>& files) {
     }
     tmps[k] = tmp;
   }
-  for (std::size_t k = 0; k < files.size(); ++k) {
-    Status st = Ok{};
-    if (!tmps[k].empty()) st = move_into_place(tmps[k], targets[k].path, files[k].path);
-    else if (targets[k].in_place) st = write_to(targets[k].path.string(), files[k].path, files[k].content, true);
-    if (!st) {
-      drop(k + 1);
-      return st;
+  {
+    // Renames take microseconds; a write in place (a FIFO nobody reads) may block, and a second
+    // Ctrl-C must still end that.
+    std::optional<CommitGuard> commit;
+    if (std::none_of(targets.begin(), targets.end(), [](const Target& t) { return t.in_place; })) commit.emplace();
+    for (std::size_t k = 0; k < files.size(); ++k) {
+      Status st = Ok{};
+      if (!tmps[k].empty()) st = move_into_place(tmps[k], targets[k].path, files[k].path);
+      else if (targets[k].in_place) st = write_to(targets[k].path.string(), files[k].path, files[k].content, true);
+      if (!st) {
+        drop(k + 1);
+        return st;
+      }
     }
   }
   for (const auto& f : files)
@@ -182,6 +191,30 @@ Status check_output(const std::string& path) {
 void remove_temp_files() noexcept {
   for (TempSlot& s : temp_slots)
     if (s.state.load() == 2) ::unlink(s.path);
+}
+
+namespace {
+std::atomic<int> committing{0};       // output sets being renamed into place
+std::atomic<int> deferred_signal{0};  // a signal that would have ended the process meanwhile
+}  // namespace
+
+bool defer_signal_while_committing(int sig) noexcept {
+  if (committing.load() == 0) return false;
+  deferred_signal.store(sig);
+  // The last commit may have ended between the two lines above without seeing the signal: then it
+  // is the handler's again.
+  return !(committing.load() == 0 && deferred_signal.exchange(0) != 0);
+}
+
+CommitGuard::CommitGuard() noexcept { committing.fetch_add(1); }
+
+CommitGuard::~CommitGuard() {
+  if (committing.fetch_sub(1) != 1) return;
+  if (const int sig = deferred_signal.exchange(0); sig != 0) {
+    remove_temp_files();
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+  }
 }
 
 bool same_output(const std::string& a, const std::string& b) {

@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +15,8 @@
 #include <thread>
 
 #include <nlohmann/json.hpp>
+
+#include <cutroute/io/output_file.hpp>
 
 #include "support/files.hpp"
 #include "support/paths.hpp"
@@ -58,6 +62,23 @@ TEST(CliSignals, ASecondInterruptWhileWritingLeavesNoTemporaryFile) {
   EXPECT_EQ(stray_temp_files(dir), 0);
   EXPECT_FALSE(fs::exists(dir / "demo.ngc"));  // all outputs or none: the report never came
   fs::remove_all(dir);
+}
+
+// Found reviewing how runs stop: a second Ctrl-C while an output set was being renamed into place
+// ended the process between two renames, leaving a new program beside the old run's report. The
+// handler now leaves such a signal to the renames, which raise it once the set is in place.
+TEST(CliSignalsDeathTest, ASecondSignalWaitsForTheOutputsToBeInPlace) {
+  EXPECT_EXIT(
+      {
+        {
+          const io::CommitGuard commit;
+          if (!io::defer_signal_while_committing(SIGUSR1)) std::_Exit(3);
+          std::fputs("renamed\n", stderr);
+        }
+        std::_Exit(4);  // not reached: the signal is raised as the guard ends
+      },
+      testing::KilledBySignal(SIGUSR1), "renamed");
+  EXPECT_FALSE(io::defer_signal_while_committing(SIGUSR1));  // no renames under way: the handler's own
 }
 
 // A command that never looks at the stop request (estimate, machining, inspect) ends at the first

@@ -42,4 +42,19 @@ bool same_output(const std::string& a, const std::string& b);
 // tens of MB beside the outputs). Async-signal-safe: no allocation, no lock, only unlink().
 void remove_temp_files() noexcept;
 
+// For a signal handler about to end the process: true when an output set is being moved into
+// place at this moment (write_files_atomic's renames). The signal `sig` is then raised again, with
+// its default action, once every set under way is in place: a second Ctrl-C in between left a new
+// program beside the old run's report. Async-signal-safe.
+bool defer_signal_while_committing(int sig) noexcept;
+
+// Holds off such a signal while it lives (write_files_atomic() takes one around its renames).
+class CommitGuard {
+ public:
+  CommitGuard() noexcept;
+  ~CommitGuard();
+  CommitGuard(const CommitGuard&) = delete;
+  CommitGuard& operator=(const CommitGuard&) = delete;
+};
+
 }  // namespace cutroute::io

@@ -158,7 +158,19 @@ ScanResult scan_block(std::string_view line, OnWord&& on_word) {
     const char* const nb = gapped ? joined.data() : num;
     const char* const ne = gapped ? joined.data() + joined.size() : p;
     const auto fc = std::from_chars(nb, ne, v, std::chars_format::fixed);
-    if (fc.ec != std::errc{} || fc.ptr != ne) {
+    // Out of double's range (hundreds of digits) is too large like 20 digits, or below the
+    // smallest double: then it is zero for every length and time read here.
+    if (fc.ec == std::errc::result_out_of_range && fc.ptr == ne) {
+      const std::string_view number(nb, static_cast<std::size_t>(ne - nb));
+      const bool integer_digits = number.find_first_not_of("0.") < number.find('.');
+      if (integer_digits) {
+        r.error = ScanError::number_out_of_range;
+        r.column = w.column;
+        r.letter = w.letter;
+        return r;
+      }
+      v = 0.0;
+    } else if (fc.ec != std::errc{} || fc.ptr != ne) {
       r.error = ScanError::malformed_number;
       r.column = w.column;
       r.letter = w.letter;

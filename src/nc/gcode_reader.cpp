@@ -13,6 +13,7 @@
 #include <cutroute/nc/frames.hpp>
 
 #include "nc/block_scanner.hpp"
+#include "nc/gcode_codes.hpp"
 
 namespace cutroute::nc {
 
@@ -44,72 +45,12 @@ struct ArcGeometry {
   double cy = 0.0;
 };
 
-std::string num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
-std::string g_name(int tenths) {
-  char buf[32];
-  if (tenths % 10 != 0)
-    std::snprintf(buf, sizeof buf, "G%d.%d", tenths / 10, tenths % 10);
-  else
-    std::snprintf(buf, sizeof buf, "G%d", tenths / 10);
-  return buf;
-}
-
-// Letters the reader understands; the others are warned about once per line.
-bool known_letter(char c) {
-  switch (c) {
-    case 'G':
-    case 'M':
-    case 'N':
-    case 'O':
-    case 'X':
-    case 'Y':
-    case 'Z':
-    case 'I':
-    case 'J':
-    case 'K':
-    case 'R':
-    case 'F':
-    case 'S':
-    case 'T':
-    case 'P':
-    case 'D':
-    case 'H':
-    case 'Q':
-      return true;
-    default:
-      return false;
-  }
-}
-
-// G codes accepted without an effect on lengths or time (see gcode_reader.hpp).
-bool inert_g(int t) {
-  switch (t) {
-    case 170:
-    case 400:
-    case 410:
-    case 420:
-    case 490:
-    case 540:
-    case 550:
-    case 560:
-    case 570:
-    case 580:
-    case 590:
-    case 610:
-    case 611:
-    case 640:
-    case 800:
-    case 940:
-      return true;
-    default:
-      return false;
-  }
-}
+using detail::g_name;
+using detail::inert_g;
+using detail::kControllerRadiusShortMm;
+using detail::known_letter;
+using detail::measured_modal_group;
+using detail::num;
 
 class Reader {
  public:
@@ -241,6 +182,7 @@ class Reader {
     bool dwell = false;
     bool end = false;
     bool set_origin = false;  // G92
+    warn_same_modal_group(b);
     for (std::size_t k = 0; k < b.ng; ++k) {
       const int g = b.g[k];
       switch (g) {
@@ -302,6 +244,9 @@ class Reader {
           } else if (g == 530) {
             warn(line_no_, "gcode.travel_not_counted", "G53 (a move in machine coordinates) is not followed: its travel is not counted");
             skip_motion_ = true;
+          } else if (g == 700 || g == 710) {
+            warn(line_no_, "gcode.fanuc_units", fanuc_units_message(g));
+            skip_motion_ = true;
           } else if (!inert_g(g)) {
             warn(line_no_, "gcode.unknown_word", "unknown word " + g_name(g) + " ignored; the block's axis words are not executed");
             skip_motion_ = true;
@@ -315,6 +260,13 @@ class Reader {
       if (f > 0.0 && f < 1.0e-3) return error("feed F" + num(f) + " below 0.001 per minute");
       feed_mm_min_ = f * scale_;
       have_feed_word_ = true;
+    }
+    // S is the laser power where it matters (GRBL laser mode, LinuxCNC's spindle PWM): at S0 the
+    // beam, though switched on, does not cut. Only once the program has set a power above 0, though:
+    // a torch ignores S, and a post that writes "M3 S0" for one would otherwise quote no cut at all.
+    if (b.has_word('S')) {
+      power_set_ = power_set_ || b.word('S') > 0.0;
+      zero_power_ = power_set_ && b.word('S') == 0.0;
     }
     // The beam switched on and off in one block: RS274 puts both codes in one modal group, and the
     // controller refuses the block (LinuxCNC: two M codes from the same modal group). Read in order.
@@ -463,7 +415,7 @@ class Reader {
         }
         if (beam_on_) ++st_.beam_on_rapids;
       }
-    } else if (beam_on_) {
+    } else if (beam_on_ && !zero_power_) {
       if (length > 0.0) {
         if (repierce_) {
           ++st_.pierces;
@@ -477,6 +429,16 @@ class Reader {
           st_.cut_length_no_feed_mm += length;
       }
     } else {
+      if (beam_on_ && length > 0.0) {
+        // As a rapid with the beam on: travel, and the cut after it starts again (GRBL programs
+        // travel so between cuts: "G1 X.. S0", then "G1 X.. S1000").
+        if (!warned_zero_power_)
+          warn(line_no_, "gcode.zero_power",
+               "feed move at S0 with the beam on: no power (as in GRBL's laser mode), counted as beam-off travel at "
+               "feed, not cutting; the next cut at S above 0 counts as a new pierce");
+        warned_zero_power_ = true;
+        if (!new_cut_) repierce_ = true;
+      }
       if (length > 0.0 && first_feed_line_ == 0) first_feed_line_ = line_no_;
       st_.feed_off_length_mm += length;
       if (feed_mm_min_ > 0.0)
@@ -484,23 +446,23 @@ class Reader {
       else
         st_.feed_off_length_no_feed_mm += length;
     }
-    const bool cut = beam_on_ && motion_ != Motion::rapid && length > 0.0;
+    const bool cut = beam_on_ && !zero_power_ && motion_ != Motion::rapid && length > 0.0;
     if (opt_.moves && length > 0.0)
-      record(nx, ny, length, arc_geom, cut && (pierces_before != st_.pierces || new_cut_));
+      record(nx, ny, length, arc_geom, cut, cut && (pierces_before != st_.pierces || new_cut_));
     if (cut) new_cut_ = false;
     x_ = nx;
     y_ = ny;
     return {};
   }
 
-  void record(double nx, double ny, double length, const ArcGeometry& arc, bool pierce) {
+  void record(double nx, double ny, double length, const ArcGeometry& arc, bool cut, bool pierce) {
     Move m;
     m.kind = motion_ == Motion::rapid  ? Move::Kind::rapid
              : motion_ == Motion::line ? Move::Kind::line
              : motion_ == Motion::cw   ? Move::Kind::arc_cw
                                        : Move::Kind::arc_ccw;
-    m.beam_on = beam_on_ && motion_ != Motion::rapid;
-    m.pierce = m.beam_on && pierce;
+    m.beam_on = cut;
+    m.pierce = cut && pierce;
     m.x0 = x_;
     m.y0 = y_;
     m.x1 = nx;
@@ -532,6 +494,38 @@ class Reader {
     if (p < 1.0 || p != std::floor(p) || p > 1.0e6)
       return error("arc turn count P" + num(p) + " is not a whole number >= 1");
     return p - 1.0;
+  }
+
+  // Once per block: the controller refuses it once, however many pairs it holds.
+  void warn_same_modal_group(const Block& b) {
+    for (std::size_t k = 1; k < b.ng; ++k)
+      for (std::size_t j = 0; j < k; ++j) {
+        const int group = measured_modal_group(b.g[k]);
+        if (group == 0 || group != measured_modal_group(b.g[j])) continue;
+        warn(line_no_, "gcode.same_modal_group",
+             g_name(b.g[j]) + " and " + g_name(b.g[k]) +
+                 " in one block are of one modal group: the controller refuses the block (LinuxCNC: two G codes "
+                 "used from same modal group); read with the last, " + g_name(b.g[k]));
+        return;
+      }
+  }
+
+  // G70/G71 select inches/millimetres on older Fanuc-style controls and are lathe cycles on
+  // LinuxCNC: which one the program means cannot be told, so its unit is left as it is and said.
+  std::string fanuc_units_message(int g) const {
+    const bool inch_code = g == 700;
+    const bool read_inch = scale_ != 1.0;
+    std::string msg = g_name(g) + " not read: on older Fanuc-style controls it selects " +
+                      (inch_code ? "inches" : "millimetres") +
+                      ", on LinuxCNC it is a lathe cycle (refused without Q); lengths are read in " +
+                      (read_inch ? "inches (G20)" : "millimetres (G21, the default)");
+    if (inch_code == read_inch)
+      msg += ", as that control would";
+    else
+      msg += inch_code ? ": if the program meant inches, they are 25.4 times too short"
+                       : ": if the program meant millimetres, they are 25.4 times too long";
+    return msg + "; write " + (inch_code ? "G20" : "G21") + " for " + g_name(g) +
+           " to be sure; the block's axis words are not executed";
   }
 
   std::string never_on_message() const {
@@ -579,7 +573,7 @@ class Reader {
   }
 
   // Exact XY length of a G2/G3 move from (x_, y_) to (nx, ny).
-  Result<ArcGeometry> arc_length(const Block& b, double nx, double ny) const {
+  Result<ArcGeometry> arc_length(const Block& b, double nx, double ny) {
     const bool cw = motion_ == Motion::cw;
     const double chord = std::hypot(nx - x_, ny - y_);
     const bool has_ij = b.has_word('I') || b.has_word('J');
@@ -594,6 +588,11 @@ class Reader {
         return error("arc radius R" + num(b.word('R')) + " is shorter than half the chord (" +
                      num(chord / 2.0) + " mm)");
       }
+      if (chord / 2.0 - ar > kControllerRadiusShortMm)
+        warn(line_no_, "gcode.arc_radius_short",
+             "arc radius R" + num(b.word('R')) + " is " + num(chord / 2.0 - ar) + " mm short of half the chord (" +
+                 num(chord / 2.0) + " mm): the controller refuses it (LinuxCNC: arc radius too small to reach end "
+                 "point, beyond 0.00127 mm); read as the half circle");
       const double half = std::asin(std::min(1.0, chord / (2.0 * ar)));
       const auto extra = extra_turns(b);
       if (!extra.ok()) return extra.error();
@@ -658,7 +657,10 @@ class Reader {
   bool arc_absolute_ = false;  // G90.1
   bool beam_on_ = false;
   bool warned_beam_on_rapid_ = false;
-  bool repierce_ = false;     // a rapid was made with the beam on: the next cut pierces again
+  bool zero_power_ = false;   // the last S word was S0 (after a power above 0): the beam does not cut
+  bool power_set_ = false;    // an S word above 0 was read: S is the beam's power
+  bool warned_zero_power_ = false;
+  bool repierce_ = false;     // a rapid or an S0 move was made with the beam on: the next cut pierces again
   bool have_feed_word_ = false, warned_zero_feed_ = false, warned_no_feed_ = false, warned_long_dwell_ = false;
   bool percent_open_ = false;    // the program opened with a '%' line: the next one ends it
   bool any_block_ = false;       // a non-blank line was read

@@ -107,6 +107,18 @@ TEST(BrokenProgramInline, DwellsAndFeedsThatOverflowTheTotals) {
   ASSERT_TRUE(big.ok()) << format(big.error());
 }
 
+// Found auditing `estimate`: 400 digits (beyond a double) said "malformed number", 20 digits
+// "beyond +-1e9"; both are too large. 400 digits of a tiny fraction are zero.
+TEST(BrokenProgramInline, HundredsOfDigitsAreBeyondTheRangeAsTwentyAre) {
+  auto digits400 = read_gcode("G0 X" + std::string(400, '9') + "\nM30\n", "x.nc", ReadOptions{});
+  ASSERT_FALSE(digits400.ok());
+  EXPECT_NE(digits400.error().message.find("number after X beyond +-1e9 (column 4)"), std::string::npos)
+      << format(digits400.error());
+  auto tiny = read_gcode("G0 X0." + std::string(400, '0') + "1 Y5\nM30\n", "t.nc", ReadOptions{});
+  ASSERT_TRUE(tiny.ok()) << format(tiny.error());
+  EXPECT_NEAR(tiny->rapid_length_mm, 5.0, 1e-12);
+}
+
 // A drawing where a program was meant is named as such.
 TEST(BrokenProgramInline, ADrawingIsNotAProgram) {
   auto r = read_gcode("  0\nSECTION\n  2\nHEADER\n  0\nENDSEC\n  0\nEOF\n", "d.nc", ReadOptions{});

@@ -21,7 +21,8 @@ namespace cutroute::nc {
 //   moved in the motion mode (RS274/NGC); G17 only (G18/G19 are an error); G20/G21; G90/G91;
 //   G40/G41/G42 (noted: lengths are of the programmed path, no compensation); G92 (the origin
 //   moved: later absolute X/Y/I/J from it), G92.1/G92.2 cancel it, G92.3 restores; G49, G54..G59, G61,
-//   G61.1, G64, G80, G94 accepted without effect; F S T N words, O or ':' program numbers;
+//   G61.1, G64, G80, G94 accepted without effect; F T N words, O or ':' program numbers; S (modal):
+//   S0 after a power above 0 is zero power, the beam's feed moves then travel (GRBL laser programs);
 //   M3/M4/M5/M7/M8/M9 with the beam codes taken from the dialect; M0 M1 M6; M2/M30 end the
 //   program, as does a '%' line closing a program opened by one; the dialect's inert M codes
 //   (Dialect::inert) without effect; comments ( ) and ;; block delete '/'; blanks anywhere
@@ -30,7 +31,9 @@ namespace cutroute::nc {
 // moved; G28/G30/G53 are named as travel not counted). Also warned: a program whose feed moves
 // are never cut (the beam never switched on by the dialect's codes, naming a built-in dialect
 // that reads the codes it uses), a G4 P of 100 or more in a seconds dialect (a Fanuc program's
-// milliseconds?). Malformed numbers, arcs whose end is not on the circle, missing program end,
+// milliseconds?), G70/G71 (Fanuc's inch/mm, read in the unit in effect), and blocks LinuxCNC
+// refuses: two codes of a modal group that is measured, an R arc short of its chord by more than
+// 0.00005 in. Malformed numbers, arcs whose end is not on the circle, missing program end,
 // subprograms (M98/M99) and LinuxCNC o-words, whose cutting would be left out: an error.
 // One executed XY move, recorded when ReadOptions::moves is set (for motion models and tests).
 struct Move {
@@ -71,9 +74,9 @@ struct ProgramStats {
   std::size_t frames = 0;                   // blocks by the frames.hpp definition (Table 1's n)
   std::size_t pierces = 0;                  // beam-on events: off -> on by a dialect code, plus a re-start of
                                             // cutting after a rapid made with the beam still on
-  double cut_length_mm = 0.0;               // L_on: G1/G2/G3 moves with the beam on [mm]
+  double cut_length_mm = 0.0;               // L_on: G1/G2/G3 moves with the beam on, not at S0 [mm]
   double rapid_length_mm = 0.0;             // L_off: G0 moves, beam on or off [mm]
-  double feed_off_length_mm = 0.0;          // G1/G2/G3 moves with the beam off (not L_on, not L_off) [mm]
+  double feed_off_length_mm = 0.0;          // G1/G2/G3 moves with the beam off or at S0 (not L_on, not L_off) [mm]
   double feed_off_time_s = 0.0;             // those moves at their programmed F (moves with a known F) [s]
   double feed_off_length_no_feed_mm = 0.0;  // those moves made before any F was programmed [mm]
   double cut_time_at_feed_s = 0.0;          // L_on at the programmed F, for information [s]
@@ -93,7 +96,8 @@ struct ProgramStats {
   // At most ReadOptions::max_warnings, each with its Diagnostic::code: gcode.unknown_word,
   // gcode.unknown_m_code, gcode.line_number, gcode.never_cut, gcode.after_end,
   // gcode.travel_not_counted (G28/G30/G53), gcode.beam_on_and_off, gcode.dwell_unit,
-  // gcode.dwell_axis_words, gcode.arc_word_on_line, gcode.no_feed, gcode.beam_on_rapid.
+  // gcode.dwell_axis_words, gcode.arc_word_on_line, gcode.no_feed, gcode.beam_on_rapid,
+  // gcode.arc_radius_short, gcode.same_modal_group, gcode.fanuc_units, gcode.zero_power.
   Diagnostics warnings;
   std::size_t suppressed_warnings = 0;
 };

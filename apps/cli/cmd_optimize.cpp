@@ -353,7 +353,9 @@ int run(const Opts& o) {
       if (!path->empty())
         if (Status st = io::check_output(*path); !st) {
           std::string msg = format(st.error());
-          if (o.nests.size() == 1 && msg.find("is a folder") != std::string::npos)
+          // The hint is about -o: a --report, --svg or --html naming a folder is told only that
+          // (the hint sent users to an -o they never gave).
+          if (o.nests.size() == 1 && path == &out.program && msg.find("is a folder") != std::string::npos)
             msg += " (with one nest, -o names the program file; several nests write into -o DIR)";
           std::cerr << "cutroute: " << msg << '\n';
           return kInputError;

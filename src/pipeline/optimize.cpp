@@ -1018,6 +1018,21 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
                                 "): is the drawing's unit right (--units), or the sheet meant for this machine?");
     w.code = "machine.work_area";
     result.diagnostics.push_back(std::move(w));
+  } else if (area && o.start) {
+    // A --start given is a machine position, not the drawing's origin: the head rapids from it to
+    // the cuts and parks there, so that travel must fit on the table wherever its zero is set (a
+    // sign slip, -1000000,0 for -1000,0, passed without a word and parked the head 1 km away).
+    geometry::Box travel = extent;
+    travel.add(*o.start);
+    if ((*area)[0] < travel.width() - 1e-6 || (*area)[1] < travel.height() - 1e-6) {
+      Diagnostic w = make_warning("--start " + format_fixed(o.start->x, 1) + "," + format_fixed(o.start->y, 1) +
+                                  " and the cuts span " + format_fixed(travel.width(), 1) + " x " + format_fixed(travel.height(), 1) +
+                                  " mm, more than the machine's work area of " + format_fixed((*area)[0], 1) + " x " +
+                                  format_fixed((*area)[1], 1) + " mm (" + s.profile.name +
+                                  "): the rapid from the start and the park move leave the table; is --start right?");
+      w.code = "machine.work_area";
+      result.diagnostics.push_back(std::move(w));
+    }
   }
 
   // The written program read back as `estimate` reads it: the report's time breakdown is the

@@ -855,6 +855,11 @@ TEST(OptimizeCli, UnwritableOutputsAreRefusedBeforeSolving) {
   r = run_command(base + "-o " + dir.string());
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("is a folder (with one nest, -o names the program file"), std::string::npos) << r.err;
+  // A report path that is a folder: said of --report, with no hint about an -o never given.
+  r = run_command(base + "-o " + (dir / "p.ngc").string() + " --report " + dir.string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find(": error: cannot write output: is a folder"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("-o names the program file"), std::string::npos) << r.err;
   std::size_t left = 0;
   for (const auto& e : fs::directory_iterator(dir)) left += e.path().filename() != "missing";
   EXPECT_EQ(left, 0u) << "no temporary file, no program";
@@ -1035,6 +1040,18 @@ TEST(OptimizeCli, ProgramsLargerThanTheWorkAreaAreSaid) {
   EXPECT_NE(too_big.cmd.err.find("more than the machine's work area of 1500 x 1500 mm"), std::string::npos) << too_big.cmd.err;
   int said = 0;
   for (const auto& d : too_big.report["diagnostics"]) said += d.value("code", "") == "machine.work_area";
+  EXPECT_EQ(said, 1);
+  // A start given on the table is quiet; one far off it (a slip of the sign or of three zeros)
+  // sends the head off the table at the first rapid and the park: said, as the span is.
+  const OptRun near = optimize(dxf, dir, "--work-limit 0.2 --threads 1 --start 2500,1400", "0");
+  ASSERT_EQ(near.cmd.exit_code, 0) << near.cmd.err;
+  EXPECT_EQ(near.cmd.err.find("work area"), std::string::npos) << near.cmd.err;
+  const OptRun far = optimize(dxf, dir, "--work-limit 0.2 --threads 1 --start -1000000,0", "0");
+  ASSERT_EQ(far.cmd.exit_code, 0) << far.cmd.err;
+  EXPECT_NE(far.cmd.err.find("--start -1000000,0 and the cuts span 1001930 x 970 mm"), std::string::npos) << far.cmd.err;
+  EXPECT_NE(far.cmd.err.find("more than the machine's work area of 3000 x 1500 mm"), std::string::npos) << far.cmd.err;
+  said = 0;
+  for (const auto& d : far.report["diagnostics"]) said += d.value("code", "") == "machine.work_area";
   EXPECT_EQ(said, 1);
   fs::remove_all(dir);
 }

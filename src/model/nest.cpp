@@ -546,6 +546,23 @@ Nest build_nest(std::vector<SourceContour> contours, const NestOptions& options)
   } else if (options.sheet_size) {
     nest.sheet_box = Box{0.0, 0.0, options.sheet_size->x, options.sheet_size->y};
   }
+  // --sheet names the border to leave uncut by its size; a size that matches no rectangle drawn
+  // round the parts (a slip, or W and H of another sheet) was passed over without a word, and the
+  // border then depended on what the drawing showed.
+  if (options.sheet_size && !(sheet && sheet->reason == SheetReason::size)) {
+    std::string msg = "--sheet " + format_fixed(options.sheet_size->x, 3) + "," + format_fixed(options.sheet_size->y, 3) +
+                      " matches no rectangle drawn round the parts (within " + format_fixed(tol::kSheetSizeMm, 3) + " mm)";
+    if (sheet) {
+      const Box& b = nest.contours[cid(sheet->index)].box;
+      msg += ": the border found by its " + std::string(sheet->reason == SheetReason::layer ? "layer" : "shape") + ", " +
+             format_fixed(b.width(), 3) + " x " + format_fixed(b.height(), 3) + " mm, is left uncut";
+    } else {
+      msg += ": no border is left out, every closed contour is cut";
+    }
+    Diagnostic w = make_warning(std::move(msg));
+    w.code = "nest.sheet_size";
+    nest.diagnostics.push_back(std::move(w));
+  }
   return nest;
 }
 

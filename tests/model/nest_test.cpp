@@ -232,6 +232,28 @@ TEST(Nest, SheetBySizeOption) {
   EXPECT_EQ(nest.parts.size(), 2u);
 }
 
+// A --sheet size that no rectangle round the parts has was passed over without a word: said, with
+// what is left uncut instead (the border found by its layer, or nothing).
+TEST(Nest, ASheetSizeMatchingNoBorderIsSaid) {
+  auto said = [](const Nest& n) {
+    std::string m;
+    for (const auto& d : n.diagnostics)
+      if (d.code == "nest.sheet_size") m += d.message;
+    return m;
+  };
+  NestOptions opt;
+  opt.sheet_size = Vec2{3000, 1500};
+  EXPECT_EQ(said(build_nest(parts_on_sheet("0", false), opt)), "");
+  opt.sheet_size = Vec2{3000, 1000};
+  Nest nest = build_nest(parts_on_sheet("Sheet", true), opt);
+  EXPECT_TRUE(nest.sheet);  // still found by its layer
+  EXPECT_EQ(said(nest), "--sheet 3000,1000 matches no rectangle drawn round the parts (within 0.5 mm): the border found by its layer, "
+                        "3000 x 1500 mm, is left uncut");
+  nest = build_nest(parts_on_sheet("0", false), opt);
+  EXPECT_FALSE(nest.sheet);
+  EXPECT_NE(said(nest).find(": no border is left out, every closed contour is cut"), std::string::npos) << said(nest);
+}
+
 TEST(Nest, CrossingContoursDiagnosedNamingBoth) {
   std::vector<SourceContour> in{src(geometry::circle({0, 0}, 10), "CUT", "1A", 120),
                                 src(geometry::circle({15, 0}, 10), "CUT", "2B", 300),

@@ -432,6 +432,7 @@ std::vector<std::string> idle_options(const CLI::App& app, const Opts& o) {
   idle({"--tab-width", "--tab-lead-in"}, o.rules.tabs > 0, "without --tabs");
   idle({"--heat-weight", "--heat-memory"}, o.rules.heat_distance_mm > 0, "without --heat-distance");
   idle({"--tip-up-weight", "--tip-up-margin"}, o.rules.avoid_tip_up, "without --avoid-tip-up");
+  idle({"--avoid-tip-up"}, o.rules.tabs <= 0, "with --tabs: parts held by tabs do not tip");
   idle({"--sheet-weight", "--sheet-band"}, !o.sheet_clamp.empty(), "without --sheet-clamp");
   idle({"--allow-kerf-overlap"}, o.kerf_mode == "cam", "without --kerf-mode cam");
   idle({"--keep-compensation"}, o.kerf_mode == "controller", "without --kerf-mode controller");

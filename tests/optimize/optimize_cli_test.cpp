@@ -1070,6 +1070,9 @@ TEST(OptimizeCli, OptionsWithoutEffectAreSaid) {
   r = run_command(base + "--tabs 2 --tab-width 2 --chain-gap 5 --kerf 0.3");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err.find("has no effect"), std::string::npos) << r.err;
+  r = run_command(base + "--tabs 2 --avoid-tip-up");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: --avoid-tip-up has no effect with --tabs: parts held by tabs do not tip"), std::string::npos) << r.err;
   fs::remove_all(dir);
 }
 

@@ -2,6 +2,7 @@
 #include <cutroute/geometry/contour.hpp>
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <numbers>
 
@@ -194,6 +195,24 @@ std::vector<Vec2> flatten(const Contour& c, double chord_tol_mm) {
   }
   if (!c.closed && !c.vertices.empty()) out.push_back(c.vertices.back().p);
   return out;
+}
+
+double narrowest_width(const Contour& c, double chord_tol_mm) {
+  const std::vector<Vec2> pts = flatten(c, chord_tol_mm);
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const Vec2 e = pts[(i + 1) % pts.size()] - pts[i];
+    const double len = norm(e);
+    if (len <= 0.0) continue;
+    const Vec2 n = perp(e) / len;
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const Vec2 p : pts) lo = std::min(lo, dot(p, n)), hi = std::max(hi, dot(p, n));
+    best = std::min(best, hi - lo);
+  }
+  // The chords lie inside their arcs, by up to the tolerance on either side: the arcs' width is
+  // that much more at most, and the result must not be less than the contour's least width.
+  const bool arcs = std::any_of(c.vertices.begin(), c.vertices.end(), [](const Vertex& v) { return v.bulge != 0.0; });
+  return arcs ? best + 2 * chord_tol_mm : best;
 }
 
 }  // namespace cutroute::geometry

@@ -677,10 +677,20 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
   if (s.entries.kerf_mm > 0)
     for (const auto& part : nest.parts) {
       const auto& c = nest.contours[part.outer];
-      if (std::min(c.box.width(), c.box.height()) > s.entries.kerf_mm) continue;
-      Diagnostic w = make_warning("part " + std::to_string(&part - nest.parts.data() + 1) + " is " + format_fixed(c.box.width(), 3) +
-                                      " x " + format_fixed(c.box.height(), 3) + " mm, no wider than the kerf (" +
-                                      format_fixed(s.entries.kerf_mm, 3) + " mm): the beam burns it away",
+      const double kerf = s.entries.kerf_mm;
+      const std::string box = format_fixed(c.box.width(), 3) + " x " + format_fixed(c.box.height(), 3) + " mm";
+      std::string size;
+      if (std::min(c.box.width(), c.box.height()) <= kerf) {
+        size = box;
+      } else if (c.area_mm2 <= kerf * std::hypot(c.box.width(), c.box.height())) {
+        // Drawn at an angle, a thin strip's box is as wide as the strip is long: its width across
+        // its own edges, for the parts whose area leaves room for it (area <= width x diameter).
+        const double w = geometry::narrowest_width(c.source.contour, kerf / 1000);
+        if (w <= kerf) size = format_fixed(w, 3) + " mm wide at its narrowest (its box " + box + ")";
+      }
+      if (size.empty()) continue;
+      Diagnostic w = make_warning("part " + std::to_string(&part - nest.parts.data() + 1) + " is " + size + ", no wider than the kerf (" +
+                                      format_fixed(kerf, 3) + " mm): the beam burns it away",
                                   loaded.file, c.source.line);
       w.handle = c.source.handle;
       w.layer = c.source.layer;

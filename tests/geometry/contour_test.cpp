@@ -330,5 +330,22 @@ TEST(Flatten, StaysWithinChordToleranceAndKeepsVertices) {
   EXPECT_GT(flatten(circ, std::nan("")).size(), 2u);  // bad tolerance falls back to the default
 }
 
+// narrowest_width(): a bound from above on the least width, exact for convex polygons at any
+// angle (where the box is as wide as a thin strip is long).
+TEST(Contour, NarrowestWidth) {
+  for (const double deg : {0.0, 30.0, 45.0, 77.0}) {
+    const double a = deg * std::numbers::pi / 180, c = std::cos(a), s = std::sin(a);
+    const Vec2 u{c, s}, v{-s, c};
+    const Contour strip = polygon({Vec2{0, 0}, u * 5.0, u * 5.0 + v * 0.1, v * 0.1});
+    EXPECT_NEAR(narrowest_width(strip, 0.001), 0.1, 1e-9) << deg;
+  }
+  const double w = narrowest_width(circle({3, 4}, 0.08), 0.0001);  // chords inside, plus 2 x tol
+  EXPECT_GE(w, 0.16);
+  EXPECT_LE(w, 0.16 + 0.0002 + 1e-9);
+  // An L of arms 1 mm wide: its least width is the whole L's (7.8 mm across the diagonal), not 1.
+  const Contour ell = polygon({Vec2{0, 0}, Vec2{10, 0}, Vec2{10, 1}, Vec2{1, 1}, Vec2{1, 10}, Vec2{0, 10}});
+  EXPECT_GT(narrowest_width(ell, 0.001), 1.0);
+}
+
 }  // namespace
 }  // namespace cutroute::geometry

@@ -997,18 +997,23 @@ TEST(OptimizeCli, PartsNoWiderThanTheKerfAreSaid) {
   b.line({10, 10}, {50, 10}).line({50, 10}, {50, 50}).line({50, 50}, {10, 50}).line({10, 50}, {10, 10});
   b.circle({80, 30}, 0.07);  // 0.14 mm across: the default kerf is 0.15 mm
   b.circle({100, 30}, 0.08);  // 0.16 mm
+  // A strip 0.1 mm wide and 5 mm long at 45 degrees: its box is 3.6 mm square.
+  const double h = 0.1 / std::sqrt(2.0), l = 5 / std::sqrt(2.0);
+  b.line({120, 30}, {120 + l, 30 + l}).line({120 + l, 30 + l}, {120 + l + h, 30 + l - h});
+  b.line({120 + l + h, 30 + l - h}, {120 + h, 30 - h}).line({120 + h, 30 - h}, {120, 30});
   const auto dxf = (dir / "tiny.dxf").string();
   std::ofstream(dxf) << b.str();
   const OptRun run = optimize(dxf, dir, "--technique standard");
   ASSERT_EQ(run.cmd.exit_code, 0) << run.cmd.err;
-  int said = 0;
+  std::string said;
   for (const auto& d : run.report["diagnostics"])
     if (d.value("code", "") == "nest.smaller_than_kerf") {
-      ++said;
-      EXPECT_NE(d["message"].get<std::string>().find("part 2 is 0.14 x 0.14 mm"), std::string::npos) << d;
+      said += d["message"].get<std::string>() + "\n";
       EXPECT_TRUE(d.contains("line"));
     }
-  EXPECT_EQ(said, 1);
+  EXPECT_NE(said.find("part 2 is 0.14 x 0.14 mm, no wider"), std::string::npos) << said;
+  EXPECT_NE(said.find(" is 0.1 mm wide at its narrowest (its box 3.606 x 3.606 mm), no wider"), std::string::npos) << said;
+  EXPECT_EQ(std::count(said.begin(), said.end(), '\n'), 2) << said;
   EXPECT_NE(run.cmd.err.find("no wider than the kerf (0.15 mm): the beam burns it away"), std::string::npos) << run.cmd.err;
   fs::remove_all(dir);
 }

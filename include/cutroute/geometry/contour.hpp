@@ -95,4 +95,10 @@ bool intersects(const Contour& a, const Contour& b, double tol_mm);
 // tol::kArcChordMm.
 std::vector<Vec2> flatten(const Contour& c, double chord_tol_mm);
 
+// The contour's extent across the narrowest of its edges' normals (arcs flattened within
+// chord_tol_mm > 0, plus twice that where it has arcs): never less than its least width, and that
+// width exactly for a convex polygon, whose narrowest direction is normal to one of its edges.
+// O(n^2): for a few candidates.
+double narrowest_width(const Contour& c, double chord_tol_mm);
+
 }  // namespace cutroute::geometry

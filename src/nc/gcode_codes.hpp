@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <string>
 
+#include <cutroute/core/units.hpp>
+
 namespace cutroute::nc::detail {
 
 inline std::string num(double v) {
@@ -77,7 +79,7 @@ inline bool inert_g(int t) {
 // LinuxCNC's RADIUS_TOLERANCE_INCH (0.00005 in; RADIUS_TOLERANCE_MM is the same in mm): an R-form
 // arc whose |R| falls short of half its chord by more is refused ("arc radius too small to reach
 // end point"), in G20 and G21 programs alike (found by bisection with rs274 2.9) [mm].
-inline constexpr double kControllerRadiusShortMm = 0.00005 * 25.4;
+inline constexpr double kControllerRadiusShortMm = 0.00005 * units::kMmPerInch;
 
 // The modal groups whose codes change what the reader measures: motion, distance mode, arc
 // distance mode, units. Two codes of one group in a block are refused by the controller (LinuxCNC:

@@ -592,7 +592,7 @@ class Reader {
         warn(line_no_, "gcode.arc_radius_short",
              "arc radius R" + num(b.word('R')) + " is " + num(chord / 2.0 - ar) + " mm short of half the chord (" +
                  num(chord / 2.0) + " mm): the controller refuses it (LinuxCNC: arc radius too small to reach end "
-                 "point, beyond 0.00127 mm); read as the half circle");
+                 "point, beyond " + num(kControllerRadiusShortMm) + " mm); read as the half circle");
       const double half = std::asin(std::min(1.0, chord / (2.0 * ar)));
       const auto extra = extra_turns(b);
       if (!extra.ok()) return extra.error();
@@ -672,9 +672,9 @@ class Reader {
   bool new_cut_ = false;      // a beam-on code was executed: the next recorded cut starts from a pierce
   double feed_mm_min_ = 0.0;  // 0 = not programmed yet
   double x_ = 0.0;            // [mm] current position; programs start at ReadOptions::start_mm
+  double y_ = 0.0;            // [mm]
   // G92: where the program's origin lies in the coordinates above [mm]; the saved pair is G92.3's.
   double offset_x_ = 0.0, offset_y_ = 0.0, saved_offset_x_ = 0.0, saved_offset_y_ = 0.0;
-  double y_ = 0.0;            // [mm]
 };
 
 }  // namespace

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdio>
+#include <numbers>
 #include <string>
 
 #include <cutroute/core/units.hpp>
@@ -80,6 +81,15 @@ inline bool inert_g(int t) {
 // arc whose |R| falls short of half its chord by more is refused ("arc radius too small to reach
 // end point"), in G20 and G21 programs alike (found by bisection with rs274 2.9) [mm].
 inline constexpr double kControllerRadiusShortMm = 0.00005 * units::kMmPerInch;
+
+// LinuxCNC's CENTER_ARC_RADIUS_TOLERANCE_INCH / _MM (2·0.001·√2 in, 2·0.01·√2 mm, in the program's
+// unit) and its relative 0.1 % of the start radius: an I/J arc whose end radius differs from its
+// start radius by more than both is refused ("radius to end of arc differs from radius to start");
+// within either it is run as a spiral. Found by bisection with rs274 2.9 at radii 1-1000 mm and
+// 0.1-10 in: refused beyond 0.02828 mm up to a radius of 28 mm, beyond 0.1 % from there.
+inline constexpr double kControllerArcRadiusAbsMm = 2.0 * 0.01 * std::numbers::sqrt2;
+inline constexpr double kControllerArcRadiusAbsInch = 2.0 * 0.001 * std::numbers::sqrt2;
+inline constexpr double kControllerArcRadiusRel = 0.001;
 
 // The modal groups whose codes change what the reader measures: motion, distance mode, arc
 // distance mode, units. Two codes of one group in a block are refused by the controller (LinuxCNC:

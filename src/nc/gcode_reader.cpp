@@ -623,10 +623,22 @@ class Reader {
     const double r0 = std::hypot(x_ - cx, y_ - cy);
     const double r1 = std::hypot(nx - cx, ny - cy);
     if (r0 <= tol::kSamePointMm) return error("arc centre equals its start point (zero radius)");
-    if (std::abs(r0 - r1) > radius_tol_mm()) {
+    // The end must lie on the circle as the controller checks it: LinuxCNC refuses what fails
+    // both its absolute and its relative tolerance, and runs the rest as a spiral (the mean
+    // radius below). Off by more than the reader's own tolerance but run: said, since a
+    // stricter controller may stop there.
+    const double off = std::abs(r0 - r1);
+    const double abs_limit_mm =
+        scale_ == 1.0 ? detail::kControllerArcRadiusAbsMm : detail::kControllerArcRadiusAbsInch * units::kMmPerInch;
+    if (off > abs_limit_mm && off > detail::kControllerArcRadiusRel * r0) {
       return error("arc end is not on its circle: start radius " + num(r0) + " mm, end radius " + num(r1) +
-                   " mm (tolerance " + num(radius_tol_mm()) + " mm)");
+                   " mm, the controller refuses it (LinuxCNC: radius to end of arc differs from radius to "
+                   "start, beyond " + num(abs_limit_mm) + " mm and 0.1 % of the radius)");
     }
+    if (off > radius_tol_mm())
+      warn(line_no_, "gcode.arc_off_circle",
+           "arc end is " + num(off) + " mm off its circle (start radius " + num(r0) + " mm, end radius " + num(r1) +
+               " mm): LinuxCNC runs it as a spiral, a controller with a tighter tolerance may refuse it");
     double sweep = 0.0;
     if (chord <= tol::kSamePointMm) {
       sweep = kTwoPi;  // I/J arc ending where it starts: a full circle

@@ -42,7 +42,7 @@ WrittenArc written_arc(Vec2 from, Vec2 to, double bulge, const PostDialect& d) {
   const Vec2 exact = c;
   c = from + grid(c - from);
   // On a coarse grid (2 decimals: 0.01 mm, or 0.001 in) the rounded centre can lie 0.014 mm nearer one end
-  // than the other, an arc the controller (and our reader, at 0.01 mm) refuses: the grid
+  // than the other, an arc a strict controller refuses (our reader warns beyond 0.01 mm): the grid
   // point next to it with the least difference is taken instead. At the default 1 µm the
   // difference stays below a third of the tolerance, and the centre as rounded is kept.
   auto mismatch = [&](Vec2 cc) { return std::abs(geometry::distance(cc, from) - geometry::distance(cc, to)); };

@@ -34,7 +34,8 @@ inline constexpr double kCollinearMm = 1e-6;
 // DXF reader's curve conversion.
 inline constexpr double kArcChordMm = 0.01;
 
-// Radius mismatch between an arc's start and end point in G-code before it is an error [mm].
+// Radius mismatch between an arc's start and end point in G-code before it is warned (the reader)
+// or rounded otherwise (the writer) [mm].
 inline constexpr double kGcodeArcRadiusMm = 0.01;
 
 // Relative slack under which a machining constraint counts as active [dimensionless].
@@ -63,10 +64,10 @@ inline constexpr double kSheetOverhangMm = 0.5;
 inline constexpr double kThicknessMm = 1e-6;
 
 
-// Radius mismatch of a G-code arc in an inch (G20) program before it is an error [inch].
+// Radius mismatch of a G-code arc in an inch (G20) program before it is warned [inch].
 // Inch programs are usually written to 0.001 in (0.0254 mm); rounding start, end and centre
 // moves the end radius by up to about 1.5 of that (0.036 mm seen in dxf2gcode output), which
-// kGcodeArcRadiusMm would reject.
+// kGcodeArcRadiusMm would warn of.
 inline constexpr double kGcodeArcRadiusInch = 0.002;
 
 // Kerf offset (geometry/offset.hpp). An offset arc whose radius falls to or below this has

@@ -53,8 +53,9 @@ struct Move {
 
 struct ReadOptions {
   Dialect dialect = Dialect{"rs274", {3, 4}, {5}, DwellUnit::seconds};
-  // |start radius - end radius| above this is an error: in G21 programs [mm], in G20 programs
-  // [inch] (their coordinates are rounded to a coarser grid).
+  // |start radius - end radius| of an I/J arc above this is warned (gcode.arc_off_circle): in G21
+  // programs [mm], in G20 programs [inch] (their coordinates are rounded to a coarser grid). It is
+  // an error only where LinuxCNC refuses it (gcode_codes.hpp).
   double arc_radius_tol_mm = tol::kGcodeArcRadiusMm;
   double arc_radius_tol_inch = tol::kGcodeArcRadiusInch;
   // At most this many warnings are kept; the rest are only counted.
@@ -97,7 +98,8 @@ struct ProgramStats {
   // gcode.unknown_m_code, gcode.line_number, gcode.never_cut, gcode.after_end,
   // gcode.travel_not_counted (G28/G30/G53), gcode.beam_on_and_off, gcode.dwell_unit,
   // gcode.dwell_axis_words, gcode.arc_word_on_line, gcode.no_feed, gcode.beam_on_rapid,
-  // gcode.arc_radius_short, gcode.same_modal_group, gcode.fanuc_units, gcode.zero_power.
+  // gcode.arc_radius_short, gcode.arc_off_circle, gcode.same_modal_group, gcode.fanuc_units,
+  // gcode.zero_power.
   Diagnostics warnings;
   std::size_t suppressed_warnings = 0;
 };

@@ -13,7 +13,7 @@ void add_demo(CLI::App& root, Commands& out) {
   auto path = std::make_shared<std::string>();
   auto* app = root.add_subcommand(
       "demo", "Write the demo nest: a 2000 x 1000 mm sheet with 14 parts and 21 contours, as a DXF file");
-  app->add_option("OUT", *path, "DXF file to write")->required();
+  app->add_option("OUT,-o,--output", *path, "DXF file to write (as the argument or after -o)")->required();
   out.push_back({app, [path]() -> int {
     std::vector<io::DxfWriteEntity> entities;
     for (auto& c : model::make_demo_sheet()) entities.push_back({std::move(c.contour), std::move(c.layer)});

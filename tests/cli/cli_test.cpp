@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -58,6 +59,20 @@ TEST(Cli, AbsurdOptionValuesAreUsageErrors) {
     EXPECT_EQ(r.exit_code, 1) << bad << ": " << r.err;
     EXPECT_NE(r.err.find(std::string(bad).substr(0, std::string(bad).find(' '))), std::string::npos) << bad << ": " << r.err;
   }
+}
+
+// `demo -o FILE` writes what `demo FILE` writes, as every other command takes its output after -o.
+TEST(Cli, DemoTakesItsOutputAfterDashO) {
+  const auto dir = temp_dir("demo-o");
+  ASSERT_EQ(run_command(cli_path() + " demo " + (dir / "a.dxf").string()).exit_code, 0);
+  ASSERT_EQ(run_command(cli_path() + " demo -o " + (dir / "b.dxf").string()).exit_code, 0);
+  const auto text = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_FALSE(text(dir / "a.dxf").empty());
+  EXPECT_EQ(text(dir / "a.dxf"), text(dir / "b.dxf"));
+  EXPECT_NE(run_command(cli_path() + " demo").exit_code, 0);
 }
 
 // A program that cannot be written (its path is a folder) is refused with the reason, and the

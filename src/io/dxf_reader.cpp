@@ -640,6 +640,12 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
       }
     }
     if (c.vertices.empty()) continue;
+    // Arcs bulge out between their end points (a CIRCLE centred at (0, 5e5) of radius 9e5 has
+    // both vertices in range): the extent, not only the vertices, must stay within the limit.
+    if (const geometry::Box b = geometry::bounding_box(c);
+        !within_limit({b.xmin, b.ymin}) || !within_limit({b.xmax, b.ymax})) {
+      return entity_error(e.type + " lies more than 1e6 mm from the origin after INSERT and unit scaling", top);
+    }
     DxfEntity out;
     out.path = std::move(c);
     out.type = e.type;
@@ -700,7 +706,13 @@ std::optional<Diagnostic> Expander::emit(int idx, const Affine& t, const std::st
     ++out_.skipped[e.type];
     return std::nullopt;
   }
-  return curve(e, p, t, layer, here, block);
+  auto d = curve(e, p, t, layer, here, block);
+  // An error in a block's entity is reported at its top-level INSERT; name the entity itself too.
+  if (d && depth > 0) {
+    d->message += " (in block '" + block + "' at line " + std::to_string(e.line) +
+                  (e.handle.empty() ? std::string() : ", entity " + e.handle) + ", inserted here)";
+  }
+  return d;
 }
 
 std::optional<Diagnostic> Expander::run() {

@@ -615,6 +615,11 @@ TEST(DxfReader, EntityLevelErrorsNameTheEntity) {
          b.begin_block("C").circle({0, 0}, 1e5).end_block().insert("C", {0, 0}, 1e3, 1);
        },
        "CIRCLE lies more than 1e6 mm from the origin after INSERT and unit scaling"},
+      // Both vertices of the circle are in range, its top (0, 1.4e6) is not.
+      {[](DxfBuilder& b) { b.circle({0, 5e5}, 9e5); },
+       "CIRCLE lies more than 1e6 mm from the origin after INSERT and unit scaling"},
+      {[](DxfBuilder& b) { b.lwpolyline({{{0, 0}, 1e8}, {{10, 0}, 0}}, false); },
+       "LWPOLYLINE lies more than 1e6 mm from the origin after INSERT and unit scaling"},
   };
   for (const auto& c : cases) {
     DxfBuilder b;
@@ -623,7 +628,15 @@ TEST(DxfReader, EntityLevelErrorsNameTheEntity) {
     const std::string text = b.str();
     const auto r = io::read_dxf_string(text, "e.dxf", {});
     ASSERT_FALSE(r.ok()) << c.message;
-    EXPECT_EQ(r.error().message, c.message);
+    // Errors in a block's entity go on to name the entity in its block: "... (in block 'B' at line L, entity H,
+    // inserted here)", the line and handle of the error being the INSERT's.
+    const bool in_block = text.find("BLOCK\n") != std::string::npos && text.find("\nINSERT\n") != std::string::npos;
+    if (in_block) {
+      EXPECT_EQ(r.error().message.rfind(c.message + " (in block '", 0), 0u) << r.error().message;
+      EXPECT_TRUE(r.error().message.ends_with(", inserted here)")) << r.error().message;
+    } else {
+      EXPECT_EQ(r.error().message, c.message);
+    }
     EXPECT_TRUE(r.error().line.has_value());
     EXPECT_FALSE(r.error().handle.empty());
   }

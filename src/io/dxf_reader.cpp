@@ -288,14 +288,16 @@ class Expander {
     d.handle = top.handle;
     return d;
   }
-  void warn_entity(const std::string& msg, const ScanEntity& e, const std::string& layer) {
+  void warn_entity(const std::string& msg, const ScanEntity& e, const std::string& layer,
+                   const char* code = "dxf.entity_skipped") {
     Diagnostic d = make_warning(msg, out_.file, e.line);
-    d.code = "dxf.entity_skipped";
+    d.code = code;
     d.handle = e.handle;
     d.layer = layer;
     out_.diagnostics.push_back(std::move(d));
   }
-  Contour transform(const Contour& c, const Affine& a, double& dev) const;
+  // Arcs under a non-uniform scale are fitted again within tol_mm.
+  Contour transform(const Contour& c, const Affine& a, double& dev, double tol_mm) const;
 
   const ScanResult& scan_;
   const std::vector<Payload>& pay_;
@@ -383,7 +385,7 @@ std::optional<Diagnostic> Expander::check_expansion() {
   return std::nullopt;
 }
 
-Contour Expander::transform(const Contour& c, const Affine& a, double& dev) const {
+Contour Expander::transform(const Contour& c, const Affine& a, double& dev, double tol_mm) const {
   Contour r;
   r.closed = c.closed;
   const std::size_t n = c.vertices.size();
@@ -419,7 +421,7 @@ Contour Expander::transform(const Contour& c, const Affine& a, double& dev) cons
     };
     pc.t0 = 0;
     pc.t1 = 1;
-    dev = std::max(dev, detail::fit_biarcs(pc, opt_.curve_tol_mm, r.vertices));
+    dev = std::max(dev, detail::fit_biarcs(pc, tol_mm, r.vertices));
   }
   if (!c.closed && n > 0) r.vertices.push_back({a.apply(c.vertices.back().p), 0.0});
   return r;
@@ -484,7 +486,7 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
       const Vec2 b = p.center + Vec2{std::cos(a1 + sweep), std::sin(a1 + sweep)} * p.radius;
       c.vertices = {{a, std::tan(sweep / 4)}, {b, 0.0}};
     }
-    results.push_back(transform(c, to, dev));
+    results.push_back(transform(c, to, dev, tol));
   } else if (e.type == "LWPOLYLINE" || e.type == "POLYLINE") {
     Contour c;
     c.vertices = p.vertices;
@@ -502,7 +504,7 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
       warn_entity(e.type + " without vertices skipped", e, layer);
       return std::nullopt;
     }
-    results.push_back(transform(c, poly3d ? t : to, dev));
+    results.push_back(transform(c, poly3d ? t : to, dev, tol));
   } else if (e.type == "ELLIPSE") {
     // WCS: P(u) = C + M cos u + ratio (N x M) sin u, u from start to end parameter (radians,
     // not angles); with N = (0,0,-1) the minor axis flips and the ellipse runs clockwise.
@@ -603,10 +605,33 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
           return entity_error(e.type + " lies more than 1e6 mm from the origin after INSERT and unit scaling", top);
         }
       }
-      const Vec2 ts = t.apply_linear(p.tan_start), te = t.apply_linear(p.tan_end);
       const bool has_ts = geometry::norm(p.tan_start) > 0, has_te = geometry::norm(p.tan_end) > 0;
-      c.vertices = detail::fit_points_to_arcs(pts, closed_flag, has_ts ? &ts : nullptr, has_te ? &te : nullptr, tol, &dev);
-      if (closed_flag && c.vertices.size() > 2) c.closed = true;
+      // Without its end tangents (codes 12, 13) the file leaves the curve's ends open to choice:
+      // natural ends (no curvature) here; CAD programs estimate directions each their own way
+      // (ezdxf's estimates for BricsCAD lie 0.5-1.2 mm from natural ends on 50-mm curves).
+      if (!closed_flag && (!has_ts || !has_te))
+        warn_entity("SPLINE through fit points without its end tangents: its ends are taken as natural (no curvature); "
+                    "the CAD program that drew it may bend them otherwise, by up to about 1 mm near the ends",
+                    e, layer, "dxf.spline_fit_ends");
+      if (t.is_similarity()) {
+        const Vec2 ts = t.apply_linear(p.tan_start), te = t.apply_linear(p.tan_end);
+        c.vertices = detail::fit_points_to_arcs(pts, closed_flag, has_ts ? &ts : nullptr, has_te ? &te : nullptr, tol, &dev);
+        if (closed_flag && c.vertices.size() > 2) c.closed = true;
+      } else {
+        // The curve through the fit points is the block's, spaced by chord length there: a
+        // non-uniform scale changes the chords' ratios, so fitting the scaled points would draw
+        // another curve (0.65 mm off under a 3 x 0.5 scale). Fitted in the block, then scaled, the
+        // two steps sharing the tolerance (the scale's Frobenius norm bounds its stretch).
+        const double stretch = std::sqrt(t.m00 * t.m00 + t.m01 * t.m01 + t.m10 * t.m10 + t.m11 * t.m11);
+        double block_dev = 0;
+        Contour local;
+        local.vertices = detail::fit_points_to_arcs(arrays.fit, closed_flag, has_ts ? &p.tan_start : nullptr,
+                                                    has_te ? &p.tan_end : nullptr, 0.5 * tol / stretch, &block_dev);
+        local.closed = closed_flag && local.vertices.size() > 2;
+        double scaled_dev = 0;
+        c = transform(local, t, scaled_dev, 0.5 * tol);
+        dev = block_dev * stretch + scaled_dev;
+      }
     } else {
       warn_entity("SPLINE without control or fit points skipped", e, layer);
       return std::nullopt;

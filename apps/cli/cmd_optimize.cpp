@@ -177,10 +177,13 @@ std::string printed_warnings(const std::string& nest, const std::vector<Diagnost
                                                     (on_edge > 5 ? ", ..." : "") + "): a mark on the part there",
                                                 nest)) + "\n";
   }
-  // A unit the drawing names but cutroute cannot read scales the whole program, and a --sheet size
-  // no border has leaves out another border or none: said always.
+  // A unit the drawing names but cutroute cannot read scales the whole program, a --sheet size
+  // no border has leaves out another border or none, and curves the CAD program hides are cut
+  // though the drawing looked right without them: said always.
   for (Diagnostic d : loading) {
-    if (d.code != "dxf.units_ignored" && d.code != "nest.sheet_size") continue;
+    if (d.code != "dxf.units_ignored" && d.code != "nest.sheet_size" && d.code != "dxf.hidden_layer" &&
+        d.code != "dxf.invisible")
+      continue;
     if (d.file.empty()) d.file = nest;
     out += "cutroute: " + format(d) + "\n";
   }

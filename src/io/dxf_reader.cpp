@@ -310,6 +310,10 @@ class Expander {
   std::vector<int> path_;       // blocks being visited, for the cycle message
   std::size_t undefined_warnings_ = 0;
   std::size_t degenerate_warnings_ = 0;
+  // Curves read from layers the drawing hides (by index in scan_.hidden_layers), and from
+  // entities marked invisible: cut like any other, and said.
+  std::map<std::size_t, std::size_t> hidden_read_;
+  std::size_t invisible_read_ = 0;
 };
 
 // MINSERT rows and columns; 0 or negative counts (invalid) are read as 1.
@@ -731,6 +735,9 @@ std::optional<Diagnostic> Expander::emit(int idx, const Affine& t, const std::st
     ++out_.skipped[e.type];
     return std::nullopt;
   }
+  for (std::size_t h = 0; h < scan_.hidden_layers.size(); ++h)
+    if (upper(scan_.hidden_layers[h].first) == upper(layer)) ++hidden_read_[h];
+  if (e.invisible) ++invisible_read_;
   auto d = curve(e, p, t, layer, here, block);
   // An error in a block's entity is reported at its top-level INSERT; name the entity itself too.
   if (d && depth > 0) {
@@ -750,6 +757,27 @@ std::optional<Diagnostic> Expander::run() {
                                                 " skipped (not cut)",
                                             out_.file));
     out_.diagnostics.back().code = "dxf.type_skipped";
+  }
+  // A layer turned off or frozen in the CAD program (construction lines, an old revision) shows
+  // nothing there, so a drawing that looks right can cut more than it shows.
+  for (const auto& [h, n] : hidden_read_) {
+    const std::string& name = scan_.hidden_layers[h].first;
+    Diagnostic d = make_warning("a layer " + scan_.hidden_layers[h].second +
+                                    " in the drawing (the CAD program does not show it) has " + std::to_string(n) +
+                                    " curve entit" + (n == 1 ? "y, cut" : "ies, cut") + " like the others: --ignore-layers " +
+                                    name + " leaves " + (n == 1 ? "it" : "them") + " out",
+                                out_.file);
+    d.code = "dxf.hidden_layer";
+    d.layer = name;
+    out_.diagnostics.push_back(std::move(d));
+  }
+  if (invisible_read_ > 0) {
+    out_.diagnostics.push_back(make_warning(std::to_string(invisible_read_) + " curve entit" +
+                                                (invisible_read_ == 1 ? "y" : "ies") +
+                                                " marked invisible (group 60), which the CAD program does not show, "
+                                                "cut like the others",
+                                            out_.file));
+    out_.diagnostics.back().code = "dxf.invisible";
   }
   return check_layer_filters();
 }

@@ -195,6 +195,19 @@ class Scanner {
   bool in_block_header_ = false;
   bool in_endblk_ = false;
   std::size_t paperspace_skipped_ = 0;
+  // The LAYER table entry being read (TABLES section): its name, flags and colour.
+  struct LayerEntry {
+    bool open = false;
+    std::string name;
+    long flags = 0, colour = 0;
+  } layer_entry_;
+  void finish_layer_entry() {
+    if (!layer_entry_.open) return;
+    const bool frozen = (layer_entry_.flags & 1) != 0, off = layer_entry_.colour < 0;
+    if (frozen || off)
+      r_.hidden_layers.emplace_back(layer_entry_.name, off && frozen ? "off and frozen" : off ? "off" : "frozen");
+    layer_entry_ = LayerEntry{};
+  }
   std::string charset_ = "CP1252";  // iconv name of $DWGCODEPAGE (AutoCAD's default when absent)
 };
 
@@ -281,6 +294,7 @@ std::optional<Diagnostic> Scanner::entity_pair(int code, std::string_view value,
     case 8: e.layer = text(v); break;
     case 2: if (e.type == "INSERT") e.block_name = text(v); break;
     case 67: if (parse_int(v, iv)) e.paperspace = iv == 1; break;
+    case 60: if (parse_int(v, iv)) e.invisible = iv == 1; break;
     case 70:
       if (parse_int(v, iv)) {
         e.flags = static_cast<int>(std::clamp(iv, -1000000L, 1000000L));
@@ -485,12 +499,25 @@ Result<ScanResult> Scanner::run() {
             return error("BLOCK '" + r_.blocks[static_cast<std::size_t>(block_)].name + "' has no ENDBLK", code_no);
           }
           if (section_ == "ENTITIES") entities_closed_ = true;
+          finish_layer_entry();
           block_ = -1;
           in_endblk_ = false;
           in_block_header_ = false;
           owner_ = -1;
           state = State::top;
           section_.clear();
+          break;
+        }
+        if (section_ == "TABLES") {
+          if (code == 0) {
+            finish_layer_entry();
+            layer_entry_.open = value == "LAYER";
+          } else if (layer_entry_.open) {
+            long iv = 0;
+            if (code == 2) layer_entry_.name = text(value);
+            else if (code == 70 && parse_int(value, iv)) layer_entry_.flags = iv;
+            else if (code == 62 && parse_int(value, iv)) layer_entry_.colour = iv;
+          }
           break;
         }
         if (section_ == "HEADER") {

@@ -18,6 +18,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <cutroute/core/result.hpp>
@@ -33,6 +34,7 @@ struct ScanEntity {
   int block = -1;               // index in ScanResult::blocks, -1 = ENTITIES section
   int owner = -1;               // VERTEX/SEQEND/ATTRIB: index of the POLYLINE/INSERT they belong to
   bool paperspace = false;      // group 67 = 1
+  bool invisible = false;       // group 60 = 1: the CAD program does not draw it
   int flags = 0;                // first group 70 (polyline/spline flags)
   bool forwarded = false;       // handed to dxflib
   int spline = -1;              // SPLINE: index in ScanResult::splines
@@ -64,6 +66,9 @@ struct ScanResult {
   std::vector<ScanBlock> blocks;
   std::vector<int> modelspace;       // top-level entities of the ENTITIES section
   std::vector<ScanSpline> splines;
+  // Layers the LAYER table has turned off (colour < 0) or frozen (flag 1): the CAD program shows
+  // nothing of them. Name as written, and "off", "frozen" or "off and frozen".
+  std::vector<std::pair<std::string, std::string>> hidden_layers;
   std::optional<int> insunits;       // $INSUNITS
   std::optional<int> measurement;    // $MEASUREMENT
   std::string dxflib_text;           // sanitised text for dxflib (LF line ends)

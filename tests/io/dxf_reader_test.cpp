@@ -592,6 +592,45 @@ TEST(DxfReader, ExpansionLimitsAreCheckedBeforeExpanding) {
   EXPECT_TRUE(io::read_dxf_string(deep.str(), "x.dxf", shallow).ok());
 }
 
+// Curves the CAD program hides (a layer turned off or frozen in the LAYER table, an entity marked
+// invisible) are cut like the others, and said: a drawing that looks right on screen can hold
+// construction lines or an old revision there. Layer names match without regard to case.
+TEST(DxfReader, HiddenLayersAndInvisibleEntitiesAreCutAndSaid) {
+  const std::string text =
+      "0\nSECTION\n2\nTABLES\n0\nTABLE\n2\nLAYER\n70\n3\n"
+      "0\nLAYER\n2\nOff\n70\n0\n62\n-7\n6\nCONTINUOUS\n"
+      "0\nLAYER\n2\nFrozen\n70\n1\n62\n7\n6\nCONTINUOUS\n"
+      "0\nLAYER\n2\nShown\n70\n0\n62\n7\n6\nCONTINUOUS\n"
+      "0\nENDTAB\n0\nENDSEC\n"
+      "0\nSECTION\n2\nENTITIES\n"
+      "0\nCIRCLE\n8\nOff\n10\n0\n20\n0\n40\n5\n"
+      "0\nCIRCLE\n8\nFROZEN\n10\n20\n20\n0\n40\n5\n"
+      "0\nCIRCLE\n8\nFROZEN\n10\n40\n20\n0\n40\n5\n"
+      "0\nCIRCLE\n8\nShown\n10\n60\n20\n0\n40\n5\n"
+      "0\nCIRCLE\n8\nShown\n60\n1\n10\n80\n20\n0\n40\n5\n"
+      "0\nENDSEC\n0\nEOF\n";
+  auto r = io::read_dxf_string(text, "h.dxf", {});
+  ASSERT_TRUE(r.ok()) << format(r.error());
+  EXPECT_EQ(r->entities.size(), 5u);
+  std::vector<std::string> said;
+  for (const auto& d : r->diagnostics) {
+    said.push_back(d.code + " " + d.layer);
+    if (d.code == "dxf.hidden_layer" && d.layer == "Frozen") {
+      EXPECT_NE(d.message.find("a layer frozen in the drawing"), std::string::npos) << d.message;
+      EXPECT_NE(d.message.find("has 2 curve entities"), std::string::npos) << d.message;
+      EXPECT_NE(d.message.find("--ignore-layers Frozen"), std::string::npos) << d.message;
+    }
+  }
+  EXPECT_EQ(said, (std::vector<std::string>{"dxf.hidden_layer Off", "dxf.hidden_layer Frozen", "dxf.invisible "}));
+  // Left out as the warning says, nothing hidden is read, and nothing is said.
+  io::DxfOptions opt;
+  opt.ignore_layers = {"Off", "Frozen"};
+  auto kept = io::read_dxf_string(text, "h.dxf", opt);
+  ASSERT_TRUE(kept.ok());
+  EXPECT_EQ(kept->entities.size(), 2u);
+  for (const auto& d : kept->diagnostics) EXPECT_NE(d.code, "dxf.hidden_layer") << d.message;
+}
+
 TEST(DxfReader, EntityLevelErrorsNameTheEntity) {
   struct Case {
     std::function<void(DxfBuilder&)> draw;

@@ -485,7 +485,7 @@ std::vector<Vertex> nurbs_to_arcs(const Nurbs& s, double tol_mm, double* max_dev
   double dev = 0;
   const int p = s.degree;
   const std::size_t n = s.control.size();
-  if (p < 1 || p > 30 || n < static_cast<std::size_t>(p) + 1 || s.knots.size() != n + static_cast<std::size_t>(p) + 1) return out;
+  if (p < 1 || p > kMaxSplineDegree || n < static_cast<std::size_t>(p) + 1 || s.knots.size() != n + static_cast<std::size_t>(p) + 1) return out;
   if (!s.weights.empty() && s.weights.size() != n) return out;
   Vec2 prev_end;
   bool have_prev = false;

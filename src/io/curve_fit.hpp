@@ -77,6 +77,9 @@ struct Nurbs {
 // choosing the span picks the one-sided derivative at a knot.
 Vec2 nurbs_point(const Nurbs& s, std::size_t span, double u, Vec2* derivative);
 
+// The highest SPLINE degree read: the basis functions are evaluated in fixed arrays of 32.
+inline constexpr int kMaxSplineDegree = 30;
+
 // Converts a spline given by control points into bulge vertices within tol_mm; spans are fitted
 // separately so that knots of full multiplicity (corners) stay corners. Returns the vertices of
 // an open polyline including the end point; empty if the data is unusable.

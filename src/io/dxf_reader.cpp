@@ -574,8 +574,10 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
       for (std::size_t i = 1; i < s.knots.size(); ++i) {
         if (s.knots[i] < s.knots[i - 1]) return entity_error("SPLINE knots are not in increasing order", top);
       }
-      if (s.degree < 1 || s.degree > 64)
-        return entity_error("SPLINE of degree " + std::to_string(s.degree) + ": only degrees 1 to 64 are read", top);
+      if (s.degree < 1 || s.degree > detail::kMaxSplineDegree)
+        return entity_error("SPLINE of degree " + std::to_string(s.degree) + ": only degrees 1 to " +
+                                std::to_string(detail::kMaxSplineDegree) + " are read",
+                            top);
       const std::size_t need = s.control.size() + static_cast<std::size_t>(s.degree) + 1;
       if (s.control.size() < static_cast<std::size_t>(s.degree) + 1 || s.knots.size() != need) {
         return entity_error("SPLINE of degree " + std::to_string(s.degree) + " with " + std::to_string(s.control.size()) +

@@ -222,8 +222,9 @@ double units_rule(std::optional<int> insunits, std::optional<int> measurement, c
 }
 
 // Object coordinate system of an extrusion direction (DXF "arbitrary axis algorithm"), projected
-// onto the XY plane: for (0,0,-1) this is x -> -x, which also reverses arc directions.
-Affine ocs(Vec3 n) {
+// onto the XY plane: for (0,0,-1) this is x -> -x, which also reverses arc directions. A plane
+// tilted from XY at height `elevation` along its normal lies shifted by that height's XY share.
+Affine ocs(Vec3 n, double elevation = 0) {
   const double len = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
   if (!(len > 0) || !std::isfinite(len)) return Affine{};
   n = {n.x / len, n.y / len, n.z / len};
@@ -241,7 +242,15 @@ Affine ocs(Vec3 n) {
   a.m01 = ay.x;
   a.m10 = ax.y;
   a.m11 = ay.y;
+  a.t = {elevation * n.x, elevation * n.y};
   return a;
+}
+
+// The extrusion of a plane more than about 0.1 degree off the XY plane (real drawings carry
+// normals a few 1e-9 off -Z).
+bool tilted(Vec3 n) {
+  const double len = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+  return len > 0 && std::isfinite(len) && std::hypot(n.x, n.y) > 2e-3 * len;
 }
 
 bool within_limit(Vec2 p) {
@@ -314,6 +323,7 @@ class Expander {
   // entities marked invisible: cut like any other, and said.
   std::map<std::size_t, std::size_t> hidden_read_;
   std::size_t invisible_read_ = 0;
+  std::size_t tilted_ = 0;  // entities in tilted planes (the first is said)
 };
 
 // MINSERT rows and columns; 0 or negative counts (invalid) are read as 1.
@@ -456,7 +466,10 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
   const double tol = opt_.curve_tol_mm;
   std::vector<Contour> results;
   double dev = 0;
-  const Affine to = t.then_after(ocs(p.extrusion));
+  const Affine to = t.then_after(ocs(p.extrusion, e.elevation));
+  if (e.type != "LINE" && e.type != "SPLINE" && tilted(p.extrusion) && tilted_++ == 0)
+    warn_entity(e.type + " lies in a plane tilted from the XY plane: its outline as seen from above is cut", e, layer,
+                "dxf.tilted_plane");
   if (e.type == "LINE") {
     Contour c;
     c.vertices = {{t.apply(p.p1), 0.0}, {t.apply(p.p2), 0.0}};
@@ -714,7 +727,7 @@ std::optional<Diagnostic> Expander::emit(int idx, const Affine& t, const std::st
       return std::nullopt;
     }
     const auto [rows, cols] = grid(p);
-    const Affine base = t.then_after(ocs(p.extrusion))
+    const Affine base = t.then_after(ocs(p.extrusion, e.elevation))
                             .then_after(Affine::translate(p.ins))
                             .then_after(Affine::rotate(p.angle * kPi / 180));
     for (int r = 0; r < rows; ++r) {

@@ -295,6 +295,15 @@ std::optional<Diagnostic> Scanner::entity_pair(int code, std::string_view value,
     case 2: if (e.type == "INSERT") e.block_name = text(v); break;
     case 67: if (parse_int(v, iv)) e.paperspace = iv == 1; break;
     case 60: if (parse_int(v, iv)) e.invisible = iv == 1; break;
+    case 30:
+      // In an entity's own coordinate system the first z is its plane's height, which moves it
+      // sideways when the plane is tilted (LINE, ELLIPSE, SPLINE and VERTEX z are not).
+      if (!e.has_elevation && (e.type == "ARC" || e.type == "CIRCLE" || e.type == "INSERT" || e.type == "POLYLINE"))
+        e.elevation = last_real_, e.has_elevation = true;
+      break;
+    case 38:
+      if (e.type == "LWPOLYLINE") e.elevation = last_real_, e.has_elevation = true;
+      break;
     case 70:
       if (parse_int(v, iv)) {
         e.flags = static_cast<int>(std::clamp(iv, -1000000L, 1000000L));

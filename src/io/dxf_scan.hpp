@@ -35,6 +35,8 @@ struct ScanEntity {
   int owner = -1;               // VERTEX/SEQEND/ATTRIB: index of the POLYLINE/INSERT they belong to
   bool paperspace = false;      // group 67 = 1
   bool invisible = false;       // group 60 = 1: the CAD program does not draw it
+  double elevation = 0;         // the OCS z of an ARC, CIRCLE, INSERT, POLYLINE (first group 30) or LWPOLYLINE (38)
+  bool has_elevation = false;
   int flags = 0;                // first group 70 (polyline/spline flags)
   bool forwarded = false;       // handed to dxflib
   int spline = -1;              // SPLINE: index in ScanResult::splines

@@ -631,6 +631,37 @@ TEST(DxfReader, HiddenLayersAndInvisibleEntitiesAreCutAndSaid) {
   for (const auto& d : kept->diagnostics) EXPECT_NE(d.code, "dxf.hidden_layer") << d.message;
 }
 
+// An entity in a tilted plane (extrusion (0.6, 0, 0.8)) at height 20 along its normal lies 12 mm
+// sideways of the same entity at height 0; the height was dropped (ezdxf: x 4..12 for the circle).
+// Worked by hand: the plane's axes are Ax = (0, 1, 0), Ay = (-0.8, 0, 0.6), so (x, y, 20) is seen
+// from above at (12 - 0.8 y, x).
+TEST(DxfReader, TiltedPlanesKeepTheirHeightAndAreSaid) {
+  const std::string text =
+      "0\nSECTION\n2\nENTITIES\n"
+      "0\nCIRCLE\n8\n0\n10\n10\n20\n5\n30\n20\n40\n5\n210\n0.6\n220\n0\n230\n0.8\n"
+      "0\nLWPOLYLINE\n8\n0\n90\n4\n70\n1\n38\n20\n10\n100\n20\n0\n10\n110\n20\n0\n10\n110\n20\n10\n10\n100\n20\n10\n"
+      "210\n0.6\n220\n0\n230\n0.8\n"
+      "0\nCIRCLE\n8\n0\n10\n-50\n20\n0\n30\n35\n40\n5\n210\n0\n220\n0\n230\n-1\n"
+      "0\nENDSEC\n0\nEOF\n";
+  auto r = io::read_dxf_string(text, "t.dxf", {});
+  ASSERT_TRUE(r.ok()) << format(r.error());
+  ASSERT_EQ(r->entities.size(), 3u);
+  const auto near = [](const geometry::Box& b, double x0, double y0, double x1, double y1) {
+    return std::abs(b.xmin - x0) < 1e-6 && std::abs(b.ymin - y0) < 1e-6 && std::abs(b.xmax - x1) < 1e-6 &&
+           std::abs(b.ymax - y1) < 1e-6;
+  };
+  const auto circle = geometry::bounding_box(r->entities[0].path);
+  EXPECT_TRUE(near(circle, 4, 5, 12, 15)) << circle.xmin << " " << circle.ymin << " " << circle.xmax << " " << circle.ymax;
+  const auto square = geometry::bounding_box(r->entities[1].path);
+  EXPECT_TRUE(near(square, 4, 100, 12, 110)) << square.xmin << " " << square.ymin << " " << square.xmax << " " << square.ymax;
+  // Upside down (0, 0, -1) the height moves nothing: x mirrored only.
+  const auto flat = geometry::bounding_box(r->entities[2].path);
+  EXPECT_TRUE(near(flat, 45, -5, 55, 5)) << flat.xmin << " " << flat.xmax;
+  ASSERT_EQ(r->diagnostics.size(), 1u);
+  EXPECT_EQ(r->diagnostics[0].code, "dxf.tilted_plane");
+  EXPECT_EQ(*r->diagnostics[0].line, 5);
+}
+
 TEST(DxfReader, EntityLevelErrorsNameTheEntity) {
   struct Case {
     std::function<void(DxfBuilder&)> draw;

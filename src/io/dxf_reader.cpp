@@ -722,6 +722,8 @@ std::optional<Diagnostic> Expander::emit(int idx, const Affine& t, const std::st
       warn_entity("INSERT of external reference '" + blk.name + "' skipped", e, layer);
       return std::nullopt;
     }
+    // As for ARC angles: a rotation no drawing has would place the block where fmod chose.
+    if (!(std::abs(p.angle) <= 1e6)) return entity_error("INSERT rotation beyond ±1e6 degrees", here);
     if (!(std::abs(p.sx) > 0) || !(std::abs(p.sy) > 0)) {
       if (degenerate_warnings_++ < 20) warn_entity("INSERT with zero scale skipped", e, layer);
       return std::nullopt;

@@ -244,6 +244,14 @@ TEST(DxfBad, AbsurdAnglesAndUnknownUnitsAreSaid) {
   }
   {
     DxfBuilder b;
+    b.begin_block("B").circle({5, 0}, 1).end_block().insert("B", {0, 0}, 1, 1, 1e300);
+    const auto r = io::read_dxf_string(b.str(), "insert.dxf", {});
+    ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.error().message, "INSERT rotation beyond ±1e6 degrees");
+    EXPECT_TRUE(r.error().line.has_value());
+  }
+  {
+    DxfBuilder b;
     b.ellipse({0, 0}, {2, 0}, 0.5, 0, -1e7);
     const auto r = io::read_dxf_string(b.str(), "ellipse.dxf", {});
     ASSERT_FALSE(r.ok());

@@ -178,11 +178,11 @@ std::string printed_warnings(const std::string& nest, const std::vector<Diagnost
                                                 nest)) + "\n";
   }
   // A unit the drawing names but cutroute cannot read scales the whole program, a --sheet size
-  // no border has leaves out another border or none, and curves the CAD program hides are cut
-  // though the drawing looked right without them: said always.
+  // no border has leaves out another border or none, curves the CAD program hides are cut though
+  // the drawing looked right without them, and a tilted plane is cut as seen from above: said always.
   for (Diagnostic d : loading) {
     if (d.code != "dxf.units_ignored" && d.code != "nest.sheet_size" && d.code != "dxf.hidden_layer" &&
-        d.code != "dxf.invisible")
+        d.code != "dxf.invisible" && d.code != "dxf.tilted_plane")
       continue;
     if (d.file.empty()) d.file = nest;
     out += "cutroute: " + format(d) + "\n";

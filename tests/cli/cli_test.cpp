@@ -188,6 +188,26 @@ TEST(Cli, BatchFolderThatCannotBeMadeIsSaid) {
   fs::remove_all(dir);
 }
 
+// What the drawing hides on screen (a layer turned off, an invisible entity) or shows tilted is
+// cut, and every run says so on stderr, not only in the report.
+TEST(Cli, CurvesTheDrawingHidesAreSaidOnEveryRun) {
+  const auto dir = temp_dir("hidden");
+  std::ofstream(dir / "h.dxf")
+      << "0\nSECTION\n2\nTABLES\n0\nTABLE\n2\nLAYER\n0\nLAYER\n2\nOLD\n70\n0\n62\n-1\n0\nENDTAB\n0\nENDSEC\n"
+         "0\nSECTION\n2\nENTITIES\n"
+         "0\nCIRCLE\n8\n0\n10\n0\n20\n0\n40\n5\n"
+         "0\nCIRCLE\n8\nOLD\n10\n30\n20\n0\n40\n5\n"
+         "0\nCIRCLE\n8\n0\n60\n1\n10\n60\n20\n0\n40\n5\n"
+         "0\nCIRCLE\n8\n0\n10\n90\n20\n0\n30\n0\n40\n5\n210\n0.6\n220\n0\n230\n0.8\n"
+         "0\nENDSEC\n0\nEOF\n";
+  const auto r = run_command(cli_path() + " optimize " + (dir / "h.dxf").string() + " -o " + (dir / "h.ngc").string() +
+                             " --time-limit 0.5 --quiet");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  for (const char* said : {"a layer off in the drawing", "--ignore-layers OLD", "marked invisible",
+                           "lies in a plane tilted from the XY plane"})
+    EXPECT_NE(r.err.find(said), std::string::npos) << said << "\n" << r.err;
+}
+
 TEST(Cli, MissingFileIsAnInputErrorNamingTheFile) {
   auto r = run_command(cli_path() + " inspect /nonexistent/nest.dxf");
   EXPECT_EQ(r.exit_code, 2);

@@ -50,13 +50,20 @@ void add_inspect(CLI::App& root, Commands& out) {
     if (!opts->svg.empty()) {
       if (auto st = io::write_file_atomic(opts->svg, io::nest_to_svg(*loaded)); !st) return fail(st.error());
     }
+    // Errors always; in the text form the warnings too (the JSON lists them), the first 20 of
+    // them: the count alone ("2 warnings") left the reader to guess what the drawing holds.
     int errors = 0;
+    std::size_t warnings = 0;
     for (const auto& d : loaded->diagnostics) {
       if (d.severity == Severity::error) {
         std::cerr << "cutroute: " << format(d) << '\n';
         ++errors;
+      } else if (!opts->json && warnings++ < 20) {
+        std::cerr << "cutroute: " << format(d) << '\n';
       }
     }
+    if (!opts->json && warnings > 20)
+      std::cerr << "cutroute: " << opts->nest << ": " << (warnings - 20) << " more warning(s): --json lists them all\n";
     return errors > 0 ? kInputError : kOk;
   }});
 }

@@ -281,6 +281,23 @@ KerfNest offset_for_kerf(const Nest& drawn, double kerf_mm) {
                                            drawn.contours[ca]));
     }
   }
+  // A part in a hole less than a kerf from its edge all round: the hole's toolpath shrinks and
+  // the part's grows past it, so the two never meet, yet each cut takes from the other. Their
+  // order is then inverted: the hole's path lies inside the part's.
+  for (const Part& part : drawn.parts) {
+    if (!part.inside_hole.valid()) continue;
+    const auto ip = static_cast<std::size_t>(part.outer.value()), ih = static_cast<std::size_t>(part.inside_hole.value());
+    if (!offset_ok[ip] || !offset_ok[ih]) continue;
+    const Contour& hole_path = out.nest.contours[part.inside_hole].source.contour;
+    if (hole_path.vertices.empty() || geometry::winding_number(sets[ip], hole_path.vertices.front().p) == 0) continue;
+    if (geometry::boundary_contact(sets[ih], sets[ip], tol::kSamePointMm).any()) continue;  // listed above
+    if (++overlaps > kListedOverlaps) continue;
+    out.diagnostics.push_back(diagnostic(Severity::error, "kerf.overlap",
+                                         "the toolpaths of " + name(drawn, part.inside_hole) + " and " +
+                                             name(drawn, part.outer) + " pass each other: the part lies closer than the kerf (" +
+                                             kerf_text + ") to the hole's edge all round, so cutting one cuts into the other",
+                                         drawn.contours[part.outer]));
+  }
   if (overlaps > kListedOverlaps) {
     Diagnostic d;
     d.severity = Severity::error;

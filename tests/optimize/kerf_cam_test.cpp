@@ -185,6 +185,41 @@ TEST(KerfCam, HoleSmallerThanTheKerfIsAnInputError) {
   fs::remove_all(dir);
 }
 
+// A part in a hole 0.2 mm from its edge all round, under a 0.3 mm kerf: the hole's toolpath shrinks
+// and the part's grows past it, so the two never meet and the pair passed; each cut took 0.1 mm
+// from the other (found by an audit: square and round rings). 0.4 mm apart is fine.
+TEST(KerfCam, APartInAHoleCloserThanTheKerfAllRoundIsAnOverlap) {
+  const auto dir = temp_dir("cam-ring");
+  for (const double gap : {0.2, 0.4}) {
+    for (const bool round : {false, true}) {
+      const auto dxf = (dir / "ring.dxf").string();
+      DxfBuilder b;
+      b.insunits(4);
+      if (round) {
+        b.circle({50, 50}, 40).circle({50, 50}, 20).circle({50, 50}, 20 - gap);
+      } else {
+        b.lwpolyline({{{0, 0}, 0}, {{100, 0}, 0}, {{100, 100}, 0}, {{0, 100}, 0}}, true);
+        b.lwpolyline({{{10, 10}, 0}, {{90, 10}, 0}, {{90, 90}, 0}, {{10, 90}, 0}}, true);
+        const double a = 10 + gap, z = 90 - gap;
+        b.lwpolyline({{{a, a}, 0}, {{z, a}, 0}, {{z, z}, 0}, {{a, z}, 0}}, true);
+      }
+      write(dxf, b.str());
+      auto loaded = io::load_nest(dxf, io::NestLoadOptions{});
+      ASSERT_TRUE(loaded.ok());
+      const auto kerf = model::offset_for_kerf(loaded->nest, 0.3);
+      std::size_t overlaps = 0;
+      for (const auto& d : kerf.diagnostics) {
+        overlaps += d.code == "kerf.overlap" && d.severity == Severity::error;
+        if (d.code == "kerf.overlap") {
+          EXPECT_NE(d.message.find("pass each other"), std::string::npos) << d.message;
+        }
+      }
+      EXPECT_EQ(overlaps, gap < 0.3 ? 1u : 0u) << "gap " << gap << (round ? " round" : " square");
+    }
+  }
+  fs::remove_all(dir);
+}
+
 // Parts 0.2 mm apart under a 0.3 mm kerf: cutting one cuts into the other.
 TEST(KerfCam, PartsCloserThanTheKerfAreRefusedUnlessAllowed) {
   const auto dir = temp_dir("cam-close");

@@ -156,7 +156,7 @@ std::string printed_warnings(const std::string& nest, const std::vector<Diagnost
   std::string out;
   for (Diagnostic d : route) {
     if (d.code != "tip_up.time_limit" && d.code != "refine.time_limit" && d.code != "technique.time_limit" && d.code != "run.interrupted" &&
-        d.code != "kerf.controller_detail" && d.code != "kerf.offset_written" && d.code != "program.readback" && d.code != "nest.smaller_than_kerf" && d.code != "nest.kerf_loss" && d.code != "machine.work_area" &&
+        d.code != "kerf.controller_detail" && d.code != "kerf.offset_written" && d.code != "program.readback" && d.code != "nest.smaller_than_kerf" && d.code != "nest.kerf_loss" && d.code != "nest.closer_than_kerf" && d.code != "machine.work_area" &&
         d.code != "tabs.resumed_on_path" && d.code != "tabs.part_without_skeleton_edge" && d.code != "tabs.on_a_neighbours_cut")
       continue;
     if (d.file.empty()) d.file = nest;

@@ -1,1 +1,2 @@
 list(APPEND CUTROUTE_MODEL_SOURCES kerf_offset.cpp)
+list(APPEND CUTROUTE_MODEL_SOURCES kerf_neighbours.cpp)

@@ -28,6 +28,7 @@
 #include <cutroute/model/chains.hpp>
 #include <cutroute/model/common_lines.hpp>
 #include <cutroute/model/cut_job.hpp>
+#include <cutroute/model/kerf_neighbours.hpp>
 #include <cutroute/model/kerf_offset.hpp>
 #include <cutroute/model/multi_segment.hpp>
 #include <cutroute/nc/compensation_check.hpp>
@@ -910,6 +911,24 @@ Result<OptimizeResult> optimize_nest(const io::LoadedNest& loaded, const Optimiz
                                 "cuts it once");
     w.code = "nest.kerf_loss";
     result.diagnostics.push_back(std::move(w));
+  }
+  // Parts less than a kerf apart (side by side, or in a hole) lose material to each other's cut
+  // whatever the toolpath; the cam kerf mode refuses them (kerf.overlap), common-line cutting
+  // cuts such a gap once. With the controller's compensation the program stands, so it is said.
+  if (best && built[chosen] != Technique::common && o.kerf_mode != nc::KerfMode::cam) {
+    const model::KerfNeighbours close = model::closer_than_kerf(nest, s.entries.kerf_mm, tol::kSamePointMm);
+    if (close.pairs > 0) {
+      const auto name = [&](model::ContourId id) {
+        const auto& c = nest.contours[id];
+        return "part " + std::to_string(c.part.value() + 1) + (c.role == model::ContourRole::hole ? " hole" : " outer");
+      };
+      Diagnostic w = make_warning(std::to_string(close.pairs) + " pair(s) of contours lie closer than the kerf (" +
+                                  format_fixed(s.entries.kerf_mm, 3) + " mm) without touching (first: " + name(close.first_a) +
+                                  " and " + name(close.first_b) + " near " + format_position(close.near.x, close.near.y, loaded.unit) +
+                                  "): cutting one takes material from the other; --kerf-mode cam refuses such a nest");
+      w.code = "nest.closer_than_kerf";
+      result.diagnostics.push_back(std::move(w));
+    }
   }
   if (!unsolved.empty()) {
     const std::string names = join(unsolved, ", ");

@@ -7,10 +7,12 @@
 #include <cmath>
 #include <numbers>
 #include <set>
+#include <tuple>
 
 #include <cutroute/core/number_format.hpp>
 #include <cutroute/io/nest_loader.hpp>
 #include <cutroute/model/cut_job.hpp>
+#include <cutroute/model/kerf_neighbours.hpp>
 #include <cutroute/model/kerf_offset.hpp>
 
 #include "optimize_run.hpp"
@@ -216,6 +218,44 @@ TEST(KerfCam, APartInAHoleCloserThanTheKerfAllRoundIsAnOverlap) {
       }
       EXPECT_EQ(overlaps, gap < 0.3 ? 1u : 0u) << "gap " << gap << (round ? " round" : " square");
     }
+  }
+  fs::remove_all(dir);
+}
+
+// With the controller's compensation (the default) parts less than a kerf apart were cut without a
+// word: side by side 0.2 mm under a 0.3 mm kerf, or a part in a hole 0.2 mm from its edge. Exactly
+// a kerf apart loses nothing; touching is the nest's own diagnostic (nest.kerf_loss).
+TEST(KerfController, PartsCloserThanTheKerfAreSaid) {
+  const auto dir = temp_dir("ctl-close");
+  const auto dxf = (dir / "close.dxf").string();
+  const auto square = [](DxfBuilder& b, double x0, double y0, double x1, double y1) {
+    b.lwpolyline({{{x0, y0}, 0}, {{x1, y0}, 0}, {{x1, y1}, 0}, {{x0, y1}, 0}}, true);
+  };
+  for (const auto& [gap, ring, pairs] :
+       {std::tuple{0.2, false, 1u}, std::tuple{0.2, true, 1u}, std::tuple{0.3, false, 0u}, std::tuple{0.0, false, 0u}}) {
+    DxfBuilder b;
+    b.insunits(4);
+    square(b, 0, 0, 40, 40);
+    if (ring) {
+      square(b, 5, 5, 35, 35);
+      square(b, 5 + gap, 5 + gap, 35 - gap, 35 - gap);
+    } else {
+      square(b, 40 + gap, 0, 80, 40);
+    }
+    write(dxf, b.str());
+    auto loaded = io::load_nest(dxf, io::NestLoadOptions{});
+    ASSERT_TRUE(loaded.ok());
+    const auto close = model::closer_than_kerf(loaded->nest, 0.3, 1e-6);
+    EXPECT_EQ(close.pairs, pairs) << gap << (ring ? " ring" : " side");
+    if (pairs == 0 || ring) continue;
+    EXPECT_NEAR(close.near.x, 40, 1e-9);
+    auto r = optimize(dxf, dir, "--kerf 0.3 --technique standard");
+    ASSERT_EQ(r.cmd.exit_code, 0) << r.cmd.err;
+    EXPECT_NE(r.cmd.err.find("1 pair(s) of contours lie closer than the kerf (0.3 mm) without touching"), std::string::npos)
+        << r.cmd.err;
+    int said = 0;
+    for (const auto& d : r.report["diagnostics"]) said += d.value("code", "") == "nest.closer_than_kerf";
+    EXPECT_EQ(said, 1);
   }
   fs::remove_all(dir);
 }

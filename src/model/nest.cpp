@@ -280,6 +280,42 @@ bool is_axis_aligned_rectangle(const NestContour& nc) {
   return std::abs(nc.area_mm2 - nc.box.width() * nc.box.height()) <= tol * perimeter;
 }
 
+// The side lengths of a rectangle in any orientation (a nest drawn rotated, its border with it);
+// nullopt for any other contour. Collinear pieces of a side count as one.
+std::optional<Vec2> rectangle_sides(const NestContour& nc) {
+  const Contour& c = nc.source.contour;
+  const double tol = tol::kSheetRectangleMm;
+  std::vector<Vec2> sides;  // side vectors, collinear pieces summed
+  for (std::size_t i = 0; i < geometry::segment_count(c); ++i) {
+    const geometry::Segment s = geometry::segment(c, i);
+    const Vec2 d = s.b - s.a;
+    const double len = geometry::norm(d);
+    if (s.is_arc() && len * std::abs(s.bulge) / 2.0 > tol) return std::nullopt;
+    if (len <= tol) continue;
+    if (!sides.empty()) {
+      const Vec2 last = sides.back();
+      if (std::abs(geometry::cross(last, d)) <= tol * geometry::norm(last) && geometry::dot(last, d) > 0) {
+        sides.back() = last + d;
+        continue;
+      }
+    }
+    sides.push_back(d);
+  }
+  if (sides.size() == 5 && std::abs(geometry::cross(sides.front(), sides.back())) <= tol * geometry::norm(sides.front()) &&
+      geometry::dot(sides.front(), sides.back()) > 0) {
+    sides.front() = sides.front() + sides.back();  // the first side began mid-way
+    sides.pop_back();
+  }
+  if (sides.size() != 4) return std::nullopt;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const Vec2 a = sides[i], b = sides[(i + 1) % 4];
+    if (std::abs(geometry::dot(a, b)) > tol * geometry::norm(a)) return std::nullopt;
+  }
+  const double w = geometry::norm(sides[0]), h = geometry::norm(sides[1]);
+  if (std::abs(geometry::norm(sides[2]) - w) > tol || std::abs(geometry::norm(sides[3]) - h) > tol) return std::nullopt;
+  return Vec2{w, h};
+}
+
 enum class SheetReason { size, layer, geometry };
 struct SheetCandidate {
   std::size_t index;
@@ -294,7 +330,11 @@ std::optional<SheetCandidate> find_sheet_candidate(const Nest& nest, const NestO
     if (nest.contours[cid(i)].area_mm2 > nest.contours[cid(largest)].area_mm2) largest = i;
   }
   const NestContour& c = nest.contours[cid(largest)];
-  if (!is_axis_aligned_rectangle(c)) return std::nullopt;
+  // A rectangle in any orientation when its size or layer names it the border (a nest drawn
+  // rotated, its border with it: taken for a part, it made every part a hole); by its shape
+  // alone only an axis-aligned one.
+  const std::optional<Vec2> sides = rectangle_sides(c);
+  if (!sides) return std::nullopt;
   const Box outer = c.box.inflated(std::max(options.touch_tol_mm, tol::kSheetOverhangMm));
   for (std::size_t i = 0; i < nest.contours.size(); ++i) {
     if (i != largest && !outer.contains(nest.contours[cid(i)].box)) return std::nullopt;
@@ -302,12 +342,12 @@ std::optional<SheetCandidate> find_sheet_candidate(const Nest& nest, const NestO
   if (options.sheet_size) {
     const Vec2 want = *options.sheet_size;
     auto near = [](double a, double b) { return std::abs(a - b) < tol::kSheetSizeMm; };
-    const bool fits = (near(c.box.width(), want.x) && near(c.box.height(), want.y)) ||
-                      (near(c.box.width(), want.y) && near(c.box.height(), want.x));
+    const bool fits = (near(sides->x, want.x) && near(sides->y, want.y)) || (near(sides->x, want.y) && near(sides->y, want.x));
     if (fits) return SheetCandidate{largest, SheetReason::size};
   }
   if (!options.detect_sheet || nest.contours.size() < 2) return std::nullopt;
   if (layer_names_sheet(c.source.layer)) return SheetCandidate{largest, SheetReason::layer};
+  if (!is_axis_aligned_rectangle(c)) return std::nullopt;
   return SheetCandidate{largest, SheetReason::geometry};
 }
 
@@ -553,9 +593,10 @@ Nest build_nest(std::vector<SourceContour> contours, const NestOptions& options)
     std::string msg = "--sheet " + format_fixed(options.sheet_size->x, 3) + "," + format_fixed(options.sheet_size->y, 3) +
                       " matches no rectangle drawn round the parts (within " + format_fixed(tol::kSheetSizeMm, 3) + " mm)";
     if (sheet) {
-      const Box& b = nest.contours[cid(sheet->index)].box;
+      const NestContour& border = nest.contours[cid(sheet->index)];
+      const Vec2 size = rectangle_sides(border).value_or(Vec2{border.box.width(), border.box.height()});
       msg += ": the border found by its " + std::string(sheet->reason == SheetReason::layer ? "layer" : "shape") + ", " +
-             format_fixed(b.width(), 3) + " x " + format_fixed(b.height(), 3) + " mm, is left uncut";
+             format_fixed(size.x, 3) + " x " + format_fixed(size.y, 3) + " mm, is left uncut";
     } else {
       msg += ": no border is left out, every closed contour is cut";
     }

@@ -214,6 +214,49 @@ TEST(Nest, SheetByGeometryNeedsAPartWithAHole) {
   EXPECT_EQ(nest.max_depth, 2);
 }
 
+// A nest drawn rotated, its border with it: on a sheet layer, or named by --sheet, the border is
+// the sheet (it was taken for a part, and every part became a hole cut with its kerf inside the
+// part). By its shape alone only an axis-aligned rectangle is a border.
+TEST(Nest, ARotatedBorderIsTheSheetByLayerOrSize) {
+  const double a = 37 * std::numbers::pi / 180, c = std::cos(a), s = std::sin(a);
+  const auto turned = [&](const geometry::Contour& in) {
+    geometry::Contour out = in;
+    for (auto& v : out.vertices) v.p = {1000 + c * v.p.x - s * v.p.y, 200 + s * v.p.x + c * v.p.y};
+    return out;
+  };
+  const auto nest_on = [&](const std::string& layer) -> std::vector<SourceContour> {
+    std::vector<SourceContour> in = parts_on_sheet(layer, true);
+    for (auto& sc : in) sc.contour = turned(sc.contour);
+    // The border starting mid-side, as some writers leave it: still four sides.
+    auto& v = in[0].contour.vertices;
+    EXPECT_EQ(v.size(), 4u);
+    const geometry::Vertex mid{(v[0].p + v[1].p) / 2, 0.0};
+    v = {mid, v[1], v[2], v[3], v[0]};
+    return in;
+  };
+  Nest nest = build_nest(nest_on("Sheet"), NestOptions{});
+  ASSERT_TRUE(nest.sheet);
+  EXPECT_EQ(*nest.sheet, find(nest, "SHEET"));
+  EXPECT_EQ(nest.parts.size(), 2u);
+  EXPECT_EQ(nest.contours[find(nest, "P1")].role, ContourRole::outer);
+  EXPECT_EQ(nest.contours[find(nest, "H1")].role, ContourRole::hole);
+  NestOptions sized;
+  sized.sheet_size = Vec2{1500, 3000};
+  nest = build_nest(nest_on("0"), sized);
+  ASSERT_TRUE(nest.sheet);
+  EXPECT_EQ(nest.parts.size(), 2u);
+  for (const auto& d : nest.diagnostics) EXPECT_NE(d.code, "nest.sheet_size") << d.message;
+  // Layer "0", no size: not a border by shape (a rotated rectangular part may hold the rest).
+  nest = build_nest(nest_on("0"), NestOptions{});
+  EXPECT_FALSE(nest.sheet);
+  EXPECT_EQ(nest.contours[find(nest, "P1")].role, ContourRole::hole);
+  // A rotated rhombus of the same area on a sheet layer is no rectangle.
+  std::vector<SourceContour> rh = nest_on("Sheet");
+  rh[0].contour.vertices[1].p = rh[0].contour.vertices[1].p + Vec2{0, 50};
+  nest = build_nest(rh, NestOptions{});
+  EXPECT_FALSE(nest.sheet);
+}
+
 TEST(Nest, SheetBySizeOption) {
   NestOptions opt;
   opt.sheet_size = Vec2{1500, 3000};  // either way round

@@ -267,19 +267,6 @@ bool layer_names_sheet(const std::string& layer) {
   return false;
 }
 
-bool is_axis_aligned_rectangle(const NestContour& nc) {
-  const Contour& c = nc.source.contour;
-  const double tol = tol::kSheetRectangleMm;
-  for (std::size_t i = 0; i < geometry::segment_count(c); ++i) {
-    const geometry::Segment s = geometry::segment(c, i);
-    if (s.is_arc() && geometry::norm(s.b - s.a) * std::abs(s.bulge) / 2.0 > tol) return false;
-    if (std::abs(s.b.x - s.a.x) > tol && std::abs(s.b.y - s.a.y) > tol) return false;
-  }
-  // A rectilinear polygon with the area of its box is its box.
-  const double perimeter = 2.0 * (nc.box.width() + nc.box.height());
-  return std::abs(nc.area_mm2 - nc.box.width() * nc.box.height()) <= tol * perimeter;
-}
-
 // The side lengths of a rectangle in any orientation (a nest drawn rotated, its border with it);
 // nullopt for any other contour. Collinear pieces of a side count as one.
 std::optional<Vec2> rectangle_sides(const NestContour& nc) {
@@ -330,9 +317,8 @@ std::optional<SheetCandidate> find_sheet_candidate(const Nest& nest, const NestO
     if (nest.contours[cid(i)].area_mm2 > nest.contours[cid(largest)].area_mm2) largest = i;
   }
   const NestContour& c = nest.contours[cid(largest)];
-  // A rectangle in any orientation when its size or layer names it the border (a nest drawn
-  // rotated, its border with it: taken for a part, it made every part a hole); by its shape
-  // alone only an axis-aligned one.
+  // A rectangle in any orientation (a nest drawn rotated, its border with it: taken for a part,
+  // it made every part a hole).
   const std::optional<Vec2> sides = rectangle_sides(c);
   if (!sides) return std::nullopt;
   const Box outer = c.box.inflated(std::max(options.touch_tol_mm, tol::kSheetOverhangMm));
@@ -347,7 +333,6 @@ std::optional<SheetCandidate> find_sheet_candidate(const Nest& nest, const NestO
   }
   if (!options.detect_sheet || nest.contours.size() < 2) return std::nullopt;
   if (layer_names_sheet(c.source.layer)) return SheetCandidate{largest, SheetReason::layer};
-  if (!is_axis_aligned_rectangle(c)) return std::nullopt;
   return SheetCandidate{largest, SheetReason::geometry};
 }
 

@@ -216,8 +216,8 @@ TEST(Nest, SheetByGeometryNeedsAPartWithAHole) {
 
 // A nest drawn rotated, its border with it: on a sheet layer, or named by --sheet, the border is
 // the sheet (it was taken for a part, and every part became a hole cut with its kerf inside the
-// part). By its shape alone only an axis-aligned rectangle is a border.
-TEST(Nest, ARotatedBorderIsTheSheetByLayerOrSize) {
+// part), as by its shape alone.
+TEST(Nest, ARotatedBorderIsTheSheet) {
   const double a = 37 * std::numbers::pi / 180, c = std::cos(a), s = std::sin(a);
   const auto turned = [&](const geometry::Contour& in) {
     geometry::Contour out = in;
@@ -246,8 +246,14 @@ TEST(Nest, ARotatedBorderIsTheSheetByLayerOrSize) {
   ASSERT_TRUE(nest.sheet);
   EXPECT_EQ(nest.parts.size(), 2u);
   for (const auto& d : nest.diagnostics) EXPECT_NE(d.code, "nest.sheet_size") << d.message;
-  // Layer "0", no size: not a border by shape (a rotated rectangular part may hold the rest).
+  // Layer "0", no size: a border by its shape as an axis-aligned one, holding a part with a hole.
   nest = build_nest(nest_on("0"), NestOptions{});
+  ASSERT_TRUE(nest.sheet);
+  EXPECT_EQ(nest.contours[find(nest, "P1")].role, ContourRole::outer);
+  // A rotated rectangular plate with plain holes: a part, not a sheet, as when axis-aligned.
+  std::vector<SourceContour> plate = nest_on("0");
+  plate.pop_back();  // H1: no part with a hole left
+  nest = build_nest(plate, NestOptions{});
   EXPECT_FALSE(nest.sheet);
   EXPECT_EQ(nest.contours[find(nest, "P1")].role, ContourRole::hole);
   // A rotated rhombus of the same area on a sheet layer is no rectangle.

@@ -54,8 +54,7 @@ struct Part {
 struct NestOptions {
   // Sheet border: given size (W, H) [mm] from --sheet, else detected: the largest contour that
   // is a rectangle (in any orientation) enclosing every other contour, on a layer named like
-  // sheet/plate/border/blech (case-insensitive substring), or an axis-aligned rectangle enclosing
-  // everything.
+  // sheet/plate/border/blech (case-insensitive substring), or enclosing parts with holes.
   std::optional<geometry::Vec2> sheet_size;
   double touch_tol_mm = 1e-6;   // boundaries closer than this count as touching [mm]
   bool detect_sheet = true;     // false: never look for a border (sheet_size still applies)
@@ -103,8 +102,8 @@ struct Nest {
 //     with a warning: it is cut but holds nothing.
 //  2. find the sheet candidate: the largest contour that is a rectangle whose box encloses every
 //     other contour's box (overhang up to tol::kSheetOverhangMm allowed) and that either matches
-//     options.sheet_size (its sides) or lies on a layer named like sheet/plate/border/blech, in
-//     any orientation (a nest drawn rotated), or is detected by geometry alone, axis-aligned only.
+//     options.sheet_size (its sides) or lies on a layer named like sheet/plate/border/blech or is
+//     detected by geometry alone; in any orientation (a nest drawn rotated).
 //  3. containment tree over the other contours: for every pair of overlapping boxes, one
 //     exact boundary test within touch_tol_mm and, when one box holds the other, one exact
 //     point-in-contour test of a vertex of the smaller. parent = the smallest container.

@@ -157,19 +157,42 @@ class TrailLeads {
     return true;
   }
 
-  // The lead keeps `clearance` from every contour the trail does not cut, and touches the ones
-  // it cuts only at its end on the trail (at_end: its last point, else its first).
+  // Distance from p to the nearest of the contours the trail cuts, looked for up to `reach` [mm].
+  double own_distance(Vec2 p, const std::vector<ContourId>& contours, double reach) const {
+    double best = reach;
+    index_.query(geometry::Box{p.x, p.y, p.x, p.y}.inflated(reach), scratch_);
+    for (const auto i : scratch_) {
+      if (!own(i, contours)) continue;
+      sets_[i].index.visit(geometry::Box{p.x, p.y, p.x, p.y}.inflated(reach), [&](std::uint32_t k) {
+        best = std::min(best, geometry::closest_point(sets_[i].segments[k], p).distance);
+        return true;
+      });
+    }
+    return best;
+  }
+
+  // The lead keeps `clearance` from every contour the trail does not cut, and its kerf off the
+  // material of the ones it cuts except where it joins the trail (at_end: its last point, else its
+  // first), which the trail's own kerf reaches anyway: on parts drawn kerf apart the join lies half
+  // a kerf from them and the whole lead must stay that far (a lead turned by 45° into the gap took
+  // 0.22 mm off a corner at kerf 1.5); on parts drawn touching it lies on them and the last half
+  // kerf of the lead may come as close. Without a kerf: touching them only at the join.
   bool path_ok(const Contour& lead, const std::vector<ContourId>& contours, bool at_end) const {
     const double len = geometry::length(lead);
-    const double trim = std::min(0.05 * len, 0.1);
-    const Contour away = detail::sub_path(lead, at_end ? 0.0 : trim, len - trim);
+    const double half = 0.5 * opt_.kerf_mm;
+    const double need = std::max(tol::kSamePointMm, half - tol::kCommonLineMm);
+    const double at_join = own_distance(at_end ? lead.vertices.back().p : lead.vertices.front().p, contours, need);
+    double trim = 0;  // the stretch next to the join that may come nearer
+    if (at_join < need) trim = half - at_join > tol::kSamePointMm ? half - at_join : std::min(0.05 * len, 0.1);
+    const bool check_own = len - trim > tol::kSamePointMm;
+    const Contour away = check_own ? detail::sub_path(lead, at_end ? 0.0 : trim, len - trim) : lead;
     const auto lead_set = geometry::make_path_set(lead), away_set = geometry::make_path_set(away);
     index_.query(geometry::bounding_box(lead).inflated(clearance_), scratch_);
     const std::vector<std::uint32_t> near = scratch_;
     for (const auto i : near) {
       const bool mine = own(i, contours);
-      if (geometry::count_close_segment_pairs(mine ? away_set : lead_set, sets_[i], mine ? tol::kSamePointMm : clearance_,
-                                              1) > 0)
+      if (mine && !check_own) continue;
+      if (geometry::count_close_segment_pairs(mine ? away_set : lead_set, sets_[i], mine ? need : clearance_, 1) > 0)
         return false;
     }
     return true;

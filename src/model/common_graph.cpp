@@ -68,6 +68,35 @@ double ccw_angle(Vec2 a, Vec2 b) {
   return t < 0 ? t + kTwoPi : t;
 }
 
+// The node of merged stretch ends (end, tangent there): the point nearest to the lines carrying
+// them (least squares), so that the connectors continue each centre line straight to the junction.
+// At a T of parts drawn kerf apart the centroid of the three ends lies off the through line: the
+// connectors dipped toward the corners of the parts beside the stem (0.04 mm into them at kerf
+// 1.5), and the through line's kerf no longer reached the through part's edge across the stem's
+// mouth, which was left to a "loop" narrower than the kerf. The centroid when the lines are
+// parallel or meet farther than `merge` from an end (nearly parallel).
+Vec2 junction_point(const std::vector<std::pair<Vec2, Vec2>>& ends, double merge) {
+  Vec2 centroid{};
+  for (const auto& [p, t] : ends) centroid += p;
+  centroid = centroid / static_cast<double>(ends.size());
+  double a = 0, b = 0, c = 0, rx = 0, ry = 0;  // normal equations [a b; b c] x = r
+  for (const auto& [p, t] : ends) {
+    const Vec2 n = geometry::perp(t);
+    const double d = geometry::dot(n, p);
+    a += n.x * n.x;
+    b += n.x * n.y;
+    c += n.y * n.y;
+    rx += n.x * d;
+    ry += n.y * d;
+  }
+  const double det = a * c - b * b;
+  if (!(det > 1e-6 * (a + c) * (a + c))) return centroid;
+  const Vec2 x{(c * rx - b * ry) / det, (a * ry - b * rx) / det};
+  for (const auto& [p, t] : ends)
+    if (geometry::distance(x, p) > merge) return centroid;
+  return x;
+}
+
 // Step 2: nodes from the stretch ends (merged within kerf + tol, and across own pieces shorter
 // than tol), edges from the stretches and the own pieces between them.
 Graph build_graph(const Nest& nest, const std::vector<CommonStretch>& stretches, const CommonLineOptions& o) {
@@ -125,23 +154,22 @@ Graph build_graph(const Nest& nest, const std::vector<CommonStretch>& stretches,
         pieces.push_back({cid, cur.hi, len, cur.node_hi, next.node_lo});
     }
   }
-  // Node ids in order of their smallest end; position: the centroid of the merged stretch ends.
+  // Node ids in order of their smallest end; position: where the centre lines of the merged
+  // stretches meet (see junction_point()).
   Graph g;
   std::vector<int> node_of(2 * m, -1);
-  std::vector<int> count;
+  std::vector<std::vector<std::pair<Vec2, Vec2>>> lines;  // per node: (end, tangent) of its stretch ends
   for (std::size_t e = 0; e < 2 * m; ++e) {
     const auto root = static_cast<std::size_t>(uf.find(static_cast<int>(e)));
     if (node_of[root] < 0) {
       node_of[root] = static_cast<int>(g.nodes.size());
       g.nodes.push_back({});
-      count.push_back(0);
+      lines.emplace_back();
     }
-    const auto v = static_cast<std::size_t>(node_of[root]);
     node_of[e] = node_of[root];
-    g.nodes[v] += ends[e];
-    ++count[v];
+    lines[static_cast<std::size_t>(node_of[root])].emplace_back(ends[e], stretches[e / 2].centre.tangent_at(e % 2 == 0 ? 0 : 1));
   }
-  for (std::size_t v = 0; v < g.nodes.size(); ++v) g.nodes[v] = g.nodes[v] / static_cast<double>(count[v]);
+  for (std::size_t v = 0; v < g.nodes.size(); ++v) g.nodes[v] = junction_point(lines[v], merge);
   g.out_own.resize(g.nodes.size());
   g.common.resize(g.nodes.size());
   for (std::size_t k = 0; k < m; ++k) {
@@ -303,6 +331,34 @@ Contour join(const std::vector<CommonPiece>& pieces, bool closed) {
   return closed ? j.closed() : j.open();
 }
 
+// Does the kerf of the trails already cut this loop? At a T of parts drawn kerf apart the through
+// part's edge across the stem's mouth (one kerf long) is a loop of its own, but it lies half a kerf
+// from the through line's connector, whose kerf removes it. Cut as a loop it was narrower than the
+// kerf: pierced and cut on its kerf offset inside the through part. Only short loops are measured:
+// every point of their boundary pieces (sampled every kerf / 4) within kerf / 2 + tol of a trail.
+bool cut_by_trails(const std::vector<CommonPiece>& pieces, const std::vector<Contour>& trails,
+                   const geometry::StaticSpatialIndex& index, const CommonLineOptions& o) {
+  if (!(o.kerf_mm > o.tol_mm)) return false;
+  double own = 0;
+  for (const auto& p : pieces)
+    if (!p.connector()) own += geometry::length(p.path);
+  if (own > 2 * (o.kerf_mm + o.tol_mm)) return false;
+  const double reach = 0.5 * o.kerf_mm + o.tol_mm;
+  std::vector<std::uint32_t> near;
+  for (const auto& p : pieces) {
+    if (p.connector()) continue;
+    const double len = geometry::length(p.path);
+    const int n = std::max(1, static_cast<int>(std::ceil(len / (0.25 * o.kerf_mm))));
+    for (int k = 0; k <= n; ++k) {
+      const Vec2 q = geometry::point_at_length(p.path, len * k / n);
+      index.query(geometry::Box{q.x, q.y, q.x, q.y}.inflated(reach), near);
+      if (std::none_of(near.begin(), near.end(), [&](std::uint32_t t) { return geometry::distance(trails[t], q) <= reach; }))
+        return false;
+    }
+  }
+  return true;
+}
+
 // A point inside the segment's geometry, away from its nodes: the middle of its longest piece.
 Vec2 sample_point(const Contour& c) {
   std::size_t best = 0;
@@ -386,10 +442,24 @@ CommonLinePlan plan_common_lines(const Nest& nest, const CommonLineOptions& opti
     std::sort(v.begin(), v.end());
     v.erase(std::unique(v.begin(), v.end()), v.end());
   };
+  std::vector<Walk> trails = trace_trails(g);
+  std::vector<Contour> trail_paths;
+  std::vector<geometry::Box> trail_boxes;
+  for (const Walk& w : trails) {
+    trail_paths.push_back(join(walk_pieces(g, w, plan.stretches), false));
+    trail_boxes.push_back(geometry::bounding_box(trail_paths.back()));
+  }
+  const geometry::StaticSpatialIndex trail_index(trail_boxes);
+  std::vector<char> on_loop(g.nodes.size(), 0);  // the node lies on a loop that is cut
   for (const Walk& w : trace_loops(g)) {
     CommonSegment s;
     s.kind = CommonSegmentKind::loop;
     s.pieces = walk_pieces(g, w, plan.stretches);
+    if (cut_by_trails(s.pieces, trail_paths, trail_index, options)) continue;
+    for (const auto& st : w.steps) {
+      const Edge& ed = g.edges[static_cast<std::size_t>(st.first)];
+      on_loop[static_cast<std::size_t>(ed.from)] = on_loop[static_cast<std::size_t>(ed.to)] = 1;
+    }
     s.path = join(s.pieces, true);
     if (w.last != w.first) {
       // Cannot happen when every contour is closed: each node has as many own edges in as out.
@@ -405,12 +475,12 @@ CommonLinePlan plan_common_lines(const Nest& nest, const CommonLineOptions& opti
     plan.segments.push_back(std::move(s));
   }
   const std::size_t first_trail = plan.segments.size();
-  std::vector<Walk> trails = trace_trails(g);
-  for (const Walk& w : trails) {
+  for (std::size_t t = 0; t < trails.size(); ++t) {
+    const Walk& w = trails[t];
     CommonSegment s;
     s.kind = CommonSegmentKind::trail;
     s.pieces = walk_pieces(g, w, plan.stretches);
-    s.path = join(s.pieces, false);
+    s.path = std::move(trail_paths[t]);
     for (const auto& st : w.steps) {
       const auto& str = plan.stretches[static_cast<std::size_t>(g.edges[static_cast<std::size_t>(st.first)].stretch)];
       s.contours.push_back(str.first);
@@ -419,8 +489,8 @@ CommonLinePlan plan_common_lines(const Nest& nest, const CommonLineOptions& opti
     }
     finish(s.contours);
     s.group = group_of(s.contours.front());
-    s.start_on_loop = !g.out_own[static_cast<std::size_t>(w.first)].empty();
-    s.end_on_loop = !g.out_own[static_cast<std::size_t>(w.last)].empty();
+    s.start_on_loop = on_loop[static_cast<std::size_t>(w.first)] != 0;
+    s.end_on_loop = on_loop[static_cast<std::size_t>(w.last)] != 0;
     s.enter_at_start = s.start_on_loop;
     s.enter_at_end = s.end_on_loop;
     plan.segments.push_back(std::move(s));

@@ -167,5 +167,47 @@ TEST(CommonEntries, KerfGapRow) {
     }
 }
 
+// The T of parts drawn kerf apart (two side by side under a long one), laser and plasma kerfs:
+// every pierce off the cut line, and every trail lead and lead-out, keeps its kerf off the parts
+// (half a kerf from every part, as the common lines). Before, a lead turned by 45° into the
+// vertical gap passed 0.53 mm from a corner at kerf 1.5, and the long part's edge across the
+// stem's mouth was a loop pierced inside the long part.
+TEST(CommonEntries, KerfGapTeeKeepsHalfAKerfOffTheParts) {
+  for (const double k : {0.15, 1.5}) {
+    SCOPED_TRACE("kerf " + std::to_string(k));
+    const Nest nest = nest_on_sheet({rect(10, 10, 40, 60), rect(40 + k, 10, 70 + k, 60), rect(10, 60 + k, 70 + k, 80 + k)});
+    CommonLineOptions co;
+    co.kerf_mm = k;
+    EntryOptions opt;
+    opt.kerf_mm = k;
+    const auto plan = plan_common_lines(nest, co);
+    check_entries(nest, plan, opt);
+    Diagnostics diags;
+    const auto entries = plan_common_entries(nest, plan, opt, diags);
+    // Distance to the nearest part's material (0 inside one).
+    const auto clear = [&](Vec2 p) {
+      double d = 1e300;
+      for (const auto& c : nest.contours)
+        if (c.role != ContourRole::sheet) d = std::min(d, geometry::distance(c.source.contour, p));
+      return in_material(nest, p) ? 0.0 : d;
+    };
+    for (std::size_t i = 0; i < plan.segments.size(); ++i) {
+      const auto& seg = plan.segments[i];
+      for (const auto& e : entries[i]) {
+        if (seg.kind != CommonSegmentKind::trail && e.fallback == Fallback::on_contour) continue;  // on its own edge
+        EXPECT_GE(clear(e.pierce), k / 2 - 1e-6) << to_string(seg.kind) << " pierce (" << e.pierce.x << ", " << e.pierce.y << ")";
+        if (seg.kind != CommonSegmentKind::trail) continue;  // loop leads: compensated onto the loop
+        for (const auto* lead : {&e.lead_in, &e.lead_out}) {
+          if (lead->vertices.size() < 2) continue;
+          for (int j = 0; j <= 200; ++j) {
+            const Vec2 p = geometry::point_at_length(*lead, geometry::length(*lead) * j / 200.0);
+            EXPECT_GE(clear(p), k / 2 - 1e-6) << (lead == &e.lead_in ? "lead-in" : "lead-out") << " at (" << p.x << ", " << p.y << ")";
+          }
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace cutroute::model

@@ -360,8 +360,8 @@ TEST(CommonLines, RowWithKerfGap) {
   EXPECT_TRUE(plan_common_lines(nest, o).stretches.empty());
 }
 
-// A 2 x 2 grid drawn kerf apart: the four centre lines meet at one junction (the centroid of
-// their ends) and still go straight through it.
+// A 2 x 2 grid drawn kerf apart: the four centre lines meet at one junction (where they cross,
+// the centroid of their ends) and still go straight through it.
 TEST(CommonLines, TwoByTwoKerfGap) {
   const double k = 0.2;
   const Nest nest = make_nest({rect(0, 0, 100, 60), rect(100 + k, 0, 200 + k, 60), rect(0, 60 + k, 100, 120 + k),
@@ -378,6 +378,33 @@ TEST(CommonLines, TwoByTwoKerfGap) {
       const Vec2 a = s.path.vertices.front().p, b = s.path.vertices.back().p;
       EXPECT_TRUE(std::abs(a.x - b.x) < 1e-9 || std::abs(a.y - b.y) < 1e-9);
     }
+}
+
+// A T of parts drawn kerf apart (two side by side under a long one): the junction lies where the
+// centre lines cross, so the through line runs straight through it, its kerf reaching the long
+// part's edge across the stem's mouth. That edge is no loop of its own: before, the junction was
+// the centroid of the three stretch ends, off the through line, and the edge (one kerf long) was
+// a loop narrower than the kerf, entered inside the long part.
+TEST(CommonLines, TeeKerfGap) {
+  for (const double k : {0.15, 1.5}) {
+    SCOPED_TRACE("kerf " + std::to_string(k));
+    const Nest nest = make_nest({rect(10, 10, 40, 60), rect(40 + k, 10, 70 + k, 60), rect(10, 60 + k, 70 + k, 80 + k)});
+    CommonLineOptions o;
+    o.kerf_mm = k;
+    const auto plan = plan_common_lines(nest, o);
+    EXPECT_EQ(count(plan, CommonSegmentKind::loop), 1u);
+    ASSERT_EQ(count(plan, CommonSegmentKind::trail), 2u);
+    // The outline crosses 3 gap mouths, the through line the stem's mouth (k), the stem reaches
+    // the junction (k / 2); the mouth's edge on the long part (k) is cut by the through line.
+    check_grid(nest, plan, 50 + 30 + 30, 3 * k + k + k / 2 - k, k / 2 + 1e-9);
+    for (const auto& s : plan.segments)
+      if (s.kind == CommonSegmentKind::trail) {
+        for (const auto& v : s.path.vertices) {
+          const bool through = std::abs(s.path.vertices.front().p.y - s.path.vertices.back().p.y) < 1e-9;
+          EXPECT_NEAR(through ? v.p.y : v.p.x, through ? 60 + k / 2 : 40 + k / 2, 1e-9);
+        }
+      }
+  }
 }
 
 TEST(CommonLines, PointTouchIsNoCommonLine) {

@@ -461,5 +461,46 @@ TEST(CommonOptimize, KerfApartRow) {
   std::filesystem::remove_all(dir);
 }
 
+// Two 30 x 50 parts side by side under a 61.5 x 20 one, all one kerf apart (tee15.dxf of an
+// audit): at the T the stem's gap ends on the long part's edge. Before, the junction's centre lay
+// off the through line, the long part's edge across the stem's mouth was cut as a loop narrower
+// than the kerf, pierced 0.1 mm inside the long part (kerf 1.5: its kerf 0.85 mm into it; laser
+// 0.15: 0.085 mm), and leads turned by 45° into a gap clipped a corner (0.22 mm). Re-read from
+// the program: no pierce and no uncompensated cut comes nearer to any part than the common lines,
+// half a kerf; every edge is still cut.
+TEST(CommonOptimize, KerfApartTeeKeepsTheBeamOffTheParts) {
+  const auto dir = fresh_temp_dir("common-kerf-tee");
+  struct Case {
+    double kerf;
+    std::string options;
+  };
+  for (const Case& c : {Case{0.15, "--technique common"}, Case{0.15, "--technique auto"},
+                        Case{1.5, "--technique common --dialect plasma-thc"}, Case{1.5, "--technique auto --dialect plasma-thc"}}) {
+    SCOPED_TRACE(c.options + " --kerf " + std::to_string(c.kerf));
+    const double k = c.kerf;
+    DxfBuilder b;
+    b.insunits(4);
+    const auto rect = [&](double x, double y, double w, double h) {
+      b.lwpolyline({Vertex{{x, y}, 0}, Vertex{{x + w, y}, 0}, Vertex{{x + w, y + h}, 0}, Vertex{{x, y + h}, 0}}, true, "PARTS");
+    };
+    rect(10, 10, 30, 50);
+    rect(40 + k, 10, 30, 50);
+    rect(10, 60 + k, 60 + k, 20);
+    const std::string dxf = (dir / "tee.dxf").string();
+    std::ofstream(dxf) << b.str();
+    const auto rep = dir / "out.json";
+    std::string program;
+    const auto check = optimize_and_check(dxf, dir,
+                                          c.options + " --kerf " + std::to_string(k) + " --threads 1 --time-limit 0 --work-limit 0.2 --report " +
+                                              rep.string(),
+                                          k / 2 + 0.005, &program);
+    EXPECT_EQ(nlohmann::json::parse(read_text(rep)).at("chosen"), "common");
+    EXPECT_GE(check.nearest_uncompensated_mm, k / 2 - 1e-6) << "line " << check.nearest_line << "\n" << program;
+    // The outline, the through line and the stem: the stem's mouth is cut by the through line.
+    EXPECT_EQ(check.runs, 3);
+  }
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace cutroute::test

@@ -25,6 +25,20 @@ struct UnionFind {
   std::size_t find(std::size_t x) { return p[x] == x ? x : p[x] = find(p[x]); }
 };
 
+// A move as geometry segments (an arc in two halves, so that a full circle has a bulge too).
+std::vector<geometry::Segment> move_segments(const ProbeMove& m) {
+  const Vec2 a{m.x0, m.y0}, b{m.x1, m.y1};
+  if (m.arc == 0) return {geometry::Segment{a, b, 0}};
+  const Vec2 c{m.cx, m.cy};
+  double sweep = std::atan2(b.y - c.y, b.x - c.x) - std::atan2(a.y - c.y, a.x - c.x);
+  if (m.arc > 0 && sweep <= 1e-12) sweep += 2 * std::numbers::pi;
+  if (m.arc < 0 && sweep >= -1e-12) sweep -= 2 * std::numbers::pi;
+  const double r = geometry::distance(a, c), a0 = std::atan2(a.y - c.y, a.x - c.x) + sweep / 2;
+  const Vec2 mid = c + Vec2{std::cos(a0), std::sin(a0)} * r;
+  const double bulge = std::tan(sweep / 8);
+  return {geometry::Segment{a, mid, bulge}, geometry::Segment{mid, b, bulge}};
+}
+
 }  // namespace
 
 CommonProgramCheck check_common_program(const model::Nest& nest, const std::string& gcode, double on_mm,
@@ -78,6 +92,29 @@ CommonProgramCheck check_common_program(const model::Nest& nest, const std::stri
     return inside % 2 == 1;
   };
 
+  // Distance from a segment to the material of the nearest part: 0 inside one, else to the
+  // nearest drawn boundary (up to 10 mm).
+  const auto material_distance = [&](const geometry::Segment& s) {
+    if (in_material(s.a)) return 0.0;
+    double best = 10;
+    std::vector<std::uint32_t> near;
+    part_index.query(s.bounding_box().inflated(best), near);
+    for (const auto h : near)
+      sets[h].index.visit(s.bounding_box().inflated(best), [&](std::uint32_t k) {
+        const auto& b = sets[h].segments[k];
+        best = std::min(best, s.a == s.b ? geometry::closest_point(b, s.a).distance : geometry::distance(s, b));
+        return true;
+      });
+    return best;
+  };
+  const auto nearest = [&](const geometry::Segment& s, int line) {
+    const double d = material_distance(s);
+    if (d < out.nearest_uncompensated_mm) {
+      out.nearest_uncompensated_mm = d;
+      out.nearest_line = line;
+    }
+  };
+
   // Beam-on moves in program order; leads and connectors checked as they come.
   std::vector<std::size_t> cuts;
   std::vector<std::vector<std::size_t>> common_of;  // per cut: the contours a common line separates
@@ -93,12 +130,15 @@ CommonProgramCheck check_common_program(const model::Nest& nest, const std::stri
       beam = true;
       ++out.runs;
       const Vec2 pierce{m.x0, m.y0};
+      nearest(geometry::Segment{pierce, pierce, 0}, m.line);
       if (on_boundary(pierce, k))
         ++out.pierces_on_a_cut;
       else if (in_material(pierce))
         out.failures.push_back("line " + std::to_string(m.line) + ": pierce inside a part");
     }
     cuts.push_back(i);
+    if (!m.compensated)
+      for (const auto& s : move_segments(m)) nearest(s, m.line);
     bool all_on = true;
     std::vector<std::size_t> on_all;  // contours the whole move lies on
     for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {

@@ -16,6 +16,13 @@ struct CommonProgramCheck {
   int runs = 0;                       // beam-on runs (= pierces)
   int pierces_on_a_cut = 0;           // runs starting on a drawn boundary (no lead-in)
   double boundary_cut_mm = 0;         // beam-on length lying on drawn part boundaries [mm]
+  // The nearest approach of the beam's centre to a part's material where no compensation offsets
+  // it: every pierce and every beam-on move outside G41/G42 (common lines, their leads, connectors,
+  // cuts written on their kerf offset), measured exactly to the drawn boundaries (0 inside a
+  // part), looked for within 10 mm [mm]; `nearest_line` its program line. On parts drawn kerf
+  // apart a common line runs exactly half a kerf from both parts, and nothing may come nearer.
+  double nearest_uncompensated_mm = 10;
+  int nearest_line = 0;
   // With `tab_width_mm` > 0: per drawn contour (the sheet excluded, in nest order), the widths of
   // the stretches of its boundary left uncut (micro-joints), in sampling order [mm].
   std::vector<std::vector<double>> uncut;

@@ -103,12 +103,13 @@ struct CommonLinePlan {
 // The common-line decomposition of a nest. Steps (common_graph.cpp):
 //  1. find_common_stretches(); group the contours they join (union-find).
 //  2. cut graph: nodes are the stretch ends, merged when closer than kerf + tol (a junction of
-//     parts drawn kerf apart: the centroid); edges are the stretches (once each) and the pieces of
-//     contour boundary between them ("own" edges, one part on one side only).
+//     parts drawn kerf apart: where their centre lines cross); edges are the stretches (once each)
+//     and the pieces of contour boundary between them ("own" edges, one part on one side only).
 //  3. trails: at each node, pair the common edges that continue each other most straightly
 //     (straight through at a 4-way junction), and follow the pairs.
 //  4. loops: the own edges, oriented with their material on the left, traced face by face (at a
-//     node the tightest left turn): the outer boundary of each group and any scrap it encloses.
+//     node the tightest left turn): the outer boundary of each group and any scrap it encloses;
+//     not a short one the trails' kerf already cuts (a T's mouth on parts drawn kerf apart).
 //  5. entry ends of trails and precedence (see CommonLinePlan::precedence).
 // Contours of a nest without stretches come out as one contour segment each, in nest order.
 CommonLinePlan plan_common_lines(const Nest& nest, const CommonLineOptions& options);
@@ -141,7 +142,8 @@ EnteredContour entered_contour(const Nest& nest, const std::vector<CommonPiece>&
 // segments (so the scrap, clearance and fallback rules are the same as for plain contours).
 // Trails: at each end that may be entered, a straight lead-in continuing the trail backwards
 // (else turned by ±45°, else shortened) whose pierce lies in scrap at `clearance` from every
-// contour and which touches no contour before its end; a lead-out continuing the trail past an
+// contour and which keeps half a kerf from the contours it cuts (but where it meets the trail)
+// and `clearance` from the others; a lead-out continuing the trail past an
 // end on a loop. The candidates' pieces: contour pieces (own boundary), common_edge pieces (a
 // shared stretch, named after its first contour) and bridges (connectors across a kerf gap);
 // contour, s_mm and clockwise: those of the nest contour the cut enters (entered_contour()).

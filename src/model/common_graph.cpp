@@ -336,14 +336,19 @@ Contour join(const std::vector<CommonPiece>& pieces, bool closed) {
 // from the through line's connector, whose kerf removes it. Cut as a loop it was narrower than the
 // kerf: pierced and cut on its kerf offset inside the through part. Only short loops are measured:
 // every point of their boundary pieces (sampled every kerf / 4) within kerf / 2 + tol of a trail.
+// Short: an oblique mouth is kerf / sin(angle) wide (four such edges round an oblique X: 4.0 mm at
+// kerf 1.5, over twice the kerf, and the loop was entered 0.42 mm inside a part), so up to eight
+// kerfs. The reach allows 1 % of the kerf besides tol: where a straight gap meets a round part's
+// arc, the connector is a chord short of the arc by a few µm (0.763 against 0.760 at kerf 1.5),
+// and the loop, entered instead, was pierced inside the round part (0.92 mm deep).
 bool cut_by_trails(const std::vector<CommonPiece>& pieces, const std::vector<Contour>& trails,
                    const geometry::StaticSpatialIndex& index, const CommonLineOptions& o) {
   if (!(o.kerf_mm > o.tol_mm)) return false;
   double own = 0;
   for (const auto& p : pieces)
     if (!p.connector()) own += geometry::length(p.path);
-  if (own > 2 * (o.kerf_mm + o.tol_mm)) return false;
-  const double reach = 0.5 * o.kerf_mm + o.tol_mm;
+  if (own > 8 * (o.kerf_mm + o.tol_mm)) return false;
+  const double reach = 0.5 * o.kerf_mm + std::max(o.tol_mm, 0.01 * o.kerf_mm);
   std::vector<std::uint32_t> near;
   for (const auto& p : pieces) {
     if (p.connector()) continue;

@@ -502,5 +502,50 @@ TEST(CommonOptimize, KerfApartTeeKeepsTheBeamOffTheParts) {
   std::filesystem::remove_all(dir);
 }
 
+// Four parts round an oblique X (a horizontal gap crossed at 60 degrees), one kerf apart: the four
+// edges round the crossing are each kerf / sin(60) long, 4.0 mm in all at kerf 1.5, and that loop,
+// though the trails' kerf cuts every point of it, was entered: pierced 0.42 mm inside a part.
+TEST(CommonOptimize, KerfApartObliqueCrossKeepsTheBeamOffTheParts) {
+  const auto dir = fresh_temp_dir("common-kerf-x");
+  for (const double k : {0.15, 1.5}) {
+    SCOPED_TRACE("kerf " + std::to_string(k));
+    const Vec2 c{50, 40};
+    const double a = std::numbers::pi / 3;
+    const Vec2 n1{0, 1}, n2{-std::sin(a), std::cos(a)};  // normals of the two gaps' centre lines
+    // The sheet's 100 x 80 rectangle clipped to the side s of each line, half a kerf off it
+    // (Sutherland-Hodgman against two half-planes).
+    const auto piece = [&](double s1, double s2) {
+      std::vector<Vec2> poly{{0, 0}, {100, 0}, {100, 80}, {0, 80}};
+      for (const auto& [n, sgn] : {std::pair{n1, s1}, std::pair{n2, s2}}) {
+        const auto f = [&](Vec2 p) { return sgn * ((p.x - c.x) * n.x + (p.y - c.y) * n.y) - k / 2; };
+        std::vector<Vec2> out;
+        for (std::size_t i = 0; i < poly.size(); ++i) {
+          const Vec2 p = poly[i], q = poly[(i + 1) % poly.size()];
+          const double fp = f(p), fq = f(q);
+          if (fp >= 0) out.push_back(p);
+          if ((fp >= 0) != (fq >= 0)) out.push_back(p + (q - p) * (fp / (fp - fq)));
+        }
+        poly = out;
+      }
+      std::vector<Vertex> v;
+      for (const Vec2& p : poly) v.push_back({p, 0});
+      return v;
+    };
+    DxfBuilder b;
+    b.insunits(4);
+    for (const double s1 : {1.0, -1.0})
+      for (const double s2 : {1.0, -1.0}) b.lwpolyline(piece(s1, s2), true, "PARTS");
+    const std::string dxf = (dir / "x.dxf").string();
+    std::ofstream(dxf) << b.str();
+    std::string program;
+    const auto check = optimize_and_check(
+        dxf, dir, "--technique common --kerf " + std::to_string(k) + (k > 1 ? " --dialect plasma-thc" : "") +
+                      " --threads 1 --time-limit 0 --work-limit 0.2",
+        k / 2 + 0.005, &program);
+    EXPECT_GE(check.nearest_uncompensated_mm, k / 2 - 0.01 * k - 1e-6) << "line " << check.nearest_line << "\n" << program;
+  }
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace cutroute::test

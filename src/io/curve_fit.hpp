@@ -3,6 +3,7 @@
 // the reader stays self-contained and the conversion tolerance is checked by its own code.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <functional>
 #include <vector>
@@ -38,6 +39,8 @@ struct Affine {
   Vec2 apply(Vec2 p) const { return {m00 * p.x + m01 * p.y + t.x, m10 * p.x + m11 * p.y + t.y}; }
   Vec2 apply_linear(Vec2 v) const { return {m00 * v.x + m01 * v.y, m10 * v.x + m11 * v.y}; }
   double det() const { return m00 * m11 - m01 * m10; }
+  // An upper bound of how far the linear part stretches a vector (its Frobenius norm).
+  double stretch_bound() const { return std::sqrt(m00 * m00 + m01 * m01 + m10 * m10 + m11 * m11); }
   // Does the map keep circles circles (rotation, uniform scale, mirror)? [relative tolerance]
   bool is_similarity() const;
   // this ∘ other: first other, then this.

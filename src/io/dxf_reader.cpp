@@ -421,7 +421,7 @@ Contour Expander::transform(const Contour& c, const Affine& a, double& dev, doub
     const detail::ArcSeg s{v.p, b, v.bulge};
     const Vec2 ctr = detail::arc_center(s);
     const double rad = geometry::distance(ctr, v.p);
-    const double stretch = std::sqrt(a.m00 * a.m00 + a.m01 * a.m01 + a.m10 * a.m10 + a.m11 * a.m11);  // >= largest
+    const double stretch = a.stretch_bound();
     if (!within_limit(a.apply(ctr)) || !within_limit(a.apply(v.p)) || !(rad * stretch < units::kMaxCoordinateMm)) {
       r.vertices.push_back({a.apply(v.p), 0.0});  // out of range: the caller's limit check reports it
       continue;
@@ -640,8 +640,8 @@ std::optional<Diagnostic> Expander::curve(const ScanEntity& e, const Payload& p,
         // The curve through the fit points is the block's, spaced by chord length there: a
         // non-uniform scale changes the chords' ratios, so fitting the scaled points would draw
         // another curve (0.65 mm off under a 3 x 0.5 scale). Fitted in the block, then scaled, the
-        // two steps sharing the tolerance (the scale's Frobenius norm bounds its stretch).
-        const double stretch = std::sqrt(t.m00 * t.m00 + t.m01 * t.m01 + t.m10 * t.m10 + t.m11 * t.m11);
+        // two steps sharing the tolerance.
+        const double stretch = t.stretch_bound();
         double block_dev = 0;
         Contour local;
         local.vertices = detail::fit_points_to_arcs(arrays.fit, closed_flag, has_ts ? &p.tan_start : nullptr,
@@ -752,8 +752,11 @@ std::optional<Diagnostic> Expander::emit(int idx, const Affine& t, const std::st
     ++out_.skipped[e.type];
     return std::nullopt;
   }
-  for (std::size_t h = 0; h < scan_.hidden_layers.size(); ++h)
-    if (upper(scan_.hidden_layers[h].first) == upper(layer)) ++hidden_read_[h];
+  if (!scan_.hidden_layers.empty()) {
+    const std::string u = upper(layer);
+    for (std::size_t h = 0; h < scan_.hidden_layers.size(); ++h)
+      if (upper(scan_.hidden_layers[h].first) == u) ++hidden_read_[h];
+  }
   if (e.invisible) ++invisible_read_;
   auto d = curve(e, p, t, layer, here, block);
   // An error in a block's entity is reported at its top-level INSERT; name the entity itself too.

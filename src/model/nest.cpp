@@ -273,23 +273,20 @@ std::optional<Vec2> rectangle_sides(const NestContour& nc) {
   const Contour& c = nc.source.contour;
   const double tol = tol::kSheetRectangleMm;
   std::vector<Vec2> sides;  // side vectors, collinear pieces summed
+  const auto continues = [&](Vec2 a, Vec2 b) { return std::abs(geometry::cross(a, b)) <= tol * geometry::norm(a) && geometry::dot(a, b) > 0; };
   for (std::size_t i = 0; i < geometry::segment_count(c); ++i) {
     const geometry::Segment s = geometry::segment(c, i);
     const Vec2 d = s.b - s.a;
     const double len = geometry::norm(d);
     if (s.is_arc() && len * std::abs(s.bulge) / 2.0 > tol) return std::nullopt;
     if (len <= tol) continue;
-    if (!sides.empty()) {
-      const Vec2 last = sides.back();
-      if (std::abs(geometry::cross(last, d)) <= tol * geometry::norm(last) && geometry::dot(last, d) > 0) {
-        sides.back() = last + d;
-        continue;
-      }
+    if (!sides.empty() && continues(sides.back(), d)) {
+      sides.back() = sides.back() + d;
+      continue;
     }
     sides.push_back(d);
   }
-  if (sides.size() == 5 && std::abs(geometry::cross(sides.front(), sides.back())) <= tol * geometry::norm(sides.front()) &&
-      geometry::dot(sides.front(), sides.back()) > 0) {
+  if (sides.size() == 5 && continues(sides.front(), sides.back())) {
     sides.front() = sides.front() + sides.back();  // the first side began mid-way
     sides.pop_back();
   }
@@ -307,6 +304,7 @@ enum class SheetReason { size, layer, geometry };
 struct SheetCandidate {
   std::size_t index;
   SheetReason reason;
+  Vec2 sides;  // its side lengths [mm]
 };
 
 std::optional<SheetCandidate> find_sheet_candidate(const Nest& nest, const NestOptions& options) {
@@ -329,11 +327,11 @@ std::optional<SheetCandidate> find_sheet_candidate(const Nest& nest, const NestO
     const Vec2 want = *options.sheet_size;
     auto near = [](double a, double b) { return std::abs(a - b) < tol::kSheetSizeMm; };
     const bool fits = (near(sides->x, want.x) && near(sides->y, want.y)) || (near(sides->x, want.y) && near(sides->y, want.x));
-    if (fits) return SheetCandidate{largest, SheetReason::size};
+    if (fits) return SheetCandidate{largest, SheetReason::size, *sides};
   }
   if (!options.detect_sheet || nest.contours.size() < 2) return std::nullopt;
-  if (layer_names_sheet(c.source.layer)) return SheetCandidate{largest, SheetReason::layer};
-  return SheetCandidate{largest, SheetReason::geometry};
+  if (layer_names_sheet(c.source.layer)) return SheetCandidate{largest, SheetReason::layer, *sides};
+  return SheetCandidate{largest, SheetReason::geometry, *sides};
 }
 
 // --- step 3: containment tree ---
@@ -578,10 +576,8 @@ Nest build_nest(std::vector<SourceContour> contours, const NestOptions& options)
     std::string msg = "--sheet " + format_fixed(options.sheet_size->x, 3) + "," + format_fixed(options.sheet_size->y, 3) +
                       " matches no rectangle drawn round the parts (within " + format_fixed(tol::kSheetSizeMm, 3) + " mm)";
     if (sheet) {
-      const NestContour& border = nest.contours[cid(sheet->index)];
-      const Vec2 size = rectangle_sides(border).value_or(Vec2{border.box.width(), border.box.height()});
       msg += ": the border found by its " + std::string(sheet->reason == SheetReason::layer ? "layer" : "shape") + ", " +
-             format_fixed(size.x, 3) + " x " + format_fixed(size.y, 3) + " mm, is left uncut";
+             format_fixed(sheet->sides.x, 3) + " x " + format_fixed(sheet->sides.y, 3) + " mm, is left uncut";
     } else {
       msg += ": no border is left out, every closed contour is cut";
     }
